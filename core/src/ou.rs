@@ -1,0 +1,255 @@
+//! The exact Ornstein–Uhlenbeck step shared by HRLA and ULA.
+//!
+//! With the gradient frozen at `g` over a step of length `h`, each coordinate
+//! of `(x, y)` solves a linear SDE whose law after `h` is Gaussian. Writing
+//! `u = alpha h` and
+//!
+//! ```text
+//! phi1(u)  = (1 - e^-u) / u
+//! phi2(u)  = (e^-u - 1 + u) / u^2
+//! omega(u) = (u - 2 tanh(u/2)) / u^3
+//! ```
+//!
+//! the spec's formulas (`../shared/spec/HRLA.md`, section 4) become
+//!
+//! ```text
+//! mean_x = x + h phi1(u) y - (beta h + gamma h^2 phi2(u)) g
+//! mean_y = e^-u y - gamma h phi1(u) g
+//! Syy    = 2 sy2 h phi1(2u)
+//! Sxy    = sy2 h^2 phi1(u)^2
+//! Sxx    = 2 sx2 h + 2 sy2 h^3 omega(u) + Sxy^2 / Syy
+//! ```
+//!
+//! The sample is drawn through the Cholesky factor with `y` first:
+//! `y' = mean_y + Lyy z1`, `x' = mean_x + Lxy z1 + Lxx z2`, where
+//! `Lxx^2 = Sxx - Sxy^2/Syy = 2 sx2 h + 2 sy2 h^3 omega(u)` is the Schur
+//! complement. The identity `(2u - e^-2u + 4e^-u - 3)(1 + e^-u) - (1 - e^-u)^3
+//! = 2u(1 + e^-u) - 4(1 - e^-u)` turns it into a sum of two positive terms, so
+//! it is computed without any cancellation.
+//!
+//! Each of `phi2` and `omega` cancels for small `u` when evaluated as written.
+//! For `t = u/2 <= 2` they are rewritten as series with positive terms only:
+//! with `s = t^2`, `A(s) = sum_{k>=1} 2k s^(k-1) / (2k+1)!` and
+//! `S(s) = sinh(t)/t = sum_{k>=0} s^k / (2k+1)!`,
+//!
+//! ```text
+//! phi2(u)  = e^-t (t A(s) + S(s)) / 2       (from t cosh t - sinh t = t^3 A(s))
+//! omega(u) = A(s) / (4 cosh t)
+//! ```
+//!
+//! and beyond `t = 2` the direct forms lose at most one bit. Only `phi2`,
+//! `omega` and the mean coefficients involve `gamma` or `sx2`, so an annealed
+//! temperature refreshes three numbers per step (two products and a square
+//! root); everything depending on `u` alone is computed once.
+
+use crate::error::{Error, positive};
+use crate::float::Float;
+
+/// Terms of the series `A(s)` and `S(s)`: for `s <= 4` the first omitted
+/// term is below 2^-60 of the sum, so both are exact to the last place of f64.
+const SERIES_TERMS: usize = 14;
+
+/// `A(s) = sum_{k>=1} 2k s^(k-1) / (2k+1)!` by Horner's rule (positive terms).
+fn series_a<F: Float>(s: F) -> F {
+    let mut acc = F::ZERO;
+    let mut k = SERIES_TERMS;
+    while k >= 1 {
+        acc = acc * s + F::from_f64(2.0 * k as f64 / factorial(2 * k + 1));
+        k -= 1;
+    }
+    acc
+}
+
+/// `S(s) = sinh(t)/t = sum_{k>=0} s^k / (2k+1)!` by Horner's rule.
+fn series_sinhc<F: Float>(s: F) -> F {
+    let mut acc = F::ZERO;
+    let mut k = SERIES_TERMS + 1;
+    while k >= 1 {
+        k -= 1;
+        acc = acc * s + F::from_f64(1.0 / factorial(2 * k + 1));
+    }
+    acc
+}
+
+/// `n!` in f64; exact up to 22! and correctly rounded enough beyond for the
+/// series coefficients (their relative error is far below the terms' size).
+fn factorial(n: usize) -> f64 {
+    (2..=n).fold(1.0, |acc, i| acc * i as f64)
+}
+
+/// `(1 - e^-u) / u`, accurate for every `u > 0`.
+pub(crate) fn phi1<F: Float>(u: F) -> F {
+    -(-u).expm1() / u
+}
+
+/// `(e^-u - 1 + u) / u^2`, accurate for every `u > 0`.
+pub(crate) fn phi2<F: Float>(u: F) -> F {
+    let t = u * F::HALF;
+    if t <= F::TWO {
+        let s = t * t;
+        (-t).exp() * (t * series_a(s) + series_sinhc(s)) * F::HALF
+    } else {
+        (F::ONE - phi1(u)) / u
+    }
+}
+
+/// `(u - 2 tanh(u/2)) / u^3`, accurate for every `u > 0`.
+pub(crate) fn omega<F: Float>(u: F) -> F {
+    let t = u * F::HALF;
+    if t <= F::TWO {
+        series_a(t * t) / (F::from_f64(4.0) * t.cosh())
+    } else {
+        (F::ONE - t.tanh() / t) / (u * u)
+    }
+}
+
+/// Mean and covariance of one step of one coordinate, given `(x, y)` and the
+/// gradient component `g` at the start of the step.
+///
+/// For OLA, which has no velocity, `mean_y = y` and the `y` entries of the
+/// covariance are zero.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepMoments<F> {
+    /// Conditional mean of the new position.
+    pub mean_x: F,
+    /// Conditional mean of the new velocity.
+    pub mean_y: F,
+    /// Conditional variance of the new position.
+    pub var_x: F,
+    /// Conditional covariance of the new position and velocity.
+    pub cov_xy: F,
+    /// Conditional variance of the new velocity.
+    pub var_y: F,
+}
+
+/// The coefficients of the exact step at one inverse temperature `a`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct OuStep<F> {
+    // Fixed by (b, alpha, beta, h).
+    e: F,
+    c_xy: F,
+    l_yy: F,
+    l_xy: F,
+    schur_y: F,
+    cov_xy: F,
+    var_y: F,
+    beta_h: F,
+    two_beta_h: F,
+    h2_phi2_over_b: F,
+    h_phi1_over_b: F,
+    // Refreshed with a.
+    a: F,
+    c_xg: F,
+    c_yg: F,
+    l_xx: F,
+}
+
+impl<F: Float> OuStep<F> {
+    /// Validates `(a, b, alpha, h)` (finite, > 0) and `beta` (finite, >= 0:
+    /// ULA is `beta = 0`) and computes every coefficient.
+    pub(crate) fn new(a: F, b: F, alpha: F, beta: F, h: F) -> Result<Self, Error> {
+        let b = positive("b", b)?;
+        let alpha = positive("alpha", alpha)?;
+        let h = positive("h", h)?;
+        if !(beta.is_finite() && beta >= F::ZERO) {
+            return Err(Error::NotPositive {
+                name: "beta",
+                value: beta.to_f64(),
+            });
+        }
+        let u = alpha * h;
+        let sy2 = alpha / b;
+        let p1 = phi1(u);
+        let p1_2u = phi1(u + u);
+        let sy2_h = sy2 * h;
+        let mut step = Self {
+            e: (-u).exp(),
+            c_xy: h * p1,
+            l_yy: (F::TWO * sy2_h * p1_2u).sqrt(),
+            l_xy: sy2_h.sqrt() * h * p1 * p1 / (F::TWO * p1_2u).sqrt(),
+            schur_y: F::TWO * sy2_h * h * h * omega(u),
+            cov_xy: sy2_h * h * p1 * p1,
+            var_y: F::TWO * sy2_h * p1_2u,
+            beta_h: beta * h,
+            two_beta_h: F::TWO * beta * h,
+            h2_phi2_over_b: h * h * phi2(u) / b,
+            h_phi1_over_b: h * p1 / b,
+            a: F::ZERO,
+            c_xg: F::ZERO,
+            c_yg: F::ZERO,
+            l_xx: F::ZERO,
+        };
+        let fixed = [
+            step.e,
+            step.c_xy,
+            step.l_yy,
+            step.l_xy,
+            step.schur_y,
+            step.cov_xy,
+            step.var_y,
+            step.two_beta_h,
+            step.h2_phi2_over_b,
+            step.h_phi1_over_b,
+        ];
+        // A vanishing velocity variance would make the step deterministic in
+        // y and the moments meaningless: refuse it with the overflows.
+        let var_y_positive = step.var_y > F::ZERO;
+        if !fixed.iter().all(|c| c.is_finite()) || !var_y_positive {
+            return Err(Error::DegenerateCoefficients);
+        }
+        step.set_a(a)?;
+        Ok(step)
+    }
+
+    /// Refreshes the three temperature-dependent coefficients. On error the
+    /// step is left unchanged.
+    #[inline]
+    pub(crate) fn set_a(&mut self, a: F) -> Result<(), Error> {
+        let a = positive("a", a)?;
+        let c_xg = self.beta_h + a * self.h2_phi2_over_b;
+        let c_yg = a * self.h_phi1_over_b;
+        let l_xx = (self.two_beta_h / a + self.schur_y).sqrt();
+        if !(c_xg.is_finite() && c_yg.is_finite() && l_xx.is_finite()) {
+            return Err(Error::DegenerateCoefficients);
+        }
+        self.a = a;
+        self.c_xg = c_xg;
+        self.c_yg = c_yg;
+        self.l_xx = l_xx;
+        Ok(())
+    }
+
+    #[inline]
+    pub(crate) fn a(&self) -> F {
+        self.a
+    }
+
+    pub(crate) fn moments(&self, x: F, y: F, g: F) -> StepMoments<F> {
+        let (mean_x, mean_y) = self.mean(x, y, g);
+        StepMoments {
+            mean_x,
+            mean_y,
+            var_x: self.two_beta_h / self.a
+                + self.schur_y
+                + self.cov_xy * (self.cov_xy / self.var_y),
+            cov_xy: self.cov_xy,
+            var_y: self.var_y,
+        }
+    }
+
+    #[inline(always)]
+    fn mean(&self, x: F, y: F, g: F) -> (F, F) {
+        (
+            x + self.c_xy * y - self.c_xg * g,
+            self.e * y - self.c_yg * g,
+        )
+    }
+
+    /// One exact step of one coordinate from two standard normals.
+    #[inline(always)]
+    pub(crate) fn apply(&self, x: &mut F, y: &mut F, g: F, z1: F, z2: F) {
+        let (mx, my) = self.mean(*x, *y, g);
+        *x = mx + self.l_xy * z1 + self.l_xx * z2;
+        *y = my + self.l_yy * z1;
+    }
+}

@@ -1,0 +1,86 @@
+//! Initial points of the chains.
+
+use rand_core::Rng;
+
+use crate::error::{Error, finite};
+use crate::float::Float;
+
+/// Draws the initial position of each chain (the velocity starts at 0).
+pub trait Start<F: Float, const D: usize> {
+    /// The initial position of chain `chain`.
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R) -> [F; D];
+}
+
+/// Every chain starts at the same point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point<F, const D: usize>([F; D]);
+
+impl<F: Float, const D: usize> Point<F, D> {
+    /// A finite point.
+    pub fn new(x: [F; D]) -> Result<Self, Error> {
+        for &v in &x {
+            finite("initial point", v)?;
+        }
+        Ok(Self(x))
+    }
+}
+
+impl<F: Float, const D: usize> Start<F, D> for Point<F, D> {
+    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, _rng: &mut R) -> [F; D] {
+        self.0
+    }
+}
+
+/// Independent isotropic Gaussian starts, `x_0 ~ N(m, s^2 I)`.
+///
+/// The paper's experiments start from `N(3·1, 10 I)`:
+/// `Gaussian::new([3.0; 10], 10f64.sqrt())`. Coordinates are drawn in order,
+/// chain after chain.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Gaussian<F, const D: usize> {
+    mean: [F; D],
+    std_dev: F,
+}
+
+impl<F: Float, const D: usize> Gaussian<F, D> {
+    /// Finite mean `m` and finite standard deviation `s >= 0` (0 gives
+    /// [`Point`]'s behaviour while still consuming normals).
+    pub fn new(mean: [F; D], std_dev: F) -> Result<Self, Error> {
+        for &m in &mean {
+            finite("mean", m)?;
+        }
+        if !(std_dev.is_finite() && std_dev >= F::ZERO) {
+            return Err(Error::NotPositive {
+                name: "std_dev",
+                value: std_dev.to_f64(),
+            });
+        }
+        Ok(Self { mean, std_dev })
+    }
+}
+
+impl<F: Float, const D: usize> Start<F, D> for Gaussian<F, D> {
+    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R) -> [F; D] {
+        let mut x = self.mean;
+        for xi in &mut x {
+            *xi += self.std_dev * F::standard_normal(rng);
+        }
+        x
+    }
+}
+
+/// Initial points from a closure `(chain, rng) -> x_0`. A non-finite point
+/// is rejected by the optimiser with [`Error::NonFiniteStart`].
+#[derive(Clone, Copy, Debug)]
+pub struct FromFn<G>(pub G);
+
+impl<F: Float, const D: usize, G> Start<F, D> for FromFn<G>
+where
+    G: FnMut(usize, &mut dyn Rng) -> [F; D],
+{
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R) -> [F; D] {
+        // `&mut R` is itself a sized `Rng`, so it coerces to `dyn Rng`.
+        let mut rng = rng;
+        (self.0)(chain, &mut rng)
+    }
+}
