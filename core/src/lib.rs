@@ -55,7 +55,8 @@
 //!   form), [`Quadratic`], [`DoubleWell`], [`StyblinskiTang`] and [`Levy`],
 //!   each with its [`KnownMinimum`].
 //! - Samplers: [`Hrla`], [`Ula`], [`Ola`], with [`StepMoments`] giving the
-//!   exact one-step mean and covariance.
+//!   exact one-step mean and covariance and [`NoiseFactor`] its Cholesky
+//!   factor.
 //! - Schedules: [`Constant`], [`Linear`], [`Geometric`], [`FnSchedule`].
 //! - Starts: [`Gaussian`], [`Point`], [`FromFn`].
 //! - Algorithm 1: [`Optimizer`], with [`Chain`], [`Best`], [`Report`].
@@ -100,7 +101,7 @@ mod ziggurat_tables;
 pub use error::Error;
 pub use float::Float;
 pub use optimizer::{Best, Chain, Optimizer, Report, Status};
-pub use ou::StepMoments;
+pub use ou::{NoiseFactor, StepMoments};
 pub use potential::{
     DoubleWell, KnownMinimum, Levy, Potential, Quadratic, Rastrigin, StyblinskiTang,
 };

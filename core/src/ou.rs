@@ -122,6 +122,26 @@ pub struct StepMoments<F> {
     pub var_y: F,
 }
 
+/// The lower-triangular factor through which a step turns two independent
+/// standard normals `z1`, `z2` into the Gaussian noise of one coordinate:
+///
+/// ```text
+/// y' = mean_y + yy z1
+/// x' = mean_x + xy z1 + xx z2
+/// ```
+///
+/// so `yy^2 = Syy`, `xy yy = Sxy` and `xx^2 = Sxx - Sxy^2/Syy` (the Schur
+/// complement, computed without cancellation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NoiseFactor<F> {
+    /// Standard deviation of the new velocity.
+    pub yy: F,
+    /// Loading of the velocity's normal on the position.
+    pub xy: F,
+    /// Conditional standard deviation of the position given the velocity.
+    pub xx: F,
+}
+
 /// The coefficients of the exact step at one inverse temperature `a`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct OuStep<F> {
@@ -219,11 +239,6 @@ impl<F: Float> OuStep<F> {
         Ok(())
     }
 
-    #[inline]
-    pub(crate) fn a(&self) -> F {
-        self.a
-    }
-
     pub(crate) fn moments(&self, x: F, y: F, g: F) -> StepMoments<F> {
         let (mean_x, mean_y) = self.mean(x, y, g);
         StepMoments {
@@ -234,6 +249,14 @@ impl<F: Float> OuStep<F> {
                 + self.cov_xy * (self.cov_xy / self.var_y),
             cov_xy: self.cov_xy,
             var_y: self.var_y,
+        }
+    }
+
+    pub(crate) fn noise_factor(&self) -> NoiseFactor<F> {
+        NoiseFactor {
+            yy: self.l_yy,
+            xy: self.l_xy,
+            xx: self.l_xx,
         }
     }
 

@@ -8,7 +8,7 @@ use rand_core::Rng;
 
 use crate::error::{Error, positive};
 use crate::float::Float;
-use crate::ou::{OuStep, StepMoments};
+use crate::ou::{NoiseFactor, OuStep, StepMoments};
 
 /// One step of a Langevin-type chain at inverse temperature `a`.
 ///
@@ -110,20 +110,17 @@ impl<F: Float> Hrla<F> {
 
     /// The parameters, with `a` the current inverse temperature.
     pub fn params(&self) -> HrlaParams<F> {
-        HrlaParams {
-            a: self.ou.a(),
-            ..self.params
-        }
+        self.params
     }
 
     /// `gamma = a / b` at the current temperature.
     pub fn gamma(&self) -> F {
-        self.ou.a() / self.params.b
+        self.params.a / self.params.b
     }
 
     /// `sx2 = beta / a` at the current temperature.
     pub fn sx2(&self) -> F {
-        self.params.beta / self.ou.a()
+        self.params.beta / self.params.a
     }
 
     /// `sy2 = alpha / b`.
@@ -136,15 +133,22 @@ impl<F: Float> Hrla<F> {
     pub fn moments(&self, x: F, y: F, g: F) -> StepMoments<F> {
         self.ou.moments(x, y, g)
     }
+
+    /// The factor that turns two standard normals into the step's noise.
+    pub fn noise_factor(&self) -> NoiseFactor<F> {
+        self.ou.noise_factor()
+    }
 }
 
 impl<F: Float> Sampler<F> for Hrla<F> {
     fn inverse_temperature(&self) -> F {
-        self.ou.a()
+        self.params.a
     }
 
     fn set_inverse_temperature(&mut self, a: F) -> Result<(), Error> {
-        self.ou.set_a(a)
+        self.ou.set_a(a)?;
+        self.params.a = a;
+        Ok(())
     }
 
     #[inline]
@@ -219,25 +223,29 @@ impl<F: Float> Ula<F> {
 
     /// The parameters, with `a` the current inverse temperature.
     pub fn params(&self) -> UlaParams<F> {
-        UlaParams {
-            a: self.ou.a(),
-            ..self.params
-        }
+        self.params
     }
 
     /// The conditional mean and covariance of one step of one coordinate.
     pub fn moments(&self, x: F, y: F, g: F) -> StepMoments<F> {
         self.ou.moments(x, y, g)
     }
+
+    /// The factor that turns two standard normals into the step's noise.
+    pub fn noise_factor(&self) -> NoiseFactor<F> {
+        self.ou.noise_factor()
+    }
 }
 
 impl<F: Float> Sampler<F> for Ula<F> {
     fn inverse_temperature(&self) -> F {
-        self.ou.a()
+        self.params.a
     }
 
     fn set_inverse_temperature(&mut self, a: F) -> Result<(), Error> {
-        self.ou.set_a(a)
+        self.ou.set_a(a)?;
+        self.params.a = a;
+        Ok(())
     }
 
     #[inline]

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Every test of the project, from a fresh machine: installs what it needs.
+# Called by .ci/run; the README's test command.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+step() { printf '\n== %s\n' "$*"; }
+
+EMBEDDED_TARGETS="thumbv7em-none-eabihf riscv32imac-unknown-none-elf wasm32-unknown-unknown"
+
+step "toolchain components and targets"
+rustup component add rustfmt clippy >/dev/null 2>&1 || true
+installed=$(rustup target list --installed)
+for t in $EMBEDDED_TARGETS; do
+  grep -qx "$t" <<<"$installed" || rustup target add "$t"
+done
+
+step "format, lints, docs"
+cargo fmt --all -- --check
+cargo clippy --workspace --all-targets -- -D warnings
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --quiet
+
+step "the kernel builds no_std, without alloc, for every embedded target"
+for t in $EMBEDDED_TARGETS; do
+  for features in "" "micromath"; do
+    echo "hrla --target $t ${features:+--features $features}"
+    cargo build --quiet -p hrla --release --target "$t" ${features:+--features "$features"}
+  done
+  # A successful build does not prove it: look for std/alloc in the feature graph.
+  if cargo tree -p hrla -e features,no-dev --target "$t" --features micromath \
+      | grep -E 'feature "(std|alloc)"'; then
+    echo "error: std or alloc is enabled in hrla's dependency graph for $t" >&2
+    exit 1
+  fi
+done
+
+step "host tests (unit, doc, statistical, optimiser, property)"
+cargo test --workspace
