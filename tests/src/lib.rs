@@ -1,1 +1,3 @@
 //! Shared helpers of the host-side tests.
+pub mod dd;
+pub mod reference;
