@@ -1,0 +1,506 @@
+//! One run of one configuration: the kernel's optimisers driven step by
+//! step, with the best chain value handed to a [`Tracker`].
+
+use hrla::rand_core::Rng;
+use hrla::{
+    Constant, Gaussian, Hrla, HrlaParams, Linear, Ola, OlaParams, Optimizer, Point, Rastrigin,
+    Sampler, Schedule, Start, Ula, UlaParams,
+};
+
+use crate::error::ReproError;
+use crate::stats::{Tracker, grid_points};
+
+/// The dimensions compiled into the tool (the kernel's dimension is a const
+/// generic, so each is its own instantiation).
+pub const DIMENSIONS: [usize; 7] = [1, 2, 5, 10, 20, 50, 100];
+
+/// Chains per kernel optimiser. A run of `N` chains is split into
+/// `ceil(N / CHUNK)` optimisers stepped in order with one generator, which
+/// draws exactly the numbers one optimiser of `N` chains would (initial
+/// points chain after chain, then each step chain after chain; tested), but
+/// keeps every optimiser small enough to build on a worker thread's stack
+/// before it is boxed (`CHUNK (4D + 2) 8` bytes, 100 KiB at `D = 100`).
+pub const CHUNK: usize = 32;
+
+/// The three samplers of the paper.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum SamplerKind {
+    /// High-resolution Langevin, exact OU step (the paper's method).
+    Hrla,
+    /// Underdamped Langevin, exact OU step.
+    Ula,
+    /// Overdamped Langevin, Euler–Maruyama.
+    Ola,
+}
+
+impl SamplerKind {
+    /// The name used in tables and legends.
+    pub fn name(self) -> &'static str {
+        match self {
+            SamplerKind::Hrla => "HRLA",
+            SamplerKind::Ula => "ULA",
+            SamplerKind::Ola => "OLA",
+        }
+    }
+}
+
+/// The inverse temperature along a run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Temperature {
+    /// A constant `a`.
+    Constant(f64),
+    /// The paper's linear annealing from `low` to `high` over the `K` steps.
+    Linear {
+        /// `a_low` (0.1 in the paper).
+        low: f64,
+        /// `a_high`.
+        high: f64,
+    },
+}
+
+impl Temperature {
+    /// `a`, or `a_high` when annealing: the value that labels a curve.
+    pub fn label_value(self) -> f64 {
+        match self {
+            Temperature::Constant(a) => a,
+            Temperature::Linear { high, .. } => high,
+        }
+    }
+}
+
+/// The initial positions (velocities start at 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StartSpec {
+    /// `x_0 ~ N(centre · 1, variance · I)`, independently per chain.
+    Gaussian {
+        /// Every coordinate of the mean.
+        centre: f64,
+        /// The variance of each coordinate.
+        variance: f64,
+    },
+    /// Every chain at `value · 1`.
+    Point(f64),
+}
+
+impl StartSpec {
+    /// Short label: `N(3,10I)` or `(1,...,1)`.
+    pub fn label(self) -> String {
+        match self {
+            StartSpec::Gaussian { centre, variance } => format!("N({centre}·1, {variance} I)"),
+            StartSpec::Point(v) => format!("({v}, ..., {v})"),
+        }
+    }
+}
+
+/// Everything that defines one configuration of a protocol. The potential
+/// is the paper's Rastrigin (`U* = 0`), the sampler parameters the paper's
+/// (`alpha = beta = 1`, `b = 10`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunSpec {
+    /// The sampler.
+    pub sampler: SamplerKind,
+    /// The dimension `d` (one of [`DIMENSIONS`]).
+    pub d: usize,
+    /// The step size `h`.
+    pub h: f64,
+    /// The number of chains `N`.
+    pub chains: usize,
+    /// The number of steps `K`.
+    pub steps: u64,
+    /// Constant `a` or linear annealing.
+    pub temperature: Temperature,
+    /// The initial distribution.
+    pub start: StartSpec,
+    /// The stride `s` of the running best.
+    pub stride: u64,
+    /// The tolerances of the empirical probability curves.
+    pub eps: Vec<f64>,
+    /// The curve grid: the probability is recorded at `k = 0, r, 2r, ...`
+    /// (`None`: no curves).
+    pub curve_every: Option<u64>,
+}
+
+impl RunSpec {
+    /// Length of the per-configuration count buffer: one counter per
+    /// tolerance and grid iterate.
+    pub fn count_len(&self) -> usize {
+        self.eps.len() * grid_points(self.steps, self.curve_every)
+    }
+
+    /// `N K`: the chain-steps of one run.
+    pub fn chain_steps(&self) -> u64 {
+        self.chains as u64 * self.steps
+    }
+
+    /// Checks every parameter once, before any run starts, so that workers
+    /// never meet an error the user could have been told about up front.
+    pub fn validate(&self) -> Result<(), ReproError> {
+        if !DIMENSIONS.contains(&self.d) {
+            return Err(ReproError::Dimension(self.d));
+        }
+        let bad = |what: &str| Err(ReproError::Usage(what.to_string()));
+        if self.chains == 0 {
+            return bad("N must be at least 1");
+        }
+        if self.steps == 0 {
+            return bad("K must be at least 1");
+        }
+        if self.stride == 0 || self.curve_every == Some(0) {
+            return bad("the stride and the curve grid step must be at least 1");
+        }
+        if self.eps.iter().any(|e| !e.is_finite()) {
+            return bad("tolerances must be finite");
+        }
+        if let StartSpec::Gaussian { variance, .. } = self.start
+            && !(variance.is_finite() && variance >= 0.0)
+        {
+            return bad("the start variance must be finite and >= 0");
+        }
+        let schedule = AnySchedule::new(self.temperature, self.steps)?;
+        // Every a_k of a linear schedule lies between its ends, and the
+        // coefficients are monotone in a, so checking both ends suffices.
+        AnySampler::new(self.sampler, schedule.inverse_temperature(0), self.h)?;
+        AnySampler::new(self.sampler, self.temperature.label_value(), self.h)?;
+        Ok(())
+    }
+}
+
+/// The paper's three samplers behind one type, so the run loop is compiled
+/// once per dimension rather than once per sampler and schedule. The match
+/// per chain-step is perfectly predicted and costs nothing measurable next
+/// to the 2d normals of a step.
+#[derive(Clone, Copy, Debug)]
+pub enum AnySampler {
+    /// HRLA.
+    Hrla(Hrla<f64>),
+    /// ULA.
+    Ula(Ula<f64>),
+    /// OLA.
+    Ola(Ola<f64>),
+}
+
+impl AnySampler {
+    /// The sampler `kind` with the paper's parameters at `a` and `h`.
+    pub fn new(kind: SamplerKind, a: f64, h: f64) -> Result<Self, hrla::Error> {
+        Ok(match kind {
+            SamplerKind::Hrla => AnySampler::Hrla(Hrla::new(HrlaParams::paper(a, h))?),
+            SamplerKind::Ula => AnySampler::Ula(Ula::new(UlaParams::paper(a, h))?),
+            SamplerKind::Ola => AnySampler::Ola(Ola::new(OlaParams::paper(a, h))?),
+        })
+    }
+}
+
+impl Sampler<f64> for AnySampler {
+    fn inverse_temperature(&self) -> f64 {
+        match self {
+            AnySampler::Hrla(s) => s.inverse_temperature(),
+            AnySampler::Ula(s) => s.inverse_temperature(),
+            AnySampler::Ola(s) => s.inverse_temperature(),
+        }
+    }
+
+    fn set_inverse_temperature(&mut self, a: f64) -> Result<(), hrla::Error> {
+        match self {
+            AnySampler::Hrla(s) => s.set_inverse_temperature(a),
+            AnySampler::Ula(s) => s.set_inverse_temperature(a),
+            AnySampler::Ola(s) => s.set_inverse_temperature(a),
+        }
+    }
+
+    #[inline]
+    fn step<R: Rng + ?Sized, const D: usize>(
+        &self,
+        x: &mut [f64; D],
+        y: &mut [f64; D],
+        grad: &[f64; D],
+        rng: &mut R,
+    ) {
+        match self {
+            AnySampler::Hrla(s) => s.step(x, y, grad, rng),
+            AnySampler::Ula(s) => s.step(x, y, grad, rng),
+            AnySampler::Ola(s) => s.step(x, y, grad, rng),
+        }
+    }
+}
+
+/// Constant or linear inverse temperature behind one type.
+#[derive(Clone, Copy, Debug)]
+pub enum AnySchedule {
+    /// No annealing.
+    Constant(Constant<f64>),
+    /// Linear annealing over `K` steps.
+    Linear(Linear<f64>),
+}
+
+impl AnySchedule {
+    /// The schedule of `temperature` over `steps` iterations.
+    pub fn new(temperature: Temperature, steps: u64) -> Result<Self, hrla::Error> {
+        Ok(match temperature {
+            Temperature::Constant(a) => AnySchedule::Constant(Constant::new(a)?),
+            Temperature::Linear { low, high } => {
+                AnySchedule::Linear(Linear::new(low, high, steps)?)
+            }
+        })
+    }
+}
+
+impl Schedule<f64> for AnySchedule {
+    #[inline]
+    fn inverse_temperature(&self, k: u64) -> f64 {
+        match self {
+            AnySchedule::Constant(s) => s.inverse_temperature(k),
+            AnySchedule::Linear(s) => s.inverse_temperature(k),
+        }
+    }
+}
+
+/// Gaussian or fixed-point start behind one type.
+#[derive(Clone, Copy, Debug)]
+enum AnyStart<const D: usize> {
+    Gaussian(Gaussian<f64, D>),
+    Point(Point<f64, D>),
+}
+
+impl<const D: usize> AnyStart<D> {
+    fn new(spec: StartSpec) -> Result<Self, hrla::Error> {
+        Ok(match spec {
+            StartSpec::Gaussian { centre, variance } => {
+                AnyStart::Gaussian(Gaussian::new([centre; D], variance.sqrt())?)
+            }
+            StartSpec::Point(v) => AnyStart::Point(Point::new([v; D])?),
+        })
+    }
+}
+
+impl<const D: usize> Start<f64, D> for AnyStart<D> {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R) -> [f64; D] {
+        match self {
+            AnyStart::Gaussian(s) => s.initial_point(chain, rng),
+            AnyStart::Point(s) => s.initial_point(chain, rng),
+        }
+    }
+}
+
+type Part<const D: usize> = Optimizer<f64, Rastrigin, AnySampler, AnySchedule, D, CHUNK>;
+
+/// `N` chains as a list of boxed kernel optimisers of at most [`CHUNK`]
+/// chains each, stepped in order with one generator.
+pub struct Swarm<const D: usize> {
+    parts: Vec<Box<Part<D>>>,
+}
+
+impl<const D: usize> Swarm<D> {
+    /// Draws the initial points of `spec.chains` chains, chunk after chunk.
+    pub fn new<R: Rng + ?Sized>(spec: &RunSpec, rng: &mut R) -> Result<Self, hrla::Error> {
+        let schedule = AnySchedule::new(spec.temperature, spec.steps)?;
+        let sampler = AnySampler::new(spec.sampler, schedule.inverse_temperature(0), spec.h)?;
+        let mut start = AnyStart::<D>::new(spec.start)?;
+        let mut parts = Vec::with_capacity(spec.chains.div_ceil(CHUNK));
+        let mut left = spec.chains;
+        while left > 0 {
+            let n = left.min(CHUNK);
+            let part = Optimizer::with_schedule(Rastrigin, sampler, schedule, n, &mut start, rng)?;
+            parts.push(Box::new(part));
+            left -= n;
+        }
+        Ok(Self { parts })
+    }
+
+    /// One step of every chain.
+    pub fn step<R: Rng + ?Sized>(&mut self, rng: &mut R) -> Result<(), hrla::Error> {
+        for part in &mut self.parts {
+            part.step(rng)?;
+        }
+        Ok(())
+    }
+
+    /// `min_c U(x_k^c)` over the live chains at the current iterate
+    /// (`+inf` when every chain has diverged).
+    pub fn best_now(&self) -> f64 {
+        self.parts
+            .iter()
+            .filter_map(|p| p.current_best())
+            .map(|(_, v)| v)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Chains that diverged (non-finite potential or gradient).
+    pub fn diverged(&self) -> usize {
+        self.parts.iter().map(|p| p.report().diverged_chains).sum()
+    }
+
+    /// Current positions of every chain, in order (for tests).
+    pub fn positions(&self) -> impl Iterator<Item = &[f64; D]> {
+        self.parts
+            .iter()
+            .flat_map(|p| p.chains().iter().map(|c| c.x()))
+    }
+}
+
+/// What one run leaves besides its probability counts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunOutcome {
+    /// The paper's running best at `K` (see [`Tracker`]).
+    pub running_best: f64,
+    /// Chains that diverged during the run.
+    pub diverged: usize,
+}
+
+/// How many iterates a run does between two progress reports.
+const PROGRESS_EVERY: u64 = 1024;
+
+/// Runs one configuration once with `rng`, adding its probability counts
+/// into `counts` (length [`RunSpec::count_len`]) and calling `progress`
+/// with chain-steps done every 1024 iterates and at the end.
+pub fn run_once<R: Rng + ?Sized>(
+    spec: &RunSpec,
+    rng: &mut R,
+    counts: &mut [u32],
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<RunOutcome, ReproError> {
+    match spec.d {
+        1 => run_d::<1, R>(spec, rng, counts, progress),
+        2 => run_d::<2, R>(spec, rng, counts, progress),
+        5 => run_d::<5, R>(spec, rng, counts, progress),
+        10 => run_d::<10, R>(spec, rng, counts, progress),
+        20 => run_d::<20, R>(spec, rng, counts, progress),
+        50 => run_d::<50, R>(spec, rng, counts, progress),
+        100 => run_d::<100, R>(spec, rng, counts, progress),
+        d => Err(ReproError::Dimension(d)),
+    }
+}
+
+fn run_d<const D: usize, R: Rng + ?Sized>(
+    spec: &RunSpec,
+    rng: &mut R,
+    counts: &mut [u32],
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<RunOutcome, ReproError> {
+    let mut swarm = Swarm::<D>::new(spec, rng)?;
+    // Rastrigin's global minimum U* = 0.
+    let mut tracker = Tracker::new(
+        spec.steps,
+        spec.stride,
+        spec.curve_every,
+        &spec.eps,
+        0.0,
+        counts,
+    );
+    if tracker.wants(0) {
+        tracker.observe(0, swarm.best_now());
+    }
+    let n = spec.chains as u64;
+    for k in 1..=spec.steps {
+        swarm.step(rng)?;
+        if tracker.wants(k) {
+            tracker.observe(k, swarm.best_now());
+        }
+        if k % PROGRESS_EVERY == 0 {
+            progress(PROGRESS_EVERY * n);
+        }
+    }
+    progress((spec.steps % PROGRESS_EVERY) * n);
+    Ok(RunOutcome {
+        running_best: tracker.running_best(),
+        diverged: swarm.diverged(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::seed::run_rng;
+
+    fn spec(chains: usize, temperature: Temperature) -> RunSpec {
+        RunSpec {
+            sampler: SamplerKind::Hrla,
+            d: 10,
+            h: 0.01,
+            chains,
+            steps: 50,
+            temperature,
+            start: StartSpec::Gaussian {
+                centre: 3.0,
+                variance: 10.0,
+            },
+            stride: 1,
+            eps: vec![],
+            curve_every: None,
+        }
+    }
+
+    /// A swarm split into chunks draws the same numbers as one optimiser of
+    /// all its chains, so the split is invisible in the results.
+    #[test]
+    fn split_swarm_equals_one_optimiser() {
+        const N: usize = 2 * CHUNK + 5;
+        for temperature in [
+            Temperature::Constant(3.0),
+            Temperature::Linear {
+                low: 0.1,
+                high: 4.0,
+            },
+        ] {
+            let s = spec(N, temperature);
+            let mut rng_a = run_rng(11, 0);
+            let mut swarm = Swarm::<10>::new(&s, &mut rng_a).unwrap();
+            let mut rng_b = run_rng(11, 0);
+            let schedule = AnySchedule::new(s.temperature, s.steps).unwrap();
+            let sampler = AnySampler::new(s.sampler, schedule.inverse_temperature(0), s.h).unwrap();
+            let mut start = AnyStart::<10>::new(s.start).unwrap();
+            let mut whole: Box<Optimizer<f64, Rastrigin, AnySampler, AnySchedule, 10, N>> =
+                Box::new(
+                    Optimizer::with_schedule(
+                        Rastrigin, sampler, schedule, N, &mut start, &mut rng_b,
+                    )
+                    .unwrap(),
+                );
+            for _ in 0..s.steps {
+                swarm.step(&mut rng_a).unwrap();
+                whole.step(&mut rng_b).unwrap();
+            }
+            let split: Vec<[f64; 10]> = swarm.positions().copied().collect();
+            let one: Vec<[f64; 10]> = whole.chains().iter().map(|c| *c.x()).collect();
+            assert_eq!(split, one);
+            assert_eq!(swarm.best_now(), whole.current_best().unwrap().1);
+        }
+    }
+
+    #[test]
+    fn a_run_is_a_function_of_its_seed() {
+        let mut s = spec(7, Temperature::Constant(2.0));
+        s.eps = vec![1.0, 5.0, 50.0];
+        s.curve_every = Some(5);
+        let mut c1 = vec![0; s.count_len()];
+        let mut c2 = vec![0; s.count_len()];
+        let r1 = run_once(&s, &mut run_rng(5, 9), &mut c1, &|_| {}).unwrap();
+        let r2 = run_once(&s, &mut run_rng(5, 9), &mut c2, &|_| {}).unwrap();
+        assert_eq!(r1, r2);
+        assert_eq!(c1, c2);
+        assert!(r1.running_best.is_finite());
+    }
+
+    #[test]
+    fn progress_adds_up_to_n_k() {
+        use std::sync::atomic::{AtomicU64, Ordering};
+        let mut s = spec(3, Temperature::Constant(1.0));
+        s.steps = 2500;
+        let done = AtomicU64::new(0);
+        run_once(&s, &mut run_rng(1, 1), &mut [], &|n| {
+            done.fetch_add(n, Ordering::Relaxed);
+        })
+        .unwrap();
+        assert_eq!(done.into_inner(), 3 * 2500);
+    }
+
+    #[test]
+    fn unsupported_dimension_is_an_error() {
+        let mut s = spec(1, Temperature::Constant(1.0));
+        s.d = 3;
+        assert!(matches!(s.validate(), Err(ReproError::Dimension(3))));
+        assert!(matches!(
+            run_once(&s, &mut run_rng(0, 0), &mut [], &|_| {}),
+            Err(ReproError::Dimension(3))
+        ));
+    }
+}

@@ -1,0 +1,30 @@
+//! `hrla-repro`: the paper's experimental protocols (spec section 7), run
+//! with the `hrla` kernel, written as tables (Markdown, CSV) and figures
+//! (SVG).
+//!
+//! The binary `repro` has one subcommand per protocol (`e1`, `t1`, `e2`,
+//! `e3`, `e4`, `e5`, `t2`, `t3`) and `all`; see `repro --help`.
+//!
+//! - [`protocol`]: the protocols' defaults and overrides, expanded into a
+//!   [`Plan`](protocol::Plan) of configurations.
+//! - [`engine`]: one run of one configuration, the kernel's optimisers
+//!   driven step by step.
+//! - [`stats`]: the paper's running best (over the stride, without iterate
+//!   0) and empirical probability (not running), streamed; the summary
+//!   statistics and their conventions.
+//! - [`seed`]: one random stream per run index, from one base seed.
+//! - [`exec`]: every run of a plan in parallel (rayon).
+//! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures.
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+pub mod engine;
+pub mod error;
+pub mod exec;
+pub mod output;
+pub mod plot;
+pub mod protocol;
+pub mod seed;
+pub mod stats;
+
+pub use error::ReproError;

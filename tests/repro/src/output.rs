@@ -1,0 +1,263 @@
+//! Writes a protocol's results: summary CSV and Markdown, probability
+//! curves CSV, the figure, and the run's metadata (wall time, chain-steps).
+
+use std::fmt::Write as _;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use crate::engine::{RunSpec, Temperature};
+use crate::error::ReproError;
+use crate::exec::ProtocolResult;
+use crate::stats::grid_points;
+
+/// Columns of `summary.csv`.
+pub const SUMMARY_COLUMNS: [&str; 19] = [
+    "protocol",
+    "sampler",
+    "d",
+    "h",
+    "N",
+    "K",
+    "schedule",
+    "a",
+    "a_low",
+    "start",
+    "stride",
+    "M",
+    "mean",
+    "median",
+    "sd",
+    "se",
+    "min",
+    "max",
+    "diverged_chains",
+];
+
+/// Columns of `curves.csv`.
+pub const CURVE_COLUMNS: [&str; 14] = [
+    "protocol",
+    "sampler",
+    "d",
+    "h",
+    "N",
+    "K",
+    "schedule",
+    "a",
+    "start",
+    "eps",
+    "k",
+    "hits",
+    "M",
+    "probability",
+];
+
+fn schedule_fields(t: Temperature) -> (&'static str, f64, String) {
+    match t {
+        Temperature::Constant(a) => ("constant", a, String::new()),
+        Temperature::Linear { low, high } => ("linear", high, low.to_string()),
+    }
+}
+
+/// CSV text fields here never contain quotes; only commas need quoting.
+fn csv_field(s: &str) -> String {
+    if s.contains(',') {
+        format!("\"{s}\"")
+    } else {
+        s.to_string()
+    }
+}
+
+/// `summary.csv`: one row per configuration, the running best at K over
+/// the M runs (sample SD, SE = SD / sqrt(M)).
+pub fn summary_csv(r: &ProtocolResult) -> String {
+    let mut out = SUMMARY_COLUMNS.join(",");
+    out.push('\n');
+    for c in &r.configs {
+        let s = &c.spec;
+        let (schedule, a, a_low) = schedule_fields(s.temperature);
+        let m = &c.summary;
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            r.plan.id.name(),
+            s.sampler.name(),
+            s.d,
+            s.h,
+            s.chains,
+            s.steps,
+            schedule,
+            a,
+            a_low,
+            csv_field(&s.start.label()),
+            s.stride,
+            m.n,
+            m.mean,
+            m.median,
+            m.sd,
+            m.se,
+            m.min,
+            m.max,
+            c.diverged
+        );
+    }
+    out
+}
+
+/// `curves.csv`: the empirical probability at every grid iterate, per
+/// configuration and tolerance (empty body for table protocols).
+pub fn curves_csv(r: &ProtocolResult) -> String {
+    let mut out = CURVE_COLUMNS.join(",");
+    out.push('\n');
+    let m = r.plan.runs;
+    for c in &r.configs {
+        let s = &c.spec;
+        let Some(every) = s.curve_every else { continue };
+        let points = grid_points(s.steps, s.curve_every);
+        let (schedule, a, _) = schedule_fields(s.temperature);
+        let start = csv_field(&s.start.label());
+        for (e, eps) in s.eps.iter().enumerate() {
+            for j in 0..points {
+                let hits = c.counts[e * points + j];
+                let _ = writeln!(
+                    out,
+                    "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                    r.plan.id.name(),
+                    s.sampler.name(),
+                    s.d,
+                    s.h,
+                    s.chains,
+                    s.steps,
+                    schedule,
+                    a,
+                    start,
+                    eps,
+                    j as u64 * every,
+                    hits,
+                    m,
+                    f64::from(hits) / m as f64
+                );
+            }
+        }
+    }
+    out
+}
+
+/// The descriptive columns of a configuration, as shown in Markdown.
+fn describe(s: &RunSpec) -> [(&'static str, String); 9] {
+    let (schedule, a, _) = schedule_fields(s.temperature);
+    let a_name = if schedule == "linear" { "a_high" } else { "a" };
+    let schedule = match s.temperature {
+        Temperature::Constant(_) => "constant".to_string(),
+        Temperature::Linear { low, .. } => format!("linear from {low}"),
+    };
+    [
+        ("sampler", s.sampler.name().to_string()),
+        ("d", s.d.to_string()),
+        ("h", s.h.to_string()),
+        ("N", s.chains.to_string()),
+        ("K", s.steps.to_string()),
+        ("start", s.start.label()),
+        ("stride", s.stride.to_string()),
+        ("schedule", schedule),
+        (a_name, a.to_string()),
+    ]
+}
+
+/// The summary as a Markdown table. Columns that are the same in every row
+/// are stated once above the table instead.
+pub fn summary_markdown(r: &ProtocolResult) -> String {
+    let rows: Vec<_> = r.configs.iter().map(|c| describe(&c.spec)).collect();
+    let ncols = rows[0].len();
+    let varies: Vec<bool> = (0..ncols)
+        .map(|i| rows.iter().any(|row| row[i].1 != rows[0][i].1))
+        .collect();
+    let any_diverged = r.configs.iter().any(|c| c.diverged > 0);
+    let mut out = String::new();
+    let fixed: Vec<String> = (0..ncols)
+        .filter(|&i| !varies[i])
+        .map(|i| format!("{} = {}", rows[0][i].0, rows[0][i].1))
+        .collect();
+    let _ = writeln!(
+        out,
+        "Running best at K (min over chains and over k = s, 2s, ..., K) over M = {} runs; \
+         SD is the sample SD (divisor M - 1), SE = SD / sqrt(M). Fixed: {}.\n",
+        r.plan.runs,
+        fixed.join(", ")
+    );
+    let mut header: Vec<&str> = (0..ncols)
+        .filter(|&i| varies[i])
+        .map(|i| rows[0][i].0)
+        .collect();
+    header.extend(["mean", "median", "SD", "SE"]);
+    if any_diverged {
+        header.push("diverged chains");
+    }
+    let _ = writeln!(out, "| {} |", header.join(" | "));
+    let _ = writeln!(out, "|{}", "---|".repeat(header.len()));
+    for (c, row) in r.configs.iter().zip(&rows) {
+        let mut cells: Vec<String> = (0..ncols)
+            .filter(|&i| varies[i])
+            .map(|i| row[i].1.clone())
+            .collect();
+        let s = &c.summary;
+        cells.extend([s.mean, s.median, s.sd, s.se].map(|v| format!("{v:.4}")));
+        if any_diverged {
+            cells.push(c.diverged.to_string());
+        }
+        let _ = writeln!(out, "| {} |", cells.join(" | "));
+    }
+    out
+}
+
+/// `meta.txt`: how the results were made.
+pub fn meta(r: &ProtocolResult, command: &str) -> String {
+    format!(
+        "protocol: {}\ntitle: {}\ncommand: {}\nseed: {}\nruns (M): {}\nconfigurations: {}\n\
+         chain-steps: {}\nwall seconds: {:.2}\nthreads: {}\nchain-steps per second: {:.3e}\n",
+        r.plan.id.name(),
+        r.plan.id.title(),
+        command,
+        r.seed,
+        r.plan.runs,
+        r.configs.len(),
+        r.chain_steps,
+        r.wall.as_secs_f64(),
+        r.threads,
+        r.chain_steps as f64 / r.wall.as_secs_f64().max(1e-9),
+    )
+}
+
+fn write(path: PathBuf, text: &str) -> Result<PathBuf, ReproError> {
+    fs::write(&path, text).map_err(|source| ReproError::Io {
+        path: path.clone(),
+        source,
+    })?;
+    Ok(path)
+}
+
+/// Writes every output of `r` into `dir/<id>/` (created if needed) and
+/// returns the files written: `summary.csv`, `summary.md`, `meta.txt`, and
+/// for figure protocols `curves.csv` and `<id>.svg`.
+pub fn write_all(
+    r: &ProtocolResult,
+    dir: &Path,
+    command: &str,
+) -> Result<Vec<PathBuf>, ReproError> {
+    let dir = dir.join(r.plan.id.name().to_lowercase());
+    fs::create_dir_all(&dir).map_err(|source| ReproError::Io {
+        path: dir.clone(),
+        source,
+    })?;
+    let mut files = vec![
+        write(dir.join("summary.csv"), &summary_csv(r))?,
+        write(dir.join("summary.md"), &summary_markdown(r))?,
+        write(dir.join("meta.txt"), &meta(r, command))?,
+    ];
+    if !r.plan.panels.is_empty() {
+        files.push(write(dir.join("curves.csv"), &curves_csv(r))?);
+        let svg = dir.join(format!("{}.svg", r.plan.id.name().to_lowercase()));
+        crate::plot::figure(r, &svg)?;
+        files.push(svg);
+    }
+    Ok(files)
+}

@@ -1,0 +1,503 @@
+//! The protocols of spec section 7 as plans: their default parameters, the
+//! command-line overrides, and the grid of configurations they expand to.
+
+use crate::engine::{RunSpec, SamplerKind, StartSpec, Temperature};
+use crate::error::ReproError;
+
+/// The experimental protocols of the paper (spec section 7).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum ProtocolId {
+    /// Empirical probability vs k for a = 1..4, eps = 1..6.
+    E1,
+    /// Running best vs step size h.
+    T1,
+    /// OLA vs ULA vs HRLA.
+    E2,
+    /// Long runs (K = 100000) at a = 4..8.
+    E3,
+    /// Dimension 10 against 20.
+    E4,
+    /// Linear annealing.
+    E5,
+    /// Fixed effort N K = 140000 with annealing.
+    T2,
+    /// Against simulated-annealing methods, K = 50 and 500, two starts.
+    T3,
+}
+
+impl ProtocolId {
+    /// Every protocol, in the order of the spec's table.
+    pub const ALL: [ProtocolId; 8] = [
+        ProtocolId::E1,
+        ProtocolId::T1,
+        ProtocolId::E2,
+        ProtocolId::E3,
+        ProtocolId::E4,
+        ProtocolId::E5,
+        ProtocolId::T2,
+        ProtocolId::T3,
+    ];
+
+    /// `E1`, `T1`, ...
+    pub fn name(self) -> &'static str {
+        match self {
+            ProtocolId::E1 => "E1",
+            ProtocolId::T1 => "T1",
+            ProtocolId::E2 => "E2",
+            ProtocolId::E3 => "E3",
+            ProtocolId::E4 => "E4",
+            ProtocolId::E5 => "E5",
+            ProtocolId::T2 => "T2",
+            ProtocolId::T3 => "T3",
+        }
+    }
+
+    /// What the protocol shows.
+    pub fn title(self) -> &'static str {
+        match self {
+            ProtocolId::E1 => "empirical probability vs k, HRLA at a = 1..4",
+            ProtocolId::T1 => "running best vs step size h",
+            ProtocolId::E2 => "OLA vs ULA vs HRLA",
+            ProtocolId::E3 => "long runs, K = 100000, a = 4..8",
+            ProtocolId::E4 => "dimension: d = 10 against d = 20",
+            ProtocolId::E5 => "linear annealing to a_high",
+            ProtocolId::T2 => "fixed effort N K = 140000 with annealing",
+            ProtocolId::T3 => "best of 250 chains at K = 50 and 500 with annealing, two starts",
+        }
+    }
+
+    /// Whether the protocol reports a table (otherwise a figure; every
+    /// protocol also writes its running-best summary).
+    pub fn is_table(self) -> bool {
+        matches!(self, ProtocolId::T1 | ProtocolId::T2 | ProtocolId::T3)
+    }
+
+    /// Whether the protocol anneals (takes `a_high`, not `a`).
+    pub fn anneals(self) -> bool {
+        matches!(self, ProtocolId::E5 | ProtocolId::T2 | ProtocolId::T3)
+    }
+}
+
+fn parse_pair<A: std::str::FromStr, B: std::str::FromStr>(s: &str) -> Result<(A, B), String> {
+    let (a, b) = s
+        .split_once(':')
+        .ok_or_else(|| format!("expected X:Y, got `{s}`"))?;
+    let a = a.trim().parse().map_err(|_| format!("bad number `{a}`"))?;
+    let b = b.trim().parse().map_err(|_| format!("bad number `{b}`"))?;
+    Ok((a, b))
+}
+
+fn parse_f64_pair(s: &str) -> Result<(f64, f64), String> {
+    parse_pair(s)
+}
+
+fn parse_nk(s: &str) -> Result<(usize, u64), String> {
+    parse_pair(s)
+}
+
+/// Command-line overrides of a protocol's defaults. Lists are comma
+/// separated; every configuration of the grid `sampler x d x h x (N, K) x
+/// start x a` is run. Unset options keep the protocol's defaults.
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct Overrides {
+    /// Samplers.
+    #[arg(long, value_delimiter = ',')]
+    pub sampler: Option<Vec<SamplerKind>>,
+    /// Dimensions (compiled in: 1, 2, 5, 10, 20, 50, 100).
+    #[arg(long, value_delimiter = ',')]
+    pub d: Option<Vec<usize>>,
+    /// Step sizes h.
+    #[arg(long, value_delimiter = ',')]
+    pub h: Option<Vec<f64>>,
+    /// Numbers of chains N (crossed with --k).
+    #[arg(long, value_delimiter = ',')]
+    pub n: Option<Vec<usize>>,
+    /// Numbers of steps K (crossed with --n).
+    #[arg(long, value_delimiter = ',')]
+    pub k: Option<Vec<u64>>,
+    /// (N, K) pairs as N:K, e.g. `1:140000,10:14000` (T2's form).
+    #[arg(long, value_delimiter = ',', value_parser = parse_nk, conflicts_with_all = ["n", "k"])]
+    pub nk: Option<Vec<(usize, u64)>>,
+    /// Independent runs M.
+    #[arg(long)]
+    pub m: Option<usize>,
+    /// Constant inverse temperatures a (protocols without annealing).
+    #[arg(long, value_delimiter = ',')]
+    pub a: Option<Vec<f64>>,
+    /// Final inverse temperatures a_high (annealing protocols).
+    #[arg(long, value_delimiter = ',')]
+    pub a_high: Option<Vec<f64>>,
+    /// Initial inverse temperature a_low of the annealing (paper: 0.1).
+    #[arg(long)]
+    pub a_low: Option<f64>,
+    /// Gaussian start: every coordinate of the mean (paper: 3).
+    #[arg(long)]
+    pub start_centre: Option<f64>,
+    /// Gaussian start: variance of each coordinate (paper: 10).
+    #[arg(long)]
+    pub start_var: Option<f64>,
+    /// Fixed start: every chain at (v, ..., v) instead of a Gaussian.
+    #[arg(long, conflicts_with_all = ["start_centre", "start_var"])]
+    pub start_point: Option<f64>,
+    /// Stride s of the running best (min over k = s, 2s, ..., K).
+    #[arg(long)]
+    pub stride: Option<u64>,
+    /// Tolerances eps of the probability curves.
+    #[arg(long, value_delimiter = ',')]
+    pub eps: Option<Vec<f64>>,
+    /// Figure panels as X:eps pairs: a:eps for E2, d:eps for E4.
+    #[arg(long, value_delimiter = ',', value_parser = parse_f64_pair)]
+    pub panels: Option<Vec<(f64, f64)>>,
+    /// Record the probability curves every r iterates (default: K / 500).
+    #[arg(long)]
+    pub curve_every: Option<u64>,
+}
+
+/// Which configurations a figure panel shows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PanelFilter {
+    /// All configurations.
+    All,
+    /// Those at inverse temperature `a` (or `a_high`).
+    A(f64),
+    /// Those in dimension `d`.
+    D(usize),
+}
+
+impl PanelFilter {
+    /// Whether `spec` belongs in the panel.
+    pub fn accepts(self, spec: &RunSpec) -> bool {
+        match self {
+            PanelFilter::All => true,
+            PanelFilter::A(a) => spec.temperature.label_value() == a,
+            PanelFilter::D(d) => spec.d == d,
+        }
+    }
+}
+
+/// One panel of a figure: the probability curves at one tolerance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Panel {
+    /// Its caption.
+    pub title: String,
+    /// The tolerance.
+    pub eps: f64,
+    /// The configurations drawn.
+    pub filter: PanelFilter,
+}
+
+/// What distinguishes the curves of a panel (their legend).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SeriesKey {
+    /// `a` or `a_high`.
+    Temperature,
+    /// The sampler.
+    Sampler,
+}
+
+/// A protocol expanded into configurations, ready to run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// The protocol.
+    pub id: ProtocolId,
+    /// Runs per configuration, M.
+    pub runs: usize,
+    /// The configurations, in table order.
+    pub configs: Vec<RunSpec>,
+    /// The figure's panels (empty for table protocols).
+    pub panels: Vec<Panel>,
+    /// The legend of the figure.
+    pub series: SeriesKey,
+}
+
+impl Plan {
+    /// Total chain-steps, `sum over configurations of M N K`.
+    pub fn chain_steps(&self) -> u64 {
+        self.runs as u64 * self.configs.iter().map(RunSpec::chain_steps).sum::<u64>()
+    }
+}
+
+/// The paper's defaults. `--quick` divides every K by 50 and uses M = 4.
+struct Defaults {
+    samplers: Vec<SamplerKind>,
+    d: Vec<usize>,
+    h: Vec<f64>,
+    nk: Vec<(usize, u64)>,
+    runs: usize,
+    temps: Vec<f64>,
+    starts: Vec<StartSpec>,
+    stride: u64,
+    eps: Vec<f64>,
+    panels: Vec<(f64, f64)>,
+}
+
+const PAPER_START: StartSpec = StartSpec::Gaussian {
+    centre: 3.0,
+    variance: 10.0,
+};
+const A_LOW: f64 = 0.1;
+
+fn defaults(id: ProtocolId) -> Defaults {
+    let mut d = Defaults {
+        samplers: vec![SamplerKind::Hrla],
+        d: vec![10],
+        h: vec![0.01],
+        nk: vec![(10, 14_000)],
+        runs: 100,
+        temps: vec![1.0, 2.0, 3.0, 4.0],
+        starts: vec![PAPER_START],
+        stride: 1,
+        eps: vec![],
+        panels: vec![],
+    };
+    let one_to_six = vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+    match id {
+        ProtocolId::E1 => d.eps = one_to_six,
+        ProtocolId::T1 => {
+            d.h = vec![0.001, 0.01, 0.1];
+            d.stride = 100;
+        }
+        ProtocolId::E2 => {
+            d.samplers = vec![SamplerKind::Ola, SamplerKind::Ula, SamplerKind::Hrla];
+            d.temps = vec![2.0, 3.0, 4.0, 5.0];
+            d.panels = vec![(4.0, 2.0), (3.0, 4.0)];
+        }
+        ProtocolId::E3 => {
+            d.nk = vec![(10, 100_000)];
+            d.temps = vec![4.0, 5.0, 6.0, 7.0, 8.0];
+            d.eps = one_to_six;
+        }
+        ProtocolId::E4 => {
+            d.d = vec![10, 20];
+            d.panels = vec![(10.0, 2.0), (20.0, 4.0)];
+        }
+        ProtocolId::E5 => {
+            d.temps = vec![4.0, 12.0, 20.0, 40.0];
+            d.eps = vec![0.25, 0.5, 1.0, 2.0];
+        }
+        ProtocolId::T2 => {
+            d.nk = vec![
+                (1, 140_000),
+                (10, 14_000),
+                (100, 1_400),
+                (1_000, 140),
+                (10_000, 14),
+            ];
+            d.temps = vec![4.0, 12.0, 20.0, 40.0];
+        }
+        ProtocolId::T3 => {
+            d.nk = vec![(250, 50), (250, 500)];
+            d.runs = 50;
+            d.temps = vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+            // The paper's text starts at (1, ..., 1), its code at N(3·1, 10 I).
+            d.starts = vec![StartSpec::Point(1.0), PAPER_START];
+        }
+    }
+    d
+}
+
+/// The plan of protocol `id`: its defaults (scaled down by `quick`), then
+/// the overrides.
+pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproError> {
+    let mut d = defaults(id);
+    if quick {
+        d.runs = 4;
+        for (_, k) in &mut d.nk {
+            *k = (*k / 50).max(1);
+        }
+    }
+    let usage = |s: String| Err(ReproError::Usage(s));
+    if id.anneals() && o.a.is_some() {
+        return usage(format!("{} anneals: give --a-high, not --a", id.name()));
+    }
+    if !id.anneals() && (o.a_high.is_some() || o.a_low.is_some()) {
+        return usage(format!(
+            "{} runs at constant a: give --a, not --a-high/--a-low",
+            id.name()
+        ));
+    }
+    if o.panels.is_some() && !matches!(id, ProtocolId::E2 | ProtocolId::E4) {
+        return usage("--panels applies to E2 (a:eps) and E4 (d:eps)".into());
+    }
+    let samplers = o.sampler.clone().unwrap_or(d.samplers);
+    let dims = o.d.clone().unwrap_or(d.d);
+    let hs = o.h.clone().unwrap_or(d.h);
+    let nk = match (&o.nk, &o.n, &o.k) {
+        (Some(nk), _, _) => nk.clone(),
+        (None, None, None) => d.nk,
+        (None, n, k) => {
+            let ns = n
+                .clone()
+                .unwrap_or_else(|| d.nk.iter().map(|p| p.0).collect());
+            let ks = k
+                .clone()
+                .unwrap_or_else(|| d.nk.iter().map(|p| p.1).collect());
+            let mut out = Vec::new();
+            for &n in &ns {
+                for &k in &ks {
+                    if !out.contains(&(n, k)) {
+                        out.push((n, k));
+                    }
+                }
+            }
+            out
+        }
+    };
+    let runs = o.m.unwrap_or(d.runs);
+    if runs == 0 {
+        return usage("M must be at least 1".into());
+    }
+    let temps = o.a.clone().or_else(|| o.a_high.clone()).unwrap_or(d.temps);
+    let a_low = o.a_low.unwrap_or(A_LOW);
+    let starts = match (o.start_point, o.start_centre, o.start_var) {
+        (Some(v), _, _) => vec![StartSpec::Point(v)],
+        (None, None, None) => d.starts,
+        (None, c, v) => vec![StartSpec::Gaussian {
+            centre: c.unwrap_or(3.0),
+            variance: v.unwrap_or(10.0),
+        }],
+    };
+    let stride = o.stride.unwrap_or(d.stride);
+    let panel_pairs = o.panels.clone().unwrap_or(d.panels);
+    let mut eps = o.eps.clone().unwrap_or(d.eps);
+    for &(_, e) in &panel_pairs {
+        if !eps.contains(&e) {
+            eps.push(e);
+        }
+    }
+    let figure = !id.is_table();
+    let panels: Vec<Panel> = match id {
+        ProtocolId::E2 => panel_pairs
+            .iter()
+            .map(|&(a, e)| Panel {
+                title: format!("a = {a}, eps = {e}"),
+                eps: e,
+                filter: PanelFilter::A(a),
+            })
+            .collect(),
+        ProtocolId::E4 => panel_pairs
+            .iter()
+            .map(|&(dim, e)| Panel {
+                title: format!("d = {dim}, eps = {e}"),
+                eps: e,
+                filter: PanelFilter::D(dim as usize),
+            })
+            .collect(),
+        _ if figure => eps
+            .iter()
+            .map(|&e| Panel {
+                title: format!("eps = {e}"),
+                eps: e,
+                filter: PanelFilter::All,
+            })
+            .collect(),
+        _ => vec![],
+    };
+    let series = if id == ProtocolId::E2 {
+        SeriesKey::Sampler
+    } else {
+        SeriesKey::Temperature
+    };
+    let mut configs = Vec::new();
+    for &sampler in &samplers {
+        for &dim in &dims {
+            for &h in &hs {
+                for &(n, k) in &nk {
+                    for &start in &starts {
+                        for &t in &temps {
+                            let temperature = if id.anneals() {
+                                Temperature::Linear {
+                                    low: a_low,
+                                    high: t,
+                                }
+                            } else {
+                                Temperature::Constant(t)
+                            };
+                            let curve_every =
+                                figure.then(|| o.curve_every.unwrap_or_else(|| (k / 500).max(1)));
+                            let spec = RunSpec {
+                                sampler,
+                                d: dim,
+                                h,
+                                chains: n,
+                                steps: k,
+                                temperature,
+                                start,
+                                stride,
+                                eps: if figure { eps.clone() } else { vec![] },
+                                curve_every,
+                            };
+                            spec.validate()?;
+                            configs.push(spec);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if configs.is_empty() {
+        return usage("the parameter grid is empty".into());
+    }
+    Ok(Plan {
+        id,
+        runs,
+        configs,
+        panels,
+        series,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_follow_the_spec_table() {
+        let none = Overrides::default();
+        let t1 = plan(ProtocolId::T1, &none, false).unwrap();
+        assert_eq!(t1.configs.len(), 12);
+        assert_eq!(t1.runs, 100);
+        assert!(t1.configs.iter().all(|c| c.stride == 100 && c.chains == 10));
+        assert_eq!(t1.chain_steps(), 12 * 100 * 10 * 14_000);
+        let t2 = plan(ProtocolId::T2, &none, false).unwrap();
+        assert!(t2.configs.iter().all(|c| c.chain_steps() == 140_000));
+        assert_eq!(t2.configs.len(), 20);
+        let t3 = plan(ProtocolId::T3, &none, false).unwrap();
+        assert_eq!(t3.configs.len(), 2 * 2 * 6);
+        assert_eq!(t3.runs, 50);
+        let e2 = plan(ProtocolId::E2, &none, false).unwrap();
+        assert_eq!(e2.panels.len(), 2);
+        assert_eq!(e2.configs.len(), 12);
+        assert_eq!(e2.configs[0].eps, vec![2.0, 4.0]);
+        let e3 = plan(ProtocolId::E3, &none, false).unwrap();
+        assert_eq!(e3.configs[0].curve_every, Some(200));
+        assert_eq!(e3.panels.len(), 6);
+    }
+
+    #[test]
+    fn overrides_replace_defaults_and_wrong_ones_are_refused() {
+        let o = Overrides {
+            a: Some(vec![2.5]),
+            start_point: Some(1.0),
+            m: Some(7),
+            ..Overrides::default()
+        };
+        let p = plan(ProtocolId::E1, &o, true).unwrap();
+        assert_eq!(p.runs, 7);
+        assert_eq!(p.configs.len(), 1);
+        assert_eq!(p.configs[0].start, StartSpec::Point(1.0));
+        assert_eq!(p.configs[0].steps, 280);
+        assert!(matches!(
+            plan(ProtocolId::E5, &o, false),
+            Err(ReproError::Usage(_))
+        ));
+        let bad_d = Overrides {
+            d: Some(vec![3]),
+            ..Overrides::default()
+        };
+        assert!(matches!(
+            plan(ProtocolId::E1, &bad_d, false),
+            Err(ReproError::Dimension(3))
+        ));
+    }
+}
