@@ -83,6 +83,9 @@ fn draw(r: &ProtocolResult, path: &Path) -> Result<(), Box<dyn std::error::Error
             .y_desc("P(U(x_k) - U* <= eps)")
             .x_labels(6)
             .y_labels(6)
+            .x_label_formatter(&|k| format!("{k:.0}"))
+            .label_style(("sans-serif", 13))
+            .axis_desc_style(("sans-serif", 14))
             .draw()?;
         for (i, c) in members.iter().enumerate() {
             let s = &c.spec;
@@ -108,6 +111,7 @@ fn draw(r: &ProtocolResult, path: &Path) -> Result<(), Box<dyn std::error::Error
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::LowerRight)
+            .label_font(("sans-serif", 13))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .draw()?;

@@ -1,0 +1,159 @@
+//! `repro all --quick` into a temporary directory: every protocol's outputs
+//! exist and are well formed (CSV columns and row counts, numbers parse,
+//! probabilities in [0, 1], SVG is XML with one captioned panel per
+//! tolerance or listed pair, metadata with the right chain-step count).
+
+use std::collections::HashSet;
+use std::fs;
+use std::path::Path;
+use std::process::Command;
+
+use hrla_repro::output::{CURVE_COLUMNS, SUMMARY_COLUMNS};
+use hrla_repro::protocol::{Overrides, ProtocolId, plan};
+use hrla_repro::stats::grid_points;
+
+/// Splits a CSV line of this tool's output (quoted fields have no quotes
+/// inside).
+fn fields(line: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut cur = String::new();
+    let mut quoted = false;
+    for ch in line.chars() {
+        match ch {
+            '"' => quoted = !quoted,
+            ',' if !quoted => out.push(std::mem::take(&mut cur)),
+            c => cur.push(c),
+        }
+    }
+    out.push(cur);
+    out
+}
+
+fn read_csv(path: &Path, columns: &[&str]) -> Vec<Vec<String>> {
+    let text = fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().map(fields).unwrap(),
+        columns,
+        "{}",
+        path.display()
+    );
+    lines
+        .map(|l| {
+            let f = fields(l);
+            assert_eq!(f.len(), columns.len(), "{}: `{l}`", path.display());
+            f
+        })
+        .collect()
+}
+
+fn num(row: &[String], columns: &[&str], name: &str) -> f64 {
+    let i = columns.iter().position(|c| *c == name).unwrap();
+    row[i]
+        .parse()
+        .unwrap_or_else(|_| panic!("column {name}: `{}` is not a number", row[i]))
+}
+
+#[test]
+fn quick_all_writes_well_formed_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let status = Command::new(env!("CARGO_BIN_EXE_repro"))
+        .args(["all", "--quick", "--quiet", "--out"])
+        .arg(dir.path())
+        .status()
+        .unwrap();
+    assert!(status.success());
+    for id in ProtocolId::ALL {
+        let p = plan(id, &Overrides::default(), true).unwrap();
+        let sub = dir.path().join(id.name().to_lowercase());
+
+        let rows = read_csv(&sub.join("summary.csv"), &SUMMARY_COLUMNS);
+        assert_eq!(rows.len(), p.configs.len(), "{}", id.name());
+        for row in &rows {
+            for col in ["mean", "median", "sd", "se", "min", "max"] {
+                let v = num(row, &SUMMARY_COLUMNS, col);
+                assert!(v.is_finite() && v >= 0.0, "{} {col} = {v}", id.name());
+            }
+            assert_eq!(num(row, &SUMMARY_COLUMNS, "M"), p.runs as f64);
+            let (mean, min, max) = (
+                num(row, &SUMMARY_COLUMNS, "mean"),
+                num(row, &SUMMARY_COLUMNS, "min"),
+                num(row, &SUMMARY_COLUMNS, "max"),
+            );
+            assert!(min <= mean && mean <= max);
+        }
+
+        let md = fs::read_to_string(sub.join("summary.md")).unwrap();
+        assert_eq!(
+            md.lines().filter(|l| l.starts_with('|')).count(),
+            p.configs.len() + 2
+        );
+
+        let meta = fs::read_to_string(sub.join("meta.txt")).unwrap();
+        assert!(meta.contains(&format!("chain-steps: {}\n", p.chain_steps())));
+        let wall: f64 = meta
+            .lines()
+            .find_map(|l| l.strip_prefix("wall seconds: "))
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(wall >= 0.0);
+
+        if id.is_table() {
+            assert!(!sub.join("curves.csv").exists());
+            continue;
+        }
+        let curves = read_csv(&sub.join("curves.csv"), &CURVE_COLUMNS);
+        let expected: usize = p
+            .configs
+            .iter()
+            .map(|c| c.eps.len() * grid_points(c.steps, c.curve_every))
+            .sum();
+        assert_eq!(curves.len(), expected, "{}", id.name());
+        for row in &curves {
+            let prob = num(row, &CURVE_COLUMNS, "probability");
+            let hits = num(row, &CURVE_COLUMNS, "hits");
+            assert!((0.0..=1.0).contains(&prob));
+            assert_eq!(prob, hits / p.runs as f64);
+        }
+
+        let svg_path = sub.join(format!("{}.svg", id.name().to_lowercase()));
+        let svg = fs::read_to_string(&svg_path).unwrap();
+        let doc = roxmltree::Document::parse(&svg)
+            .unwrap_or_else(|e| panic!("{}: {e}", svg_path.display()));
+        assert_eq!(doc.root_element().tag_name().name(), "svg");
+        let texts: HashSet<String> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("text"))
+            .filter_map(|n| n.text())
+            .map(|t| t.trim().to_string())
+            .collect();
+        for panel in &p.panels {
+            assert!(
+                texts.contains(&panel.title),
+                "{}: no panel `{}`",
+                id.name(),
+                panel.title
+            );
+        }
+        // One polyline per (panel, curve) at least.
+        let lines = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("polyline"))
+            .count();
+        assert!(lines >= p.panels.len(), "{}: {lines} polylines", id.name());
+    }
+}
+
+#[test]
+fn bad_options_fail_before_running() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_repro"))
+        .args(["e5", "--quick", "--quiet", "--a", "3", "--out"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--a-high"));
+    assert!(!dir.path().join("e5").exists());
+}
