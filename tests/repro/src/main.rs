@@ -15,9 +15,9 @@ use hrla_repro::protocol::{Overrides, ProtocolId, plan};
 /// Reproduce the experiments of "Global Optimization Algorithm through
 /// High-Resolution Sampling" (spec section 7) with the hrla kernel.
 ///
-/// Each protocol writes into OUT/<id>/: summary.csv and summary.md (running
+/// Each protocol writes into `OUT/ID/`: summary.csv and summary.md (running
 /// best at K: mean, median, sample SD, SE over the M runs), meta.txt (wall
-/// time, chain-steps, command), and for E1-E5 curves.csv and <id>.svg (the
+/// time, chain-steps, command), and for E1-E5 curves.csv and `ID.svg` (the
 /// empirical probability that the best chain at iterate k is within eps of
 /// U*). Run i of every configuration uses the generator
 /// Xoshiro256PlusPlus::seed_from_u64(seed ^ splitmix64(i)), so results do
@@ -108,14 +108,24 @@ fn main() -> Result<()> {
         .iter()
         .map(|(id, o)| plan(*id, o, cli.quick).with_context(|| format!("protocol {}", id.name())))
         .collect::<Result<Vec<_>>>()?;
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    // The program's own name, not the build directory it ran from.
+    let command = std::iter::once("repro".to_string())
+        .chain(std::env::args().skip(1))
+        .collect::<Vec<_>>()
+        .join(" ");
     let mut total = Duration::ZERO;
     for p in &plans {
         let bar = progress_bar(cli.quiet, p.chain_steps(), p.id.name());
+        let load_before = load_average();
         let result = execute(p, cli.seed, &bar)
             .with_context(|| format!("running protocol {}", p.id.name()))?;
         bar.finish_and_clear();
-        let files = write_all(&result, &cli.out, &command)
+        let notes = [
+            ("command", command.clone()),
+            ("load average before", load_before),
+            ("load average after", load_average()),
+        ];
+        let files = write_all(&result, &cli.out, &notes)
             .with_context(|| format!("writing protocol {}", p.id.name()))?;
         total += result.wall;
         if !cli.quiet {
@@ -126,6 +136,15 @@ fn main() -> Result<()> {
         println!("Total wall time: {:.1} s", total.as_secs_f64());
     }
     Ok(())
+}
+
+/// The 1, 5 and 15 minute load averages, so that a wall time measured on a
+/// shared machine says how shared it was (Linux; "unknown" elsewhere).
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|| "unknown".to_string())
 }
 
 fn progress_bar(quiet: bool, total: u64, name: &str) -> ProgressBar {

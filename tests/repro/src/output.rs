@@ -209,14 +209,14 @@ pub fn summary_markdown(r: &ProtocolResult) -> String {
     out
 }
 
-/// `meta.txt`: how the results were made.
-pub fn meta(r: &ProtocolResult, command: &str) -> String {
-    format!(
-        "protocol: {}\ntitle: {}\ncommand: {}\nseed: {}\nruns (M): {}\nconfigurations: {}\n\
+/// `meta.txt`: how the results were made; `notes` are extra `key: value`
+/// lines (the command line, the machine's load).
+pub fn meta(r: &ProtocolResult, notes: &[(&str, String)]) -> String {
+    let mut out = format!(
+        "protocol: {}\ntitle: {}\nseed: {}\nruns (M): {}\nconfigurations: {}\n\
          chain-steps: {}\nwall seconds: {:.2}\nthreads: {}\nchain-steps per second: {:.3e}\n",
         r.plan.id.name(),
         r.plan.id.title(),
-        command,
         r.seed,
         r.plan.runs,
         r.configs.len(),
@@ -224,7 +224,11 @@ pub fn meta(r: &ProtocolResult, command: &str) -> String {
         r.wall.as_secs_f64(),
         r.threads,
         r.chain_steps as f64 / r.wall.as_secs_f64().max(1e-9),
-    )
+    );
+    for (key, value) in notes {
+        let _ = writeln!(out, "{key}: {value}");
+    }
+    out
 }
 
 fn write(path: PathBuf, text: &str) -> Result<PathBuf, ReproError> {
@@ -236,12 +240,12 @@ fn write(path: PathBuf, text: &str) -> Result<PathBuf, ReproError> {
 }
 
 /// Writes every output of `r` into `dir/<id>/` (created if needed) and
-/// returns the files written: `summary.csv`, `summary.md`, `meta.txt`, and
-/// for figure protocols `curves.csv` and `<id>.svg`.
+/// returns the files written: `summary.csv`, `summary.md`, `meta.txt` (with
+/// `notes` appended), and for figure protocols `curves.csv` and `<id>.svg`.
 pub fn write_all(
     r: &ProtocolResult,
     dir: &Path,
-    command: &str,
+    notes: &[(&str, String)],
 ) -> Result<Vec<PathBuf>, ReproError> {
     let dir = dir.join(r.plan.id.name().to_lowercase());
     fs::create_dir_all(&dir).map_err(|source| ReproError::Io {
@@ -251,7 +255,7 @@ pub fn write_all(
     let mut files = vec![
         write(dir.join("summary.csv"), &summary_csv(r))?,
         write(dir.join("summary.md"), &summary_markdown(r))?,
-        write(dir.join("meta.txt"), &meta(r, command))?,
+        write(dir.join("meta.txt"), &meta(r, notes))?,
     ];
     if !r.plan.panels.is_empty() {
         files.push(write(dir.join("curves.csv"), &curves_csv(r))?);
