@@ -113,6 +113,9 @@ pub struct RunSpec {
     pub start: StartSpec,
     /// The stride `s` of the running best.
     pub stride: u64,
+    /// The iterates at which the running best is reported, increasing,
+    /// each in `1..=K` (usually just `K`).
+    pub checkpoints: Vec<u64>,
     /// The tolerances of the empirical probability curves.
     pub eps: Vec<f64>,
     /// The curve grid: the probability is recorded at `k = 0, r, 2r, ...`
@@ -147,6 +150,18 @@ impl RunSpec {
         }
         if self.stride == 0 || self.curve_every == Some(0) {
             return bad("the stride and the curve grid step must be at least 1");
+        }
+        if self.checkpoints.is_empty()
+            || !self.checkpoints.windows(2).all(|w| w[0] < w[1])
+            || !self
+                .checkpoints
+                .iter()
+                .all(|&c| (1..=self.steps).contains(&c))
+        {
+            return Err(ReproError::Usage(format!(
+                "checkpoints {:?} must increase within 1..=K = {}",
+                self.checkpoints, self.steps
+            )));
         }
         if self.eps.iter().any(|e| !e.is_finite()) {
             return bad("tolerances must be finite");
@@ -338,10 +353,10 @@ impl<const D: usize> Swarm<D> {
 }
 
 /// What one run leaves besides its probability counts.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct RunOutcome {
-    /// The paper's running best at `K` (see [`Tracker`]).
-    pub running_best: f64,
+    /// The paper's running best at each checkpoint (see [`Tracker`]).
+    pub running_best: Vec<f64>,
     /// Chains that diverged during the run.
     pub diverged: usize,
 }
@@ -382,6 +397,7 @@ fn run_d<const D: usize, R: Rng + ?Sized>(
         spec.steps,
         spec.stride,
         spec.curve_every,
+        &spec.checkpoints,
         &spec.eps,
         0.0,
         counts,
@@ -401,7 +417,7 @@ fn run_d<const D: usize, R: Rng + ?Sized>(
     }
     progress((spec.steps % PROGRESS_EVERY) * n);
     Ok(RunOutcome {
-        running_best: tracker.running_best(),
+        running_best: tracker.at_checkpoints().to_vec(),
         diverged: swarm.diverged(),
     })
 }
@@ -424,6 +440,7 @@ mod tests {
                 variance: 10.0,
             },
             stride: 1,
+            checkpoints: vec![50],
             eps: vec![],
             curve_every: None,
         }
@@ -477,7 +494,7 @@ mod tests {
         let r2 = run_once(&s, &mut run_rng(5, 9), &mut c2, &|_| {}).unwrap();
         assert_eq!(r1, r2);
         assert_eq!(c1, c2);
-        assert!(r1.running_best.is_finite());
+        assert!(r1.running_best[0].is_finite());
     }
 
     #[test]
@@ -485,6 +502,7 @@ mod tests {
         use std::sync::atomic::{AtomicU64, Ordering};
         let mut s = spec(3, Temperature::Constant(1.0));
         s.steps = 2500;
+        s.checkpoints = vec![2500];
         let done = AtomicU64::new(0);
         run_once(&s, &mut run_rng(1, 1), &mut [], &|n| {
             done.fetch_add(n, Ordering::Relaxed);

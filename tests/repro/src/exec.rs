@@ -12,15 +12,24 @@ use crate::protocol::Plan;
 use crate::seed::run_rng;
 use crate::stats::Summary;
 
+/// The running best of every run at one checkpoint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CheckpointResult {
+    /// The iterate `k`.
+    pub k: u64,
+    /// The running best of each run at `k`, in run order.
+    pub running_best: Vec<f64>,
+    /// Their summary.
+    pub summary: Summary,
+}
+
 /// The results of one configuration over its M runs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ConfigResult {
     /// The configuration.
     pub spec: RunSpec,
-    /// The running best of each run, in run order.
-    pub running_best: Vec<f64>,
-    /// Their summary.
-    pub summary: Summary,
+    /// The running best at each checkpoint of the configuration.
+    pub checkpoints: Vec<CheckpointResult>,
     /// Runs within `eps[e]` at grid iterate `j`, at `counts[e * points + j]`.
     pub counts: Vec<u32>,
     /// Chains that diverged, over all runs.
@@ -48,7 +57,7 @@ pub struct ProtocolResult {
 /// tolerances + M)`, independent of how many iterates are run.
 struct Partial {
     counts: Vec<Vec<u32>>,
-    values: Vec<Vec<(usize, f64)>>,
+    values: Vec<Vec<(usize, Vec<f64>)>>,
     diverged: Vec<usize>,
 }
 
@@ -116,21 +125,24 @@ pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResu
         .zip(total.values)
         .zip(total.diverged)
         .map(|(((spec, counts), mut values), diverged)| {
-            values.sort_by_key(|&(i, _)| i);
-            let running_best: Vec<f64> = values.into_iter().map(|(_, v)| v).collect();
+            values.sort_by_key(|(i, _)| *i);
+            let checkpoints = spec
+                .checkpoints
+                .iter()
+                .enumerate()
+                .map(|(c, &k)| {
+                    let running_best: Vec<f64> = values.iter().map(|(_, v)| v[c]).collect();
+                    CheckpointResult {
+                        k,
+                        // Cannot be None: plans have M >= 1.
+                        summary: Summary::of(&running_best).unwrap_or(Summary::EMPTY),
+                        running_best,
+                    }
+                })
+                .collect();
             ConfigResult {
                 spec: spec.clone(),
-                // Cannot be None: plans have M >= 1.
-                summary: Summary::of(&running_best).unwrap_or(Summary {
-                    n: 0,
-                    mean: f64::NAN,
-                    median: f64::NAN,
-                    sd: f64::NAN,
-                    se: f64::NAN,
-                    min: f64::NAN,
-                    max: f64::NAN,
-                }),
-                running_best,
+                checkpoints,
                 counts,
                 diverged,
             }

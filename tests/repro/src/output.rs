@@ -7,17 +7,18 @@ use std::path::{Path, PathBuf};
 
 use crate::engine::{RunSpec, Temperature};
 use crate::error::ReproError;
-use crate::exec::ProtocolResult;
+use crate::exec::{CheckpointResult, ConfigResult, ProtocolResult};
 use crate::stats::grid_points;
 
 /// Columns of `summary.csv`.
-pub const SUMMARY_COLUMNS: [&str; 19] = [
+pub const SUMMARY_COLUMNS: [&str; 21] = [
     "protocol",
     "sampler",
     "d",
     "h",
     "N",
     "K",
+    "k",
     "schedule",
     "a",
     "a_low",
@@ -27,6 +28,7 @@ pub const SUMMARY_COLUMNS: [&str; 19] = [
     "mean",
     "median",
     "sd",
+    "sd_population",
     "se",
     "min",
     "max",
@@ -51,6 +53,25 @@ pub const CURVE_COLUMNS: [&str; 14] = [
     "probability",
 ];
 
+/// The rows of the summary tables: checkpoint-major (every configuration
+/// at the first checkpoint, then at the second, ...), so that a table read
+/// at k = 50 and 500 shows two blocks.
+fn table_rows(r: &ProtocolResult) -> Vec<(&ConfigResult, &CheckpointResult)> {
+    let most = r
+        .configs
+        .iter()
+        .map(|c| c.checkpoints.len())
+        .max()
+        .unwrap_or(0);
+    (0..most)
+        .flat_map(|j| {
+            r.configs
+                .iter()
+                .filter_map(move |c| c.checkpoints.get(j).map(|p| (c, p)))
+        })
+        .collect()
+}
+
 fn schedule_fields(t: Temperature) -> (&'static str, f64, String) {
     match t {
         Temperature::Constant(a) => ("constant", a, String::new()),
@@ -67,24 +88,26 @@ fn csv_field(s: &str) -> String {
     }
 }
 
-/// `summary.csv`: one row per configuration, the running best at K over
-/// the M runs (sample SD, SE = SD / sqrt(M)).
+/// `summary.csv`: one row per configuration and checkpoint `k` (usually
+/// just `K`), the running best at `k` over the M runs (sample SD, and the
+/// population SD for comparison with numpy-made tables; SE = SD / sqrt(M)).
 pub fn summary_csv(r: &ProtocolResult) -> String {
     let mut out = SUMMARY_COLUMNS.join(",");
     out.push('\n');
-    for c in &r.configs {
+    for (c, p) in table_rows(r) {
         let s = &c.spec;
         let (schedule, a, a_low) = schedule_fields(s.temperature);
-        let m = &c.summary;
+        let m = &p.summary;
         let _ = writeln!(
             out,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             r.plan.id.name(),
             s.sampler.name(),
             s.d,
             s.h,
             s.chains,
             s.steps,
+            p.k,
             schedule,
             a,
             a_low,
@@ -94,6 +117,7 @@ pub fn summary_csv(r: &ProtocolResult) -> String {
             m.mean,
             m.median,
             m.sd,
+            m.sd_population,
             m.se,
             m.min,
             m.max,
@@ -142,8 +166,9 @@ pub fn curves_csv(r: &ProtocolResult) -> String {
     out
 }
 
-/// The descriptive columns of a configuration, as shown in Markdown.
-fn describe(s: &RunSpec) -> [(&'static str, String); 9] {
+/// The descriptive columns of a configuration at checkpoint `k`, as shown
+/// in Markdown.
+fn describe(s: &RunSpec, k: u64) -> [(&'static str, String); 10] {
     let (schedule, a, _) = schedule_fields(s.temperature);
     let a_name = if schedule == "linear" { "a_high" } else { "a" };
     let schedule = match s.temperature {
@@ -156,6 +181,7 @@ fn describe(s: &RunSpec) -> [(&'static str, String); 9] {
         ("h", s.h.to_string()),
         ("N", s.chains.to_string()),
         ("K", s.steps.to_string()),
+        ("at k", k.to_string()),
         ("start", s.start.label()),
         ("stride", s.stride.to_string()),
         ("schedule", schedule),
@@ -166,7 +192,11 @@ fn describe(s: &RunSpec) -> [(&'static str, String); 9] {
 /// The summary as a Markdown table. Columns that are the same in every row
 /// are stated once above the table instead.
 pub fn summary_markdown(r: &ProtocolResult) -> String {
-    let rows: Vec<_> = r.configs.iter().map(|c| describe(&c.spec)).collect();
+    let results = table_rows(r);
+    let rows: Vec<_> = results
+        .iter()
+        .map(|(c, p)| describe(&c.spec, p.k))
+        .collect();
     let ncols = rows[0].len();
     let varies: Vec<bool> = (0..ncols)
         .map(|i| rows.iter().any(|row| row[i].1 != rows[0][i].1))
@@ -179,7 +209,7 @@ pub fn summary_markdown(r: &ProtocolResult) -> String {
         .collect();
     let _ = writeln!(
         out,
-        "Running best at K (min over chains and over k = s, 2s, ..., K) over M = {} runs; \
+        "Running best at k (min over chains and over iterates s, 2s, ..., k) over M = {} runs; \
          SD is the sample SD (divisor M - 1), SE = SD / sqrt(M). Fixed: {}.\n",
         r.plan.runs,
         fixed.join(", ")
@@ -194,12 +224,12 @@ pub fn summary_markdown(r: &ProtocolResult) -> String {
     }
     let _ = writeln!(out, "| {} |", header.join(" | "));
     let _ = writeln!(out, "|{}", "---|".repeat(header.len()));
-    for (c, row) in r.configs.iter().zip(&rows) {
+    for ((c, p), row) in results.iter().zip(&rows) {
         let mut cells: Vec<String> = (0..ncols)
             .filter(|&i| varies[i])
             .map(|i| row[i].1.clone())
             .collect();
-        let s = &c.summary;
+        let s = &p.summary;
         cells.extend([s.mean, s.median, s.sd, s.se].map(|v| format!("{v:.4}")));
         if any_diverged {
             cells.push(c.diverged.to_string());

@@ -148,6 +148,10 @@ pub struct Overrides {
     /// Figure panels as X:eps pairs: a:eps for E2, d:eps for E4.
     #[arg(long, value_delimiter = ',', value_parser = parse_f64_pair)]
     pub panels: Option<Vec<(f64, f64)>>,
+    /// Iterates at which the running best is reported (default: K; T3: 50,500).
+    /// Each must be <= every K of the grid.
+    #[arg(long, value_delimiter = ',')]
+    pub checkpoints: Option<Vec<u64>>,
     /// Record the probability curves every r iterates (default: K / 500).
     #[arg(long)]
     pub curve_every: Option<u64>,
@@ -217,7 +221,8 @@ impl Plan {
     }
 }
 
-/// The paper's defaults. `--quick` divides every K by 50 and uses M = 4.
+/// The paper's defaults. `--quick` divides every K (and checkpoint) by 50
+/// and uses M = 4.
 struct Defaults {
     samplers: Vec<SamplerKind>,
     d: Vec<usize>,
@@ -227,6 +232,8 @@ struct Defaults {
     temps: Vec<f64>,
     starts: Vec<StartSpec>,
     stride: u64,
+    /// Empty: just K.
+    checkpoints: Vec<u64>,
     eps: Vec<f64>,
     panels: Vec<(f64, f64)>,
 }
@@ -247,6 +254,7 @@ fn defaults(id: ProtocolId) -> Defaults {
         temps: vec![1.0, 2.0, 3.0, 4.0],
         starts: vec![PAPER_START],
         stride: 1,
+        checkpoints: vec![],
         eps: vec![],
         panels: vec![],
     };
@@ -286,7 +294,10 @@ fn defaults(id: ProtocolId) -> Defaults {
             d.temps = vec![4.0, 12.0, 20.0, 40.0];
         }
         ProtocolId::T3 => {
-            d.nk = vec![(250, 50), (250, 500)];
+            // One run of K = 500 (annealing over 500 steps) read at k = 50
+            // and 500, as the authors' code does (compute_tables([50, 500])).
+            d.nk = vec![(250, 500)];
+            d.checkpoints = vec![50, 500];
             d.runs = 50;
             d.temps = vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
             // The paper's text starts at (1, ..., 1), its code at N(3·1, 10 I).
@@ -305,6 +316,10 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
         for (_, k) in &mut d.nk {
             *k = (*k / 50).max(1);
         }
+        for k in &mut d.checkpoints {
+            *k = (*k / 50).max(1);
+        }
+        d.checkpoints.dedup();
     }
     let usage = |s: String| Err(ReproError::Usage(s));
     if id.anneals() && o.a.is_some() {
@@ -358,6 +373,7 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
         }],
     };
     let stride = o.stride.unwrap_or(d.stride);
+    let checkpoints = o.checkpoints.clone().unwrap_or(d.checkpoints);
     let panel_pairs = o.panels.clone().unwrap_or(d.panels);
     let mut eps = o.eps.clone().unwrap_or(d.eps);
     for &(_, e) in &panel_pairs {
@@ -424,6 +440,11 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
                                 temperature,
                                 start,
                                 stride,
+                                checkpoints: if checkpoints.is_empty() {
+                                    vec![k]
+                                } else {
+                                    checkpoints.clone()
+                                },
                                 eps: if figure { eps.clone() } else { vec![] },
                                 curve_every,
                             };
@@ -463,8 +484,11 @@ mod tests {
         assert!(t2.configs.iter().all(|c| c.chain_steps() == 140_000));
         assert_eq!(t2.configs.len(), 20);
         let t3 = plan(ProtocolId::T3, &none, false).unwrap();
-        assert_eq!(t3.configs.len(), 2 * 2 * 6);
+        assert_eq!(t3.configs.len(), 2 * 6);
         assert_eq!(t3.runs, 50);
+        assert!(t3.configs.iter().all(|c| c.checkpoints == [50, 500]));
+        let t3_quick = plan(ProtocolId::T3, &none, true).unwrap();
+        assert!(t3_quick.configs.iter().all(|c| c.checkpoints == [1, 10]));
         let e2 = plan(ProtocolId::E2, &none, false).unwrap();
         assert_eq!(e2.panels.len(), 2);
         assert_eq!(e2.configs.len(), 12);

@@ -9,6 +9,9 @@
 /// - Running best at `K`: `min` over `k = s, 2s, ..., K` of the best chain
 ///   value. Iterate 0 (the initial points) is **not** included, unlike the
 ///   kernel's own running best, because the paper's tables exclude it.
+///   It is also read at intermediate checkpoints `k_1 < k_2 < ... <= K`
+///   (T3 reads one run of K = 500 at k = 50 and 500, as the authors' code
+///   does): the value at `k_i` is the min over `k = s, 2s, ... <= k_i`.
 /// - Empirical probability at `k`: the fraction of runs whose best chain at
 ///   iterate `k` has `U(x_k) - U* <= eps`. It is **not** running: a run that
 ///   was within `eps` at an earlier iterate but is not at `k` does not count
@@ -22,6 +25,8 @@ pub struct Tracker<'a> {
     eps: &'a [f64],
     minimum: f64,
     running: f64,
+    checkpoints: &'a [u64],
+    at_checkpoints: Vec<f64>,
     counts: &'a mut [u32],
     points: usize,
 }
@@ -30,21 +35,29 @@ impl<'a> Tracker<'a> {
     /// A tracker for a run of `steps` iterates with stride `stride >= 1`,
     /// a curve grid every `every` iterates (`None`: no curves), tolerances
     /// `eps` on `U - minimum`, adding into `counts`, whose length must be
-    /// `eps.len() * grid_points(steps, every)`.
+    /// `eps.len() * grid_points(steps, every)`, and reading the running best
+    /// at the increasing iterates `checkpoints` (each in `1..=steps`).
     ///
     /// # Panics
-    /// If `stride` or `every` is 0 or `counts` has the wrong length: both
-    /// are programming errors, checked once per run.
+    /// If `stride` or `every` is 0, `counts` has the wrong length or the
+    /// checkpoints are not increasing within `1..=steps`: programming
+    /// errors (plans are validated), checked once per run.
     pub fn new(
         steps: u64,
         stride: u64,
         every: Option<u64>,
+        checkpoints: &'a [u64],
         eps: &'a [f64],
         minimum: f64,
         counts: &'a mut [u32],
     ) -> Self {
         assert!(stride > 0, "stride must be >= 1");
         assert!(every != Some(0), "the curve grid step must be >= 1");
+        assert!(
+            checkpoints.windows(2).all(|w| w[0] < w[1])
+                && checkpoints.iter().all(|&c| (1..=steps).contains(&c)),
+            "checkpoints must increase within 1..=K"
+        );
         let points = grid_points(steps, every);
         assert_eq!(
             counts.len(),
@@ -57,15 +70,20 @@ impl<'a> Tracker<'a> {
             eps,
             minimum,
             running: f64::INFINITY,
+            checkpoints,
+            at_checkpoints: Vec::with_capacity(checkpoints.len()),
             counts,
             points,
         }
     }
 
-    /// Whether iterate `k` is used (on the stride or on the curve grid), so
-    /// the caller need not compute the best chain value at other iterates.
+    /// Whether iterate `k` is used (on the stride, the curve grid or a
+    /// checkpoint), so the caller need not compute the best chain value at
+    /// other iterates. Every wanted iterate must be observed, in order.
     pub fn wants(&self, k: u64) -> bool {
-        (k > 0 && k % self.stride == 0) || self.every.is_some_and(|r| k % r == 0)
+        (k > 0 && k % self.stride == 0)
+            || self.every.is_some_and(|r| k % r == 0)
+            || self.checkpoints.get(self.at_checkpoints.len()) == Some(&k)
     }
 
     /// Records `best_now = min_c U(x_k^c)` at iterate `k` (`+inf` when every
@@ -74,6 +92,9 @@ impl<'a> Tracker<'a> {
     pub fn observe(&mut self, k: u64, best_now: f64) {
         if k > 0 && k % self.stride == 0 {
             self.running = self.running.min(best_now);
+        }
+        if self.checkpoints.get(self.at_checkpoints.len()) == Some(&k) {
+            self.at_checkpoints.push(self.running);
         }
         if let Some(r) = self.every
             && k % r == 0
@@ -94,6 +115,11 @@ impl<'a> Tracker<'a> {
     /// first iterate on the stride).
     pub fn running_best(&self) -> f64 {
         self.running
+    }
+
+    /// The running best at each checkpoint passed so far.
+    pub fn at_checkpoints(&self) -> &[f64] {
+        &self.at_checkpoints
     }
 }
 
@@ -120,6 +146,9 @@ pub struct Summary {
     pub median: f64,
     /// Sample standard deviation (divisor `M - 1`; 0 when `M = 1`).
     pub sd: f64,
+    /// Population standard deviation (divisor `M`, numpy's `std` default,
+    /// which the authors' tables use), for comparison with the paper.
+    pub sd_population: f64,
     /// Standard error of the mean, `sd / sqrt(M)`.
     pub se: f64,
     /// Smallest value.
@@ -129,6 +158,18 @@ pub struct Summary {
 }
 
 impl Summary {
+    /// The summary of no values: every statistic NaN.
+    pub const EMPTY: Summary = Summary {
+        n: 0,
+        mean: f64::NAN,
+        median: f64::NAN,
+        sd: f64::NAN,
+        sd_population: f64::NAN,
+        se: f64::NAN,
+        min: f64::NAN,
+        max: f64::NAN,
+    };
+
     /// The summary of `values` (in run order, so that the floating-point
     /// sums do not depend on the thread count); `None` when empty.
     pub fn of(values: &[f64]) -> Option<Self> {
@@ -137,8 +178,8 @@ impl Summary {
             return None;
         }
         let mean = values.iter().sum::<f64>() / n as f64;
+        let ss: f64 = values.iter().map(|v| (v - mean) * (v - mean)).sum();
         let sd = if n > 1 {
-            let ss: f64 = values.iter().map(|v| (v - mean) * (v - mean)).sum();
             (ss / (n - 1) as f64).sqrt()
         } else {
             0.0
@@ -155,6 +196,7 @@ impl Summary {
             mean,
             median,
             sd,
+            sd_population: (ss / n as f64).sqrt(),
             se: sd / (n as f64).sqrt(),
             min: sorted[0],
             max: sorted[n - 1],
@@ -182,26 +224,42 @@ mod tests {
         let eps = [];
         let mut none = [];
         // Stride 2: k = 2, 4, 6 -> min(1.0, 0.8, 9.0); k = 0 (0.5) is excluded.
-        let mut t = Tracker::new(6, 2, None, &eps, 0.0, &mut none);
+        let mut t = Tracker::new(6, 2, None, &[], &eps, 0.0, &mut none);
         feed(&mut t);
         assert_eq!(t.running_best(), 0.8);
         // Stride 3: k = 3, 6 -> min(4.0, 9.0); the 0.8 at k = 4 is off the stride.
         let mut none = [];
-        let mut t = Tracker::new(6, 3, None, &eps, 0.0, &mut none);
+        let mut t = Tracker::new(6, 3, None, &[], &eps, 0.0, &mut none);
         feed(&mut t);
         assert_eq!(t.running_best(), 4.0);
         // Stride 1: every iterate but 0.
         let mut none = [];
-        let mut t = Tracker::new(6, 1, None, &eps, 0.0, &mut none);
+        let mut t = Tracker::new(6, 1, None, &[], &eps, 0.0, &mut none);
         feed(&mut t);
         assert_eq!(t.running_best(), 0.8);
+    }
+
+    #[test]
+    fn running_best_at_checkpoints() {
+        let eps = [];
+        let mut none = [];
+        // Stride 2, checkpoints k = 3 and 6: min over k = 2 (1.0); then
+        // min over k = 2, 4, 6 (0.8).
+        let mut t = Tracker::new(6, 2, None, &[3, 6], &eps, 0.0, &mut none);
+        feed(&mut t);
+        assert_eq!(t.at_checkpoints(), [1.0, 0.8]);
+        // A checkpoint before the first stride iterate has no running best.
+        let mut none = [];
+        let mut t = Tracker::new(6, 4, None, &[1, 5], &eps, 0.0, &mut none);
+        feed(&mut t);
+        assert_eq!(t.at_checkpoints(), [f64::INFINITY, 0.8]);
     }
 
     #[test]
     fn empirical_probability_is_not_running() {
         let eps = [2.0, 4.5];
         let mut counts = [0u32; 14];
-        let mut t = Tracker::new(6, 1, Some(1), &eps, 0.0, &mut counts);
+        let mut t = Tracker::new(6, 1, Some(1), &[], &eps, 0.0, &mut counts);
         feed(&mut t);
         // eps = 2: within at k = 0, 2, 4 only; once within, a later worse
         // iterate does not count.
@@ -216,14 +274,14 @@ mod tests {
         // Grid every 2: k = 0, 2, 4, 6 -> 4 points; a minimum of 0.6 makes
         // the gaps 3.0 - 0.6 etc.
         let mut counts = [0u32; 4];
-        let mut t = Tracker::new(6, 100, Some(2), &eps, 0.6, &mut counts);
+        let mut t = Tracker::new(6, 100, Some(2), &[], &eps, 0.6, &mut counts);
         feed(&mut t);
         // Gaps at k = 0, 2, 4, 6: -0.1, 0.4, 0.2, 8.4.
         // Stride 100 never hits within K = 6: no running best.
         assert_eq!(t.running_best(), f64::INFINITY);
         assert_eq!(counts, [1, 1, 1, 0]);
         // Accumulating a second run adds to the counts.
-        let mut t = Tracker::new(6, 1, Some(2), &eps, 0.6, &mut counts);
+        let mut t = Tracker::new(6, 1, Some(2), &[], &eps, 0.6, &mut counts);
         feed(&mut t);
         assert_eq!(counts, [2, 2, 2, 0]);
     }
@@ -232,7 +290,7 @@ mod tests {
     fn diverged_runs_never_count() {
         let eps = [1e300];
         let mut counts = [0u32; 2];
-        let mut t = Tracker::new(1, 1, Some(1), &eps, 0.0, &mut counts);
+        let mut t = Tracker::new(1, 1, Some(1), &[], &eps, 0.0, &mut counts);
         t.observe(0, f64::INFINITY);
         t.observe(1, f64::INFINITY);
         assert_eq!(t.running_best(), f64::INFINITY);
@@ -248,6 +306,7 @@ mod tests {
         // Sum of squares 5, divisor M - 1 = 3.
         assert!((s.sd - (5.0f64 / 3.0).sqrt()).abs() < 1e-15);
         assert!((s.se - (5.0f64 / 3.0).sqrt() / 2.0).abs() < 1e-15);
+        assert!((s.sd_population - (5.0f64 / 4.0).sqrt()).abs() < 1e-15);
         assert_eq!((s.min, s.max), (1.0, 4.0));
         let odd = Summary::of(&[5.0, 1.0, 3.0]).unwrap();
         assert_eq!(odd.median, 3.0);

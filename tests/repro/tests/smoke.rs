@@ -68,7 +68,8 @@ fn quick_all_writes_well_formed_outputs() {
         let sub = dir.path().join(id.name().to_lowercase());
 
         let rows = read_csv(&sub.join("summary.csv"), &SUMMARY_COLUMNS);
-        assert_eq!(rows.len(), p.configs.len(), "{}", id.name());
+        let checkpoints: usize = p.configs.iter().map(|c| c.checkpoints.len()).sum();
+        assert_eq!(rows.len(), checkpoints, "{}", id.name());
         for row in &rows {
             for col in ["mean", "median", "sd", "se", "min", "max"] {
                 let v = num(row, &SUMMARY_COLUMNS, col);
@@ -86,7 +87,7 @@ fn quick_all_writes_well_formed_outputs() {
         let md = fs::read_to_string(sub.join("summary.md")).unwrap();
         assert_eq!(
             md.lines().filter(|l| l.starts_with('|')).count(),
-            p.configs.len() + 2
+            checkpoints + 2
         );
 
         let meta = fs::read_to_string(sub.join("meta.txt")).unwrap();
