@@ -16,7 +16,7 @@ use hrla_repro::protocol::{Overrides, ProtocolId, plan};
 /// High-Resolution Sampling" (spec section 7) with the hrla kernel.
 ///
 /// Each protocol writes into `OUT/ID/`: summary.csv and summary.md (running
-/// best at K: mean, median, sample SD, SE over the M runs), meta.txt (wall
+/// best at K, or at each checkpoint: mean, median, sample SD, SE over the M runs), meta.txt (wall
 /// time, chain-steps, command), and for E1-E5 curves.csv and `ID.svg` (the
 /// empirical probability that the best chain at iterate k is within eps of
 /// U*). Run i of every configuration uses the generator
@@ -60,7 +60,7 @@ enum Command {
     E5(Overrides),
     /// T2: fixed effort N K = 140000, (N, K) from (1, 140000) to (10000, 14), annealing.
     T2(Overrides),
-    /// T3: N = 250, M = 50, K = 50 and 500, a_high = 1..6, from (1,...,1) and N(3·1, 10 I).
+    /// T3: N = 250, M = 50, K = 500 read at k = 50 and 500, a_high = 1..6, from (1,...,1) and N(3·1, 10 I).
     T3(Overrides),
     /// Every protocol with its defaults, in the order E1, T1, E2, E3, E4, E5, T2, T3.
     All(AllArgs),

@@ -112,7 +112,7 @@ fn draw(r: &ProtocolResult, path: &Path) -> Result<(), Box<dyn std::error::Error
             .configure_series_labels()
             .position(SeriesLabelPosition::LowerRight)
             .label_font(("sans-serif", 13))
-            .background_style(WHITE.mix(0.85))
+            .background_style(WHITE.mix(0.6))
             .border_style(BLACK)
             .draw()?;
     }

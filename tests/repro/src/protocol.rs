@@ -62,7 +62,7 @@ impl ProtocolId {
             ProtocolId::E4 => "dimension: d = 10 against d = 20",
             ProtocolId::E5 => "linear annealing to a_high",
             ProtocolId::T2 => "fixed effort N K = 140000 with annealing",
-            ProtocolId::T3 => "best of 250 chains at K = 50 and 500 with annealing, two starts",
+            ProtocolId::T3 => "best of 250 chains at k = 50 and 500 with annealing, two starts",
         }
     }
 
