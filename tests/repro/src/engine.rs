@@ -339,6 +339,15 @@ impl<const D: usize> Swarm<D> {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// The kernel's own global running best (over `k = 0, s, 2s, ...` of
+    /// each optimiser's stride, so including the initial points).
+    pub fn kernel_best(&self) -> f64 {
+        self.parts
+            .iter()
+            .map(|p| p.best().value)
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Chains that diverged (non-finite potential or gradient).
     pub fn diverged(&self) -> usize {
         self.parts.iter().map(|p| p.report().diverged_chains).sum()
@@ -481,6 +490,29 @@ mod tests {
             assert_eq!(split, one);
             assert_eq!(swarm.best_now(), whole.current_best().unwrap().1);
         }
+    }
+
+    /// Cross-check of the tool's running best with the kernel's: from
+    /// N(3·1, 10 I) the initial points are far worse than anything after a
+    /// few hundred steps, so the kernel's best (which includes iterate 0)
+    /// must equal the tool's (which does not), at stride 1.
+    #[test]
+    fn running_best_agrees_with_the_kernel_when_iterate_0_is_not_the_best() {
+        let mut s = spec(40, Temperature::Constant(3.0));
+        s.steps = 300;
+        s.checkpoints = vec![300];
+        let mut rng = run_rng(3, 0);
+        let mut swarm = Swarm::<10>::new(&s, &mut rng).unwrap();
+        let start_best = swarm.best_now();
+        let mut none = [];
+        let mut tracker = Tracker::new(s.steps, 1, None, &s.checkpoints, &[], 0.0, &mut none);
+        for k in 1..=s.steps {
+            swarm.step(&mut rng).unwrap();
+            tracker.observe(k, swarm.best_now());
+        }
+        let ours = tracker.at_checkpoints()[0];
+        assert!(ours < start_best);
+        assert_eq!(ours, swarm.kernel_best());
     }
 
     #[test]
