@@ -74,6 +74,8 @@ fn draw(r: &ProtocolResult, path: &Path) -> Result<(), Box<dyn std::error::Error
         let mut chart = ChartBuilder::on(&area)
             .caption(&panel.title, ("sans-serif", 18))
             .margin(8)
+            // Room for the last x tick label ("100000") at the right edge.
+            .margin_right(28)
             .x_label_area_size(36)
             .y_label_area_size(48)
             .build_cartesian_2d(0f64..k_max as f64, 0f64..1.02f64)?;
