@@ -158,3 +158,21 @@ fn bad_options_fail_before_running() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--a-high"));
     assert!(!dir.path().join("e5").exists());
 }
+
+/// End to end through the binary: one worker thread and two give the same
+/// tables and curves, byte for byte.
+#[test]
+fn outputs_do_not_depend_on_the_thread_count() {
+    let run = |threads: &str| {
+        let dir = tempfile::tempdir().unwrap();
+        let status = Command::new(env!("CARGO_BIN_EXE_repro"))
+            .args(["e2", "--quick", "--quiet", "--threads", threads, "--out"])
+            .arg(dir.path())
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let read = |f: &str| fs::read_to_string(dir.path().join("e2").join(f)).unwrap();
+        (read("summary.csv"), read("curves.csv"), read("e2.svg"))
+    };
+    assert_eq!(run("1"), run("2"));
+}
