@@ -459,6 +459,10 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
     if configs.is_empty() {
         return usage("the parameter grid is empty".into());
     }
+    // A listed pair whose a or d was overridden away would draw an empty
+    // panel.
+    let mut panels = panels;
+    panels.retain(|p| configs.iter().any(|c| p.filter.accepts(c)));
     Ok(Plan {
         id,
         runs,
@@ -493,6 +497,14 @@ mod tests {
         assert_eq!(e2.panels.len(), 2);
         assert_eq!(e2.configs.len(), 12);
         assert_eq!(e2.configs[0].eps, vec![2.0, 4.0]);
+        let e4_d10 = Overrides {
+            d: Some(vec![10]),
+            ..Overrides::default()
+        };
+        assert_eq!(
+            plan(ProtocolId::E4, &e4_d10, false).unwrap().panels.len(),
+            1
+        );
         let e3 = plan(ProtocolId::E3, &none, false).unwrap();
         assert_eq!(e3.configs[0].curve_every, Some(200));
         assert_eq!(e3.panels.len(), 6);
