@@ -55,7 +55,8 @@ impl<F: Float, const D: usize> Chain<F, D> {
     pub fn best(&self) -> &Best<F, D> {
         &self.best
     }
-    /// `true` once the potential or its gradient went non-finite: the chain
+    /// `true` once the position, the potential or its gradient went
+    /// non-finite: the chain
     /// is then frozen (no more steps, no more random draws) and excluded
     /// from the best.
     pub fn is_diverged(&self) -> bool {
@@ -255,7 +256,7 @@ where
             let value = self.potential.value_and_gradient(&chain.x, &mut chain.grad);
             self.gradient_evaluations += 1;
             chain.value = value;
-            if !(value.is_finite() && all_finite(&chain.grad)) {
+            if !(value.is_finite() && all_finite(&chain.grad) && all_finite(&chain.x)) {
                 chain.diverged = true;
                 self.diverged += 1;
                 continue;

@@ -130,13 +130,15 @@ impl<F: Float, const D: usize> Potential<F, D> for Quadratic<F, D> {
     }
 
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        let mut r2 = F::ZERO;
+        // Sum (k r) r rather than k |r|^2: with a tiny k and a huge r the
+        // latter is 0 * inf = NaN, the former the finite true value.
+        let mut kr2 = F::ZERO;
         for ((gi, &xi), &mi) in grad.iter_mut().zip(x).zip(&self.centre) {
             let r = xi - mi;
             *gi = self.stiffness * r;
-            r2 += r * r;
+            kr2 += *gi * r;
         }
-        F::HALF * self.stiffness * r2
+        F::HALF * kr2
     }
 }
 
