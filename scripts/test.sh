@@ -6,6 +6,11 @@ cd "$(dirname "$0")/.."
 
 step() { printf '\n== %s\n' "$*"; }
 
+# Every test runner's output also goes to LOG, so that the last line can sum
+# up the whole run (cargo prints one "test result" line per test binary).
+LOG=$(mktemp)
+trap 'rm -f "$LOG"' EXIT
+
 EMBEDDED_TARGETS="thumbv7em-none-eabihf riscv32imac-unknown-none-elf wasm32-unknown-unknown"
 
 step "toolchain components and targets"
@@ -35,4 +40,6 @@ for t in $EMBEDDED_TARGETS; do
 done
 
 step "host tests (unit, doc, statistical, optimiser, property)"
-cargo test --workspace
+cargo test --workspace 2>&1 | tee -a "$LOG"
+
+awk '/^test result:/ { p += $4; f += $6 } END { printf "\nsummary: %d passed, %d failed\n", p, f }' "$LOG"
