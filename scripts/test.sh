@@ -36,3 +36,7 @@ done
 
 step "host tests (unit, doc, statistical, optimiser, property)"
 cargo test --workspace
+
+# Last, so that node's test summary closes the output.
+step "wasm wrapper and demo page (bit-identity in Node, the page in Chromium)"
+./scripts/test-web.sh
