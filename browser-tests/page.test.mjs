@@ -110,11 +110,14 @@ test("an invalid h shows the kernel's message and the page recovers", async () =
   await pause();
   await setControl("h", -1);
   assert.equal(await page.textContent("#error"), "`h` must be finite and > 0, got -1");
+  assert.equal(await page.getAttribute("#h", "aria-invalid"), "true");
+  assert.equal(await page.textContent("#out-best"), "–");
   await page.click("#step"); // nothing to step: must not throw
   await setControl("h", "");
   assert.equal(await page.textContent("#error"), "`h` must be finite and > 0, got NaN");
   await setControl("h", 0.01);
   assert.equal(await page.textContent("#error"), "");
+  assert.equal(await page.getAttribute("#h", "aria-invalid"), null);
   await page.click("#step");
   assert.equal(await readout("out-iteration"), 100);
 });

@@ -26,7 +26,13 @@ const TYPES = {
 export function startServer(root, port = 0) {
   const base = resolve(root);
   const server = createServer(async (req, res) => {
-    const path = decodeURIComponent(new URL(req.url, "http://127.0.0.1").pathname);
+    let path;
+    try {
+      path = decodeURIComponent(new URL(req.url, "http://127.0.0.1").pathname);
+    } catch {
+      res.writeHead(400).end("bad request");
+      return;
+    }
     const file = normalize(join(base, path.endsWith("/") ? path + "index.html" : path));
     if (file !== base && !file.startsWith(base + sep)) {
       res.writeHead(403).end("forbidden");

@@ -149,12 +149,19 @@ function drawAxes(ctx, frame, color) {
   for (let v = -Math.floor(half / step) * step; v <= half + 1e-9; v += step) {
     ctx.fillText(String(v), frame.left - 6, frame.py(v));
   }
+  // Axis names inside the plot, outlined so they read on any colour.
+  ctx.font = "13px system-ui, sans-serif";
+  ctx.lineWidth = 3;
+  ctx.strokeStyle = "rgba(0, 0, 0, 0.75)";
+  ctx.fillStyle = "#fff";
   ctx.textAlign = "right";
   ctx.textBaseline = "bottom";
-  ctx.fillText("x₁", frame.left + frame.width - 2, frame.top + frame.height - 2);
+  ctx.strokeText("x₁", frame.left + frame.width - 4, frame.top + frame.height - 3);
+  ctx.fillText("x₁", frame.left + frame.width - 4, frame.top + frame.height - 3);
   ctx.textAlign = "left";
   ctx.textBaseline = "top";
-  ctx.fillText("x₂", frame.left + 4, frame.top + 2);
+  ctx.strokeText("x₂", frame.left + 5, frame.top + 4);
+  ctx.fillText("x₂", frame.left + 5, frame.top + 4);
 }
 
 /**
@@ -191,7 +198,8 @@ export function drawChains(canvas, frame, dpr, trails, positions, n, best) {
   ctx.globalAlpha = 1;
 
   ctx.fillStyle = "#ffffff";
-  ctx.strokeStyle = "rgba(0, 0, 0, 0.7)";
+  ctx.strokeStyle = "rgba(0, 0, 0, 0.45)";
+  ctx.lineWidth = 0.75;
   ctx.beginPath();
   for (let c = 0; c < n; c++) {
     const x = positions[2 * c];

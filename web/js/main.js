@@ -68,14 +68,30 @@ function viewHalf(settings) {
   return Number.isFinite(reach) ? Math.min(20, Math.max(4, Math.ceil(reach))) : 10;
 }
 
+/** Inputs named by the kernel's and the wrapper's messages (`name`). */
+const NAMED_INPUTS = {
+  h: ["h"],
+  a: ["a"],
+  a_low: ["aLow"],
+  a_high: ["aHigh"],
+  steps: ["K"],
+  chains: ["chains"],
+  std_dev: ["spread"],
+  mean: ["cx", "cy"],
+  seed: ["seed"],
+  sampler: ["sampler"],
+};
+
 function showError(message) {
   $("error").textContent = message;
-  document.body.classList.add("has-error");
+  const name = /^`([a-z_]+)`/.exec(message)?.[1];
+  for (const id of NAMED_INPUTS[name] ?? []) $(id).setAttribute("aria-invalid", "true");
+  if (/group size/.test(message)) $("group").setAttribute("aria-invalid", "true");
 }
 
 function clearError() {
   $("error").textContent = "";
-  document.body.classList.remove("has-error");
+  for (const el of document.querySelectorAll("[aria-invalid]")) el.removeAttribute("aria-invalid");
 }
 
 /** Starts the run the controls describe, from its seed. */
@@ -151,7 +167,9 @@ function render() {
   if (!frame) return;
   const canvas = $("particles");
   if (!run) {
-    canvas.getContext("2d").clearRect(0, 0, canvas.width, canvas.height);
+    // No run (refused settings): nothing stale may remain on screen.
+    for (const c of [canvas, $("plot-best"), $("plot-prob")]) c.getContext("2d").clearRect(0, 0, c.width, c.height);
+    for (const id of ["out-iteration", "out-best", "out-best-x", "out-best-at", "out-a", "out-prob"]) setOutput(id, "–");
     return;
   }
   const s = run.s;
