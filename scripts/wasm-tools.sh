@@ -38,7 +38,9 @@ ensure_wasm_bindgen() {
 build_wasm() {
   cargo build --release --target wasm32-unknown-unknown -p hrla-wasm
   local wasm="$TARGET_DIR/wasm32-unknown-unknown/release/hrla_wasm.wasm"
-  wasm-bindgen --target web --out-dir web/pkg "$wasm"
+  # The name section only serves debuggers: a third of the file.
+  wasm-bindgen --target web --remove-name-section --remove-producers-section \
+    --out-dir web/pkg "$wasm"
   if [ -n "${1:-}" ]; then
     wasm-bindgen --target nodejs --out-dir "$1" "$wasm"
   fi
