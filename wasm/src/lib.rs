@@ -29,6 +29,9 @@
 //! browser (checked by `scripts/test-web.sh`). [`random_seed`] draws a seed
 //! from the browser's crypto (or the OS natively), to be shown and replayed.
 
+#![deny(missing_docs)]
+#![forbid(unsafe_code)]
+
 mod choice;
 mod settings;
 
