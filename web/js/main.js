@@ -188,11 +188,16 @@ function render() {
   setOutput("out-iteration", String(s[Summary.Iteration]), s[Summary.Iteration]);
   const best = s[Summary.BestValue];
   setOutput("out-best", best.toExponential(3), best);
-  setOutput("out-best-x", `(${s[Summary.BestX0].toFixed(4)}, ${s[Summary.BestX1].toFixed(4)})`);
+  setOutput("out-best-x", `(${coordinate(s[Summary.BestX0])}, ${coordinate(s[Summary.BestX1])})`);
   setOutput("out-best-at", String(s[Summary.BestIteration]), s[Summary.BestIteration]);
   setOutput("out-a", s[Summary.A].toPrecision(4), s[Summary.A]);
   const p = run.fractionWithin(eps);
   setOutput("out-prob", Number.isFinite(p) ? `${p.toFixed(2)} of ${run.groups}` : "–", p);
+}
+
+/** A coordinate in at most 9 characters, without rounding a small one to 0. */
+function coordinate(v) {
+  return v !== 0 && Math.abs(v) < 1e-3 ? v.toExponential(2) : v.toFixed(4);
 }
 
 /** Sizes the canvases to their boxes; redraws the landscape when needed. */
