@@ -42,4 +42,12 @@ done
 step "host tests (unit, doc, statistical, optimiser, property)"
 cargo test --workspace 2>&1 | tee -a "$LOG"
 
-awk '/^test result:/ { p += $4; f += $6 } END { printf "\nsummary: %d passed, %d failed\n", p, f }' "$LOG"
+step "wasm wrapper and demo page (bit-identity in Node, the page in Chromium)"
+./scripts/test-web.sh 2>&1 | tee -a "$LOG"
+
+# cargo prints "test result: ok. N passed; M failed; ...", node's TAP
+# reporter "# pass N" and "# fail M".
+awk '/^test result:/ { p += $4; f += $6 }
+     /^# pass / { p += $3 }
+     /^# fail / { f += $3 }
+     END { printf "\nsummary: %d passed, %d failed\n", p, f }' "$LOG"
