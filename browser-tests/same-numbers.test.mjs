@@ -114,9 +114,8 @@ test("bad settings throw an Error with the kernel's message, and the module stil
   refuse({ chains: 0 }, `\`chains\` must be between 1 and ${wasm.max_chains()}, got 0`);
   refuse({ chains: 2.5 }, "`chains` must be a whole number >= 0");
   refuse({ a: -4 }, "`a` must be finite and > 0, got -4");
-  // The kernel states the bound as usize::MAX, which depends on the target.
-  refuse({ annealing: { aLow: 0.1, aHigh: 4, steps: 0 } }, /^`steps` must be between 1 and \d+, got 0$/);
-  refuse({ spread: -1 }, "`std_dev` must be finite and > 0, got -1");
+  refuse({ annealing: { aLow: 0.1, aHigh: 4, steps: 0 } }, "`steps` must be at least 1, got 0");
+  refuse({ spread: -1 }, "`std_dev` must be finite and >= 0, got -1");
   refuse({ centre: [0, Infinity] }, "`mean` must be finite, got inf");
   refuse({ sampler: "sgd" }, '`sampler` must be "hrla", "ula" or "ola"');
   refuse({ seed: 2n ** 64n }, "`seed` must be a whole number between 0 and 2^53 - 1, or a BigInt between 0 and 2^64 - 1");

@@ -221,11 +221,7 @@ where
     /// `stride >= 1` (the paper's tables use 100 or 1).
     pub fn with_stride(mut self, stride: u64) -> Result<Self, Error> {
         if stride == 0 {
-            return Err(Error::Count {
-                name: "stride",
-                value: 0,
-                max: usize::MAX,
-            });
+            return Err(Error::Zero { name: "stride" });
         }
         self.stride = stride;
         Ok(self)

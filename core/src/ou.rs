@@ -173,7 +173,7 @@ impl<F: Float> OuStep<F> {
         let alpha = positive("alpha", alpha)?;
         let h = positive("h", h)?;
         if !(beta.is_finite() && beta >= F::ZERO) {
-            return Err(Error::NotPositive {
+            return Err(Error::Negative {
                 name: "beta",
                 value: beta.to_f64(),
             });

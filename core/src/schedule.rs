@@ -16,11 +16,7 @@ pub trait Schedule<F: Float> {
 
 fn count(name: &'static str, steps: u64) -> Result<u64, Error> {
     if steps == 0 {
-        Err(Error::Count {
-            name,
-            value: 0,
-            max: usize::MAX,
-        })
+        Err(Error::Zero { name })
     } else {
         Ok(steps)
     }

@@ -698,11 +698,7 @@ fn chain_count_errors() {
     let opt = Opt::new(Rastrigin, paper_hrla(4.0), 2, &mut start, &mut r).unwrap();
     assert_eq!(
         opt.clone().with_stride(0).unwrap_err(),
-        Error::Count {
-            name: "stride",
-            value: 0,
-            max: usize::MAX
-        }
+        Error::Zero { name: "stride" }
     );
     assert!(matches!(
         opt.clone().with_target(f64::NAN).unwrap_err(),
