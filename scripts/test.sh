@@ -42,4 +42,11 @@ done
 step "host tests (unit, doc, statistical, optimiser, property)"
 cargo test --workspace 2>&1 | tee -a "$LOG"
 
-awk '/^test result:/ { p += $4; f += $6 } END { printf "\nsummary: %d passed, %d failed\n", p, f }' "$LOG"
+step "firmware: Algorithm 1 on an emulated Cortex-M3, bit-identical to the host"
+./scripts/test-firmware.sh 2>&1 | tee -a "$LOG"
+
+# The firmware script closes on its own "firmware: N passed, N failed" line
+# (its QEMU comparisons are not cargo tests): count those too.
+awk '/^test result:/ { p += $4; f += $6 }
+     /^firmware: [0-9]+ passed, [0-9]+ failed$/ { p += $2; f += $4 }
+     END { printf "\nsummary: %d passed, %d failed\n", p, f }' "$LOG"
