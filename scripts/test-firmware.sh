@@ -100,6 +100,9 @@ for fp in f32 f64; do
   done
 done
 
+step "host tests of the firmware's computation with micromath (without: in cargo test --workspace)"
+cargo test --quiet -p hrla-embedded --features micromath
+
 step "micromath leaves f64 alone"
 diff "$out/f64.host.txt" "$out/f64+micromath.host.txt"
 echo "ok: f64 results identical with and without micromath"
