@@ -97,6 +97,19 @@ for fp in f32 f64; do
     uninit=$(section "$sizes" .uninit)
     stack=$(awk '$2 == "stack.peak" { print $3 }' "$out/$name.qemu.txt")
     insns=$(awk -v k="$fp" '$2 == k && $3 == "instructions" { print $4 }' "$out/$name.qemu.txt")
+    if [ -z "$stack" ] || [ -z "$insns" ]; then
+      echo "error: the firmware ($name) printed no stack or instruction count" >&2
+      exit 1
+    fi
+    # Budgets, so that "small" stays true: the README quotes the table.
+    flash=$((vt + text + rodata + data))
+    budget_flash=32768
+    [ "$extra" = fmt ] && budget_flash=49152
+    if ((flash > budget_flash || data + bss + uninit > 256 || stack > 6144)); then
+      echo "error: firmware $name over budget: flash $flash > $budget_flash," \
+        "static RAM $((data + bss + uninit)) > 256 or stack $stack > 6144 bytes" >&2
+      exit 1
+    fi
     table+="
 | $name | $((vt + text)) | $rodata | $((vt + text + rodata + data)) | $((data + bss + uninit)) | $stack | $insns |"
   done

@@ -64,3 +64,14 @@ fn step_coefficients_do_not_depend_on_micromath() {
     }
     assert_eq!(h, 0xe780_a0f8_9300_f550);
 }
+
+/// The optimiser's size, quoted in docs/EMBEDDED.md to explain the
+/// firmware's peak stack (it lives on the stack there).
+#[test]
+fn optimiser_sizes_match_the_docs() {
+    let f32_size = std::mem::size_of::<hrla_embedded::Demo<f32>>();
+    let f64_size = std::mem::size_of::<hrla_embedded::Demo<f64>>();
+    println!("Demo<f32>: {f32_size} bytes; Demo<f64>: {f64_size} bytes");
+    assert_eq!(f32_size, 1056);
+    assert_eq!(f64_size, 1792);
+}
