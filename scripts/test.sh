@@ -42,12 +42,17 @@ done
 step "host tests (unit, doc, statistical, optimiser, property)"
 cargo test --workspace 2>&1 | tee -a "$LOG"
 
+step "firmware: Algorithm 1 on an emulated Cortex-M3, bit-identical to the host"
+./scripts/test-firmware.sh 2>&1 | tee -a "$LOG"
+
 step "wasm wrapper and demo page (bit-identity in Node, the page in Chromium)"
 ./scripts/test-web.sh 2>&1 | tee -a "$LOG"
 
 # cargo prints "test result: ok. N passed; M failed; ...", node's TAP
-# reporter "# pass N" and "# fail M".
+# reporter "# pass N" and "# fail M", the firmware script its own
+# "firmware: N passed, M failed" (its QEMU comparisons are not cargo tests).
 awk '/^test result:/ { p += $4; f += $6 }
      /^# pass / { p += $3 }
      /^# fail / { f += $3 }
+     /^firmware: [0-9]+ passed, [0-9]+ failed$/ { p += $2; f += $4 }
      END { printf "\nsummary: %d passed, %d failed\n", p, f }' "$LOG"
