@@ -29,7 +29,9 @@ rustup target list --installed | grep -qx thumbv7m-none-eabi || rustup target ad
 # The firmware is its own workspace; share the root's target directory so
 # that its host-side build scripts are not rebuilt in a second place.
 target_dir=${CARGO_TARGET_DIR:-$root/target}
-out=$target_dir/firmware-check
+# $HRLA_FIRMWARE_OUT when scripts/test.sh sets it: test-web.sh then compares
+# the wasm build's report with the QEMU output left there.
+out=${HRLA_FIRMWARE_OUT:-$target_dir/firmware-check}
 mkdir -p "$out"
 
 step "firmware crate: format and lints (its own workspace)"

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The wasm wrapper and the demo page: bit-identity of the wasm build (in
-# Node) with the native build, and the page in Debian's Chromium.
+# Node) with the native build, and the page in Debian's Chromium; and the
+# firmware example's computation in wasm, bit-identical to the host's (and
+# to the firmware's under QEMU).
 # Installs what is missing: the rustup target, wasm-bindgen-cli, chromium,
 # playwright-core (npm ci from the committed lock file).
 # Artefacts (screenshots) go to target/web-tests/.
@@ -21,6 +23,20 @@ echo "hrla_wasm_bg.wasm: $(wc -c <web/pkg/hrla_wasm_bg.wasm) bytes, $(gzip -9c w
 # The native side of the bit-identity test.
 cargo run --quiet -p hrla-wasm --example trace -- wasm/tests/trace-cases.txt \
   >"$HRLA_WEB_OUT/native-trace.txt"
+
+# The firmware example's computation in wasm, without and with micromath, and
+# the host's report of each variant (file names as in test-firmware.sh), for
+# browser-tests/embedded.test.mjs. It also compares with the firmware's output
+# under QEMU when $HRLA_FIRMWARE_OUT names it (scripts/test.sh does).
+build_embedded_wasm "$HRLA_WEB_OUT/embedded-node"
+build_embedded_wasm "$HRLA_WEB_OUT/embedded-node-micromath" micromath
+mkdir -p "$HRLA_WEB_OUT/embedded"
+for fp in f32 f64; do
+  for features in "" micromath; do
+    cargo run --quiet --release -p hrla-embedded ${features:+--features $features} \
+      --bin hrla-embedded-host -- "$fp" >"$HRLA_WEB_OUT/embedded/$fp${features:++$features}.host.txt"
+  done
+done
 
 if [ ! -x /usr/bin/chromium ]; then
   echo "installing Debian's chromium (about a minute)"

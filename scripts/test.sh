@@ -42,10 +42,15 @@ done
 step "host tests (unit, doc, statistical, optimiser, property)"
 cargo test --workspace 2>&1 | tee -a "$LOG"
 
+# Where test-firmware.sh leaves the firmware's output under QEMU, for
+# test-web.sh to compare the wasm build of the same computation with it.
+export HRLA_FIRMWARE_OUT
+HRLA_FIRMWARE_OUT=$(realpath -m "${CARGO_TARGET_DIR:-target}")/firmware-check
+
 step "firmware: Algorithm 1 on an emulated Cortex-M3, bit-identical to the host"
 ./scripts/test-firmware.sh 2>&1 | tee -a "$LOG"
 
-step "wasm wrapper and demo page (bit-identity in Node, the page in Chromium)"
+step "wasm wrapper and demo page (bit-identity in Node, the page in Chromium), firmware computation in wasm"
 ./scripts/test-web.sh 2>&1 | tee -a "$LOG"
 
 # cargo prints "test result: ok. N passed; M failed; ...", node's TAP

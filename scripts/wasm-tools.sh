@@ -45,3 +45,14 @@ build_wasm() {
     wasm-bindgen --target nodejs --out-dir "$1" "$wasm"
   fi
 }
+
+# build_embedded_wasm DIR [FEATURES]: the firmware example's computation
+# (crate hrla-embedded-wasm, test-only: never in web/pkg) for Node, into DIR.
+# Bound before the next build overwrites the .wasm (the file name does not
+# depend on the features).
+build_embedded_wasm() {
+  cargo build --quiet --release --target wasm32-unknown-unknown -p hrla-embedded-wasm \
+    ${2:+--features "$2"}
+  wasm-bindgen --target nodejs --out-dir "$1" \
+    "$TARGET_DIR/wasm32-unknown-unknown/release/hrla_embedded_wasm.wasm"
+}
