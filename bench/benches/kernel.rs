@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use hrla::{Float, Optimizer, Rastrigin, Schedule};
-use hrla_bench::{AnySampler, Bare, Method, constant, linear, optimizer, rng};
+use hrla_bench::{AnySampler, Bare, Method, constant, optimizer, rng, slow_linear};
 
 /// Chains per optimiser: larger swarms are split so that each optimiser
 /// (which holds its chains inline) stays small on the stack.
@@ -28,14 +28,23 @@ fn swarm<F: Float, C: Schedule<F> + Clone, const D: usize>(
     let mut left = chains;
     while left > 0 {
         let n = left.min(GROUP);
-        groups.push(Box::new(optimizer::<F, C, D, GROUP>(method, schedule.clone(), n, &mut r)));
+        groups.push(Box::new(optimizer::<F, C, D, GROUP>(
+            method,
+            schedule.clone(),
+            n,
+            &mut r,
+        )));
         left -= n;
     }
     (groups, r)
 }
 
 fn float_name<F: Float>() -> &'static str {
-    if core::mem::size_of::<F>() == 8 { "f64" } else { "f32" }
+    if core::mem::size_of::<F>() == 8 {
+        "f64"
+    } else {
+        "f32"
+    }
 }
 
 /// Algorithm 1 (value and running best every step), sampler alone (no
@@ -49,22 +58,26 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
         g.throughput(Throughput::Elements((chains * D) as u64));
         for method in Method::ALL {
             let (mut opt, mut r) = swarm::<F, _, D>(method, constant::<F>(), chains);
-            g.bench_function(BenchmarkId::new(format!("{}/best", method.name()), chains), |b| {
-                b.iter(|| {
-                    for o in opt.iter_mut() {
-                        black_box(o.step(&mut r).expect("valid"));
-                    }
-                })
-            });
+            g.bench_function(
+                BenchmarkId::new(format!("{}/best", method.name()), chains),
+                |b| {
+                    b.iter(|| {
+                        for o in opt.iter_mut() {
+                            black_box(o.step(&mut r).expect("valid"));
+                        }
+                    })
+                },
+            );
             let sampler = AnySampler::<F>::paper(method);
             let mut bare = Bare::<F, D>::new(chains, &mut r);
-            g.bench_function(BenchmarkId::new(format!("{}/no-value", method.name()), chains), |b| {
-                b.iter(|| bare.step(&sampler, &mut r))
-            });
+            g.bench_function(
+                BenchmarkId::new(format!("{}/no-value", method.name()), chains),
+                |b| b.iter(|| bare.step(&sampler, &mut r)),
+            );
         }
-        // HRLA with the paper's annealing: the per-step refresh of the
-        // temperature-dependent coefficients.
-        let (mut opt, mut r) = swarm::<F, _, D>(Method::Hrla, linear::<F>(u64::MAX), chains);
+        // HRLA with a = a_k changing every step: the cost of the per-step
+        // refresh of the temperature-dependent coefficients.
+        let (mut opt, mut r) = swarm::<F, _, D>(Method::Hrla, slow_linear::<F>(), chains);
         g.bench_function(BenchmarkId::new("hrla/best-annealed", chains), |b| {
             b.iter(|| {
                 for o in opt.iter_mut() {
@@ -75,6 +88,12 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
         let mut bare = Bare::<F, D>::new(chains, &mut r);
         g.bench_function(BenchmarkId::new("floor/normals+value+grad", chains), |b| {
             b.iter(|| black_box(bare.floor(&mut r)))
+        });
+        g.bench_function(BenchmarkId::new("floor/normals", chains), |b| {
+            b.iter(|| black_box(bare.normals(&mut r)))
+        });
+        g.bench_function(BenchmarkId::new("floor/value+grad", chains), |b| {
+            b.iter(|| black_box(bare.value_and_gradient()))
         });
         g.bench_function(BenchmarkId::new("floor/random-bits", chains), |b| {
             b.iter(|| black_box(bare.bits(&mut r)))

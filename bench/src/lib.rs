@@ -102,8 +102,15 @@ pub fn optimizer<F: Float, C: Schedule<F>, const D: usize, const N: usize>(
     rng: &mut Xoshiro256PlusPlus,
 ) -> Optimizer<F, Rastrigin, AnySampler<F>, C, D, N> {
     let mut start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10f64.sqrt())).expect("valid");
-    Optimizer::with_schedule(Rastrigin, AnySampler::paper(method), schedule, chains, &mut start, rng)
-        .expect("valid")
+    Optimizer::with_schedule(
+        Rastrigin,
+        AnySampler::paper(method),
+        schedule,
+        chains,
+        &mut start,
+        rng,
+    )
+    .expect("valid")
 }
 
 /// The constant schedule of the paper's setting.
@@ -111,9 +118,12 @@ pub fn constant<F: Float>() -> Constant<F> {
     Constant::new(F::from_f64(4.0)).expect("valid")
 }
 
-/// The paper's linear annealing 0.1 -> 4 over `steps`.
-pub fn linear<F: Float>(steps: u64) -> Linear<F> {
-    Linear::new(F::from_f64(0.1), F::from_f64(4.0), steps).expect("valid")
+/// A linear annealing from 4 to 4.4 over 10^9 steps: `a_k` changes at
+/// every step (so the sampler refreshes its coefficients every step) while
+/// the dynamics stay those of the constant benchmark (a = 4), so the two
+/// differ only by the refresh.
+pub fn slow_linear<F: Float>() -> Linear<F> {
+    Linear::new(F::from_f64(4.0), F::from_f64(4.4), 1_000_000_000).expect("valid")
 }
 
 /// Chains without the optimiser: position, velocity, gradient.
@@ -168,6 +178,26 @@ impl<F: Float, const D: usize> Bare<F, D> {
             for _ in 0..2 * D {
                 acc += F::standard_normal(rng);
             }
+            acc += Rastrigin.value_and_gradient(x, g);
+        }
+        acc
+    }
+
+    /// The floor's normals alone: `2 D` per chain.
+    #[inline]
+    pub fn normals(&mut self, rng: &mut Xoshiro256PlusPlus) -> F {
+        let mut acc = F::ZERO;
+        for _ in 0..self.x.len() * 2 * D {
+            acc += F::standard_normal(rng);
+        }
+        acc
+    }
+
+    /// The floor's value-and-gradient evaluations alone.
+    #[inline]
+    pub fn value_and_gradient(&mut self) -> F {
+        let mut acc = F::ZERO;
+        for (x, g) in self.x.iter().zip(&mut self.g) {
             acc += Rastrigin.value_and_gradient(x, g);
         }
         acc

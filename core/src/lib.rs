@@ -96,6 +96,7 @@ mod potential;
 mod sampler;
 mod schedule;
 mod start;
+mod trig;
 mod ziggurat_tables;
 
 pub use error::Error;
