@@ -3,10 +3,11 @@
 //! Every transcendental function goes through [`Float`], which forwards to the
 //! `libm` crate (never to the platform's maths library), so a seeded run gives
 //! bit-identical results on x86_64, wasm32 and Cortex-M. With the `micromath`
-//! feature, the *hot-path* functions of `f32` (`fast_*`: the sine/cosine of
-//! the built-in potentials and the exponential/logarithm of the normal
-//! sampler's rare branches) use `micromath`'s approximations instead; the
-//! step coefficients always use `libm`.
+//! feature, the `fast_*` functions of `f32` (the exponential and logarithm
+//! of the normal sampler's rare branches, the sine and cosine of Levy and of
+//! Rastrigin's fallback for huge arguments) use `micromath`'s approximations
+//! instead; the step coefficients and Rastrigin's fused polynomial sine are
+//! the same in every build.
 
 use core::fmt::{Debug, Display};
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -61,8 +62,6 @@ pub trait Float:
     /// Taylor terms of `sin(2πr)` and `cos(2πr)` on `|r| <= 1/8` that reach
     /// this type's precision.
     const TRIG_TERMS: (usize, usize);
-    /// Whether the `fast_*` functions are micromath's approximations.
-    const IS_MICROMATH: bool;
 
     /// Rounds an `f64` to this type (round to nearest, as `as` does).
     fn from_f64(v: f64) -> Self;
@@ -91,8 +90,6 @@ pub trait Float:
     fn cosh(self) -> Self;
     /// Hyperbolic tangent (libm).
     fn tanh(self) -> Self;
-    /// `(sin x, cos x)` (libm).
-    fn sin_cos(self) -> (Self, Self);
     /// `(sin x, cos x)` for the hot path: libm, or micromath for `f32` with
     /// the `micromath` feature.
     fn fast_sin_cos(self) -> (Self, Self);
@@ -194,7 +191,6 @@ impl Float for f64 {
     const ROUND_MAGIC: Self = 6755399441055744.0;
     const TRIG_FAST_LIMIT: Self = 562949953421312.0; // 2^49
     const TRIG_TERMS: (usize, usize) = (9, 9);
-    const IS_MICROMATH: bool = false;
 
     #[inline]
     fn from_f64(v: f64) -> Self {
@@ -249,10 +245,6 @@ impl Float for f64 {
         libm::tanh(self)
     }
     #[inline]
-    fn sin_cos(self) -> (Self, Self) {
-        libm::sincos(self)
-    }
-    #[inline]
     fn fast_sin_cos(self) -> (Self, Self) {
         libm::sincos(self)
     }
@@ -293,7 +285,6 @@ impl Float for f32 {
     const ROUND_MAGIC: Self = 12582912.0;
     const TRIG_FAST_LIMIT: Self = 1048576.0; // 2^20
     const TRIG_TERMS: (usize, usize) = (5, 6);
-    const IS_MICROMATH: bool = cfg!(feature = "micromath");
 
     #[inline]
     fn from_f64(v: f64) -> Self {
@@ -346,10 +337,6 @@ impl Float for f32 {
     #[inline]
     fn tanh(self) -> Self {
         libm::tanhf(self)
-    }
-    #[inline]
-    fn sin_cos(self) -> (Self, Self) {
-        libm::sincosf(self)
     }
     #[cfg(not(feature = "micromath"))]
     #[inline]

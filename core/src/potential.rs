@@ -47,8 +47,8 @@ fn tau<F: Float>() -> F {
 /// bracket formed without cancellation, so it is accurate near the minimum
 /// even in f32. The sine and `1 - cos` of all coordinates come from one fused,
 /// vectorisable polynomial evaluation after an exact reduction of `x` modulo
-/// 1/4 (within a few ulps of the exact values; libm only for `|x| >= 2^49`,
-/// or `2^20` in f32; micromath's sine and cosine with that feature, in f32).
+/// 1/4 (within a few ulps of the exact values; `Float::fast_sin_cos` only for
+/// `|x| >= 2^49`, or `2^20` in f32).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Rastrigin;
 

@@ -11,7 +11,9 @@
 //! constant term, so it keeps full relative accuracy near the integers. Only IEEE additions and multiplications are used, so the
 //! result is bit-identical on every target. Arguments too large for the
 //! rounding trick (`|x| >= 2^49` in f64, `2^20` in f32) or not finite take
-//! libm's path. The host test `trig.rs` bounds the error against libm.
+//! [`Float::fast_sin_cos`] of the rounded `2πx` (libm, or micromath with
+//! that feature in f32). The host test `trig.rs` bounds the error against a
+//! double-double evaluation.
 
 use crate::float::Float;
 
@@ -71,17 +73,6 @@ fn horner<F: Float>(coef: &[f64; 9], terms: usize, r2: F) -> F {
 /// is small and must stay accurate).
 #[inline(always)]
 pub(crate) fn sin_omc_2pi<F: Float, const D: usize>(x: &[F; D], s: &mut [F; D], omc: &mut [F; D]) {
-    #[cfg(feature = "micromath")]
-    if F::IS_MICROMATH {
-        // micromath's approximate sine and cosine, cheaper on soft-float
-        // cores, where the feature asks for them.
-        for ((&xi, si), oi) in x.iter().zip(s.iter_mut()).zip(omc.iter_mut()) {
-            let (sv, cv) = (F::from_f64(core::f64::consts::TAU) * xi).fast_sin_cos();
-            *si = sv;
-            *oi = one_minus_cos(sv, cv);
-        }
-        return;
-    }
     let magic = F::ROUND_MAGIC;
     let quarter = F::from_f64(0.25);
     let four = F::from_f64(4.0);
@@ -119,7 +110,7 @@ pub(crate) fn sin_omc_2pi<F: Float, const D: usize>(x: &[F; D], s: &mut [F; D], 
         for ((&xi, si), oi) in x.iter().zip(s.iter_mut()).zip(omc.iter_mut()) {
             let small = xi.abs() < F::TRIG_FAST_LIMIT;
             if !small {
-                let (sv, cv) = (F::from_f64(core::f64::consts::TAU) * xi).sin_cos();
+                let (sv, cv) = (F::from_f64(core::f64::consts::TAU) * xi).fast_sin_cos();
                 *si = sv;
                 *oi = one_minus_cos(sv, cv);
             }
