@@ -8,15 +8,18 @@
 //! ```
 //!
 //! Sections 1 and 2 call micromath and libm directly, so they print the same
-//! in both builds; sections 3 to 6 go through the kernel, whose f32 hot path
-//! the feature switches, so their differences are the feature's effect.
-//! (That the OU step's coefficients are untouched is a test:
-//! `tests/embedded_run.rs`.)
+//! in both builds. Sections 3 to 6 go through the kernel, whose f32 `fast_*`
+//! functions the feature switches: the exp and ln of the normal sampler's
+//! rare branches, and the sine and cosine of Levy and of Rastrigin's fallback
+//! for `|x| >= 2^20` (Rastrigin's fused polynomial sine is the same in both
+//! builds, so its row of section 3, hash included, must not change). (That
+//! the OU step's coefficients and Rastrigin's f32 bits are untouched is a
+//! test: `tests/embedded_run.rs`.)
 
 use std::hint::black_box;
 use std::time::Instant;
 
-use hrla::{Float, Potential, Rastrigin};
+use hrla::{Float, Levy, Potential, Rastrigin};
 use hrla_embedded::{N, SEED, STEPS};
 use micromath::F32Ext;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -76,11 +79,12 @@ fn approximations() {
         "| function, range | micromath max abs | micromath max rel | at | libm f32 max abs | libm f32 max rel |"
     );
     println!("|---|---:|---:|---:|---:|---:|");
-    // Rastrigin's argument 2πx for x in [-10, 10] (the start N(3·1, 10 I)
-    // reaches about 12.5 at 3 sigma; chains live in [-4, 4]).
+    // Levy's arguments πw, πw + 1 and 2πw, w = 1 + (x - 1)/4, stay within
+    // [-20π, 20π] for x in [-40, 40] (Rastrigin's sine no longer calls
+    // micromath below |x| = 2^20).
     let t = 2.0 * std::f32::consts::PI * 10.0;
     line(
-        "sin, 2πx for x in [-10, 10]",
+        "sin on [-20π, 20π] (Levy)",
         errors(grid(-t, t, 2_000_000), |x| F32Ext::sin_cos(x).0, libm::sin),
         errors(grid(-t, t, 2_000_000), libm::sinf, libm::sin),
     );
@@ -154,37 +158,51 @@ fn build() -> &'static str {
     }
 }
 
-/// Section 3: the kernel's f32 Rastrigin against f64 on [-6, 6]².
-fn rastrigin() {
+/// Section 3: the kernel's 2-D f32 Rastrigin and Levy against f64, the
+/// first coordinate on a grid of [-6, 6], the second at its minimiser plus
+/// 0.25; with an FNV-1a hash of the f32 bits of every value and gradient,
+/// so that two builds can be compared at a glance.
+fn potentials() {
     println!(
-        "## 3. Rastrigin in f32 through the kernel ({}), against f64\n",
+        "## 3. Potentials in f32 through the kernel ({}), against f64\n",
         build()
     );
-    let (mut du, mut dg, mut du_near) = (0f64, 0f64, 0f64);
-    for x in grid(-6.0, 6.0, 1_000_000) {
-        let p = [x, 0.25];
-        let mut g = [0f32; 2];
-        let u = Rastrigin.value_and_gradient(&p, &mut g);
-        let q = [f64::from(x), 0.25];
-        let mut h = [0f64; 2];
-        let v = Rastrigin.value_and_gradient(&q, &mut h);
-        du = du.max((f64::from(u) - v).abs());
-        dg = dg.max((f64::from(g[0]) - h[0]).abs());
-        if x.abs() < 0.05 {
-            // Near the minimum: the value's error relative to U itself.
-            let p0 = [x, 0.0];
-            let u0 = Rastrigin.value(&p0);
-            let v0 = Rastrigin.value(&[f64::from(x), 0.0]);
-            if v0 > 0.0 {
-                du_near = du_near.max((f64::from(u0) - v0).abs() / v0);
+    println!(
+        "| potential | max abs error of U | max abs error of dU/dx_1 | max rel error of U, abs(x_1 - x*) < 0.05 | FNV-1a of the f32 bits |"
+    );
+    println!("|---|---:|---:|---:|---:|");
+    fn one<P: Potential<f32, 2> + Potential<f64, 2>>(name: &str, p: P, min: f32) {
+        let (mut du, mut dg, mut du_near) = (0f64, 0f64, 0f64);
+        let mut hash = 0xcbf2_9ce4_8422_2325u64;
+        let mut feed = |v: f32| {
+            for b in v.to_bits().to_le_bytes() {
+                hash = (hash ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3);
+            }
+        };
+        for x in grid(-6.0, 6.0, 1_000_000) {
+            let mut g = [0f32; 2];
+            let u = p.value_and_gradient(&[x, min + 0.25], &mut g);
+            let mut h = [0f64; 2];
+            let v = p.value_and_gradient(&[f64::from(x), f64::from(min) + 0.25], &mut h);
+            feed(u);
+            feed(g[0]);
+            feed(g[1]);
+            du = du.max((f64::from(u) - v).abs());
+            dg = dg.max((f64::from(g[0]) - h[0]).abs());
+            if (x - min).abs() < 0.05 {
+                // Near the minimum: the value's error relative to U itself.
+                let u0 = Potential::<f32, 2>::value(&p, &[x, min]);
+                let v0 = Potential::<f64, 2>::value(&p, &[f64::from(x), f64::from(min)]);
+                if v0 > 0.0 {
+                    du_near = du_near.max((f64::from(u0) - v0).abs() / v0);
+                }
             }
         }
+        println!("| {name} | {du:.2e} | {dg:.2e} | {du_near:.2e} | {hash:016x} |");
     }
-    println!(
-        "| max abs error of U | max abs error of dU/dx | max rel error of U for abs(x) < 0.05 |"
-    );
-    println!("|---:|---:|---:|");
-    println!("| {du:.2e} | {dg:.2e} | {du_near:.2e} |\n");
+    one("Rastrigin", Rastrigin, 0.0);
+    one("Levy", Levy, 1.0);
+    println!();
 }
 
 /// Section 4: 10^7 f32 normals from the kernel.
@@ -329,7 +347,7 @@ fn speed() {
 fn main() {
     approximations();
     ziggurat_law();
-    rastrigin();
+    potentials();
     normals();
     seeds();
     speed();

@@ -65,6 +65,39 @@ fn step_coefficients_do_not_depend_on_micromath() {
     assert_eq!(h, 0xe780_a0f8_9300_f550);
 }
 
+/// Rastrigin's f32 sine and `1 - cos` come from the kernel's fused
+/// polynomial in every build: micromath only takes over beyond
+/// `|x| = 2^20`. So its f32 values and gradients on `(-2^20, 2^20)` are the
+/// same bits, one golden value, with and without the feature (the test
+/// script runs this file in both builds).
+#[test]
+fn rastrigin_does_not_depend_on_micromath() {
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    let mut feed = |v: f32| {
+        for b in v.to_bits().to_le_bytes() {
+            h = (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    };
+    let near = (0..=4000).map(|i| -10.0 + i as f32 * 0.005);
+    let far = [
+        1e-30,
+        0.3,
+        123.456,
+        4096.1,
+        65_537.3,
+        1_000_000.7,
+        1_048_575.5,
+    ];
+    for x in near.chain(far.iter().flat_map(|&x| [x, -x])) {
+        let mut g = [0f32; 2];
+        let u = Rastrigin.value_and_gradient(&[x, 0.25], &mut g);
+        feed(u);
+        feed(g[0]);
+        feed(g[1]);
+    }
+    assert_eq!(h, 0x49eb_612e_b5e7_a459);
+}
+
 /// The optimiser's size, quoted in docs/EMBEDDED.md to explain the
 /// firmware's peak stack (it lives on the stack there).
 #[test]
