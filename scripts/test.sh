@@ -6,6 +6,11 @@ cd "$(dirname "$0")/.."
 
 step() { printf '\n== %s\n' "$*"; }
 
+# Every test runner's output also goes to LOG, so that the last line can sum
+# up the whole run (cargo prints one "test result" line per test binary).
+LOG=$(mktemp)
+trap 'rm -f "$LOG"' EXIT
+
 EMBEDDED_TARGETS="thumbv7em-none-eabihf riscv32imac-unknown-none-elf wasm32-unknown-unknown"
 
 step "toolchain components and targets"
@@ -35,4 +40,24 @@ for t in $EMBEDDED_TARGETS; do
 done
 
 step "host tests (unit, doc, statistical, optimiser, property)"
-cargo test --workspace
+cargo test --workspace 2>&1 | tee -a "$LOG"
+
+# Where test-firmware.sh leaves the firmware's output under QEMU, for
+# test-web.sh to compare the wasm build of the same computation with it.
+export HRLA_FIRMWARE_OUT
+HRLA_FIRMWARE_OUT=$(realpath -m "${CARGO_TARGET_DIR:-target}")/firmware-check
+
+step "firmware: Algorithm 1 on an emulated Cortex-M3, bit-identical to the host"
+./scripts/test-firmware.sh 2>&1 | tee -a "$LOG"
+
+step "wasm wrapper and demo page (bit-identity in Node, the page in Chromium), firmware computation in wasm"
+./scripts/test-web.sh 2>&1 | tee -a "$LOG"
+
+# cargo prints "test result: ok. N passed; M failed; ...", node's TAP
+# reporter "# pass N" and "# fail M", the firmware script its own
+# "firmware: N passed, M failed" (its QEMU comparisons are not cargo tests).
+awk '/^test result:/ { p += $4; f += $6 }
+     /^# pass / { p += $3 }
+     /^# fail / { f += $3 }
+     /^firmware: [0-9]+ passed, [0-9]+ failed$/ { p += $2; f += $4 }
+     END { printf "\nsummary: %d passed, %d failed\n", p, f }' "$LOG"

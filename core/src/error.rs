@@ -16,6 +16,13 @@ pub enum Error {
         /// The value given.
         value: f64,
     },
+    /// A parameter that must be finite and non-negative was not.
+    Negative {
+        /// The parameter's name (`std_dev`, ...).
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
     /// A parameter or state that must be finite was NaN or infinite.
     NotFinite {
         /// What was not finite (`mean`, `target`, `initial point`, ...).
@@ -27,10 +34,15 @@ pub enum Error {
     /// overflowed or underflowed to a useless value (for example `h^3`
     /// overflowing for a huge `h`).
     DegenerateCoefficients,
-    /// A count is out of range (zero chains, more chains than the capacity,
-    /// a zero stride or schedule length).
+    /// A count that must be at least 1 was zero (a stride, a schedule
+    /// length).
+    Zero {
+        /// What was counted (`stride`, `steps`).
+        name: &'static str,
+    },
+    /// The number of chains is zero or above the optimiser's capacity.
     Count {
-        /// What was counted (`chains`, `stride`, `steps`).
+        /// What was counted (`chains`).
         name: &'static str,
         /// The count given.
         value: usize,
@@ -50,7 +62,11 @@ impl fmt::Display for Error {
             Error::NotPositive { name, value } => {
                 write!(f, "`{name}` must be finite and > 0, got {value}")
             }
+            Error::Negative { name, value } => {
+                write!(f, "`{name}` must be finite and >= 0, got {value}")
+            }
             Error::NotFinite { name, value } => write!(f, "`{name}` must be finite, got {value}"),
+            Error::Zero { name } => write!(f, "`{name}` must be at least 1, got 0"),
             Error::DegenerateCoefficients => f.write_str(
                 "the step coefficients overflow or vanish for these parameters \
                  (h, alpha or the temperature is out of range)",

@@ -3,10 +3,11 @@
 //! Every transcendental function goes through [`Float`], which forwards to the
 //! `libm` crate (never to the platform's maths library), so a seeded run gives
 //! bit-identical results on x86_64, wasm32 and Cortex-M. With the `micromath`
-//! feature, the *hot-path* functions of `f32` (`fast_*`: the sine/cosine of
-//! the built-in potentials and the exponential/logarithm of the normal
-//! sampler's rare branches) use `micromath`'s approximations instead; the
-//! step coefficients always use `libm`.
+//! feature, the `fast_*` functions of `f32` (the exponential and logarithm
+//! of the normal sampler's rare branches, the sine and cosine of Levy and of
+//! Rastrigin's fallback for huge arguments) use `micromath`'s approximations
+//! instead; the step coefficients and Rastrigin's fused polynomial sine are
+//! the same in every build.
 
 use core::fmt::{Debug, Display};
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -53,6 +54,14 @@ pub trait Float:
     const PI: Self;
     /// Positive infinity.
     const INFINITY: Self;
+    /// `1.5 * 2^(mantissa bits)`: `(v + M) - M` rounds `v` to the nearest
+    /// integer (ties to even) for `|v| < M/3`.
+    const ROUND_MAGIC: Self;
+    /// Below this `|x|` the fused `sin(2πx)` takes its polynomial path.
+    const TRIG_FAST_LIMIT: Self;
+    /// Taylor terms of `sin(2πr)` and `cos(2πr)` on `|r| <= 1/8` that reach
+    /// this type's precision.
+    const TRIG_TERMS: (usize, usize);
 
     /// Rounds an `f64` to this type (round to nearest, as `as` does).
     fn from_f64(v: f64) -> Self;
@@ -97,9 +106,12 @@ pub trait Float:
     fn standard_normal<R: Rng + ?Sized>(rng: &mut R) -> Self;
 }
 
-/// The ZIGNOR loop, shared by both float widths: `draw` returns the layer
+/// The ZIGNOR method, shared by both float widths: `draw` returns the layer
 /// index and a uniform on [-1, 1), `uniform` a uniform on [0, 1) and
 /// `open01` one on (0, 1).
+///
+/// The fast path (about 99% of draws: one random word, a multiply and a
+/// compare) is inlined into the caller; the rest lives in a cold function.
 #[inline(always)]
 fn ziggurat<F: Float, R: Rng + ?Sized>(
     rng: &mut R,
@@ -109,14 +121,30 @@ fn ziggurat<F: Float, R: Rng + ?Sized>(
     uniform: impl Fn(&mut R) -> F,
     open01: impl Fn(&mut R) -> F,
 ) -> F {
+    let (i, u) = draw(rng);
+    let x = u * x_tab[i];
+    // Inside the layer's rectangle below the next edge: accept at once.
+    if x.abs() < x_tab[i + 1] {
+        return x;
+    }
+    ziggurat_slow(rng, x_tab, f_tab, (i, u, x), draw, uniform, open01)
+}
+
+/// The base layer's tail, the wedges, and the redraws after a rejection.
+#[cold]
+#[inline(never)]
+fn ziggurat_slow<F: Float, R: Rng + ?Sized>(
+    rng: &mut R,
+    x_tab: &[F; 257],
+    f_tab: &[F; 257],
+    first: (usize, F, F),
+    draw: impl Fn(&mut R) -> (usize, F),
+    uniform: impl Fn(&mut R) -> F,
+    open01: impl Fn(&mut R) -> F,
+) -> F {
     let r = F::from_f64(zig::R);
+    let (mut i, mut u, mut x) = first;
     loop {
-        let (i, u) = draw(rng);
-        let x = u * x_tab[i];
-        // Inside the layer's rectangle below the next edge: accept at once.
-        if x.abs() < x_tab[i + 1] {
-            return x;
-        }
         if i == 0 {
             // Base layer beyond R: Marsaglia's exact tail method.
             loop {
@@ -129,6 +157,12 @@ fn ziggurat<F: Float, R: Rng + ?Sized>(
         }
         // Wedge between the rectangle and the density.
         if f_tab[i + 1] + (f_tab[i] - f_tab[i + 1]) * uniform(rng) < (-x * x * F::HALF).fast_exp() {
+            return x;
+        }
+        // Rejected: a fresh draw, with its own fast path.
+        (i, u) = draw(rng);
+        x = u * x_tab[i];
+        if x.abs() < x_tab[i + 1] {
             return x;
         }
     }
@@ -154,6 +188,9 @@ impl Float for f64 {
     const HALF: Self = 0.5;
     const PI: Self = core::f64::consts::PI;
     const INFINITY: Self = f64::INFINITY;
+    const ROUND_MAGIC: Self = 6755399441055744.0;
+    const TRIG_FAST_LIMIT: Self = 562949953421312.0; // 2^49
+    const TRIG_TERMS: (usize, usize) = (9, 9);
 
     #[inline]
     fn from_f64(v: f64) -> Self {
@@ -220,7 +257,7 @@ impl Float for f64 {
         libm::log(self)
     }
 
-    #[inline]
+    #[inline(always)]
     fn standard_normal<R: Rng + ?Sized>(rng: &mut R) -> Self {
         ziggurat(
             rng,
@@ -245,6 +282,9 @@ impl Float for f32 {
     const HALF: Self = 0.5;
     const PI: Self = core::f32::consts::PI;
     const INFINITY: Self = f32::INFINITY;
+    const ROUND_MAGIC: Self = 12582912.0;
+    const TRIG_FAST_LIMIT: Self = 1048576.0; // 2^20
+    const TRIG_TERMS: (usize, usize) = (5, 6);
 
     #[inline]
     fn from_f64(v: f64) -> Self {
@@ -329,7 +369,7 @@ impl Float for f32 {
         micromath::F32Ext::ln(self)
     }
 
-    #[inline]
+    #[inline(always)]
     fn standard_normal<R: Rng + ?Sized>(rng: &mut R) -> Self {
         ziggurat(
             rng,

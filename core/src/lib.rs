@@ -69,9 +69,11 @@
 //! `next_u32`). Normals are exact (256-layer Ziggurat). All maths goes
 //! through `libm`, never the platform's library, and the kernel never fuses
 //! multiply-adds, so a seed gives bit-identical results on x86_64, wasm32
-//! and Cortex-M. The `micromath` feature swaps the `f32` sine, cosine,
-//! exponential and logarithm of the hot path for faster approximations
-//! (this changes `f32` results; the step coefficients keep `libm`).
+//! and Cortex-M. The `micromath` feature swaps the `f32` exponential and
+//! logarithm of the normal sampler's rare branches (and the sine and cosine
+//! of [`Levy`]) for micromath's smaller approximations: this changes some
+//! `f32` results and makes the normals slightly inexact; the step
+//! coefficients and Rastrigin's fused sine keep full accuracy.
 //!
 //! # Memory
 //!
@@ -96,6 +98,7 @@ mod potential;
 mod sampler;
 mod schedule;
 mod start;
+mod trig;
 mod ziggurat_tables;
 
 pub use error::Error;

@@ -55,7 +55,8 @@ impl<F: Float, const D: usize> Chain<F, D> {
     pub fn best(&self) -> &Best<F, D> {
         &self.best
     }
-    /// `true` once the potential or its gradient went non-finite: the chain
+    /// `true` once the position, the potential or its gradient went
+    /// non-finite: the chain
     /// is then frozen (no more steps, no more random draws) and excluded
     /// from the best.
     pub fn is_diverged(&self) -> bool {
@@ -220,11 +221,7 @@ where
     /// `stride >= 1` (the paper's tables use 100 or 1).
     pub fn with_stride(mut self, stride: u64) -> Result<Self, Error> {
         if stride == 0 {
-            return Err(Error::Count {
-                name: "stride",
-                value: 0,
-                max: usize::MAX,
-            });
+            return Err(Error::Zero { name: "stride" });
         }
         self.stride = stride;
         Ok(self)
@@ -255,7 +252,7 @@ where
             let value = self.potential.value_and_gradient(&chain.x, &mut chain.grad);
             self.gradient_evaluations += 1;
             chain.value = value;
-            if !(value.is_finite() && all_finite(&chain.grad)) {
+            if !(value.is_finite() && all_finite(&chain.grad) && all_finite(&chain.x)) {
                 chain.diverged = true;
                 self.diverged += 1;
                 continue;

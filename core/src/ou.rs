@@ -168,11 +168,12 @@ impl<F: Float> OuStep<F> {
     /// Validates `(a, b, alpha, h)` (finite, > 0) and `beta` (finite, >= 0:
     /// ULA is `beta = 0`) and computes every coefficient.
     pub(crate) fn new(a: F, b: F, alpha: F, beta: F, h: F) -> Result<Self, Error> {
+        let a = positive("a", a)?;
         let b = positive("b", b)?;
         let alpha = positive("alpha", alpha)?;
         let h = positive("h", h)?;
         if !(beta.is_finite() && beta >= F::ZERO) {
-            return Err(Error::NotPositive {
+            return Err(Error::Negative {
                 name: "beta",
                 value: beta.to_f64(),
             });

@@ -295,6 +295,7 @@ pub struct Ola<F> {
 impl<F: Float> Ola<F> {
     /// Validates the parameters (each finite and > 0).
     pub fn new(params: OlaParams<F>) -> Result<Self, Error> {
+        positive("a", params.a)?;
         let alpha = positive("alpha", params.alpha)?;
         let h = positive("h", params.h)?;
         let drift = alpha * h;

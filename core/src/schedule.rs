@@ -16,13 +16,24 @@ pub trait Schedule<F: Float> {
 
 fn count(name: &'static str, steps: u64) -> Result<u64, Error> {
     if steps == 0 {
-        Err(Error::Count {
-            name,
-            value: 0,
-            max: usize::MAX,
-        })
+        Err(Error::Zero { name })
     } else {
         Ok(steps)
+    }
+}
+
+/// `v` clamped to the interval spanned by `p` and `q` (either order): keeps
+/// an interpolation's rounding from stepping past an end, where `inf` or a
+/// non-positive value could lie.
+#[inline]
+fn between<F: Float>(v: F, p: F, q: F) -> F {
+    let (lo, hi) = if p <= q { (p, q) } else { (q, p) };
+    if v < lo {
+        lo
+    } else if v > hi {
+        hi
+    } else {
+        v
     }
 }
 
@@ -70,17 +81,25 @@ impl<F: Float> Schedule<F> for Linear<F> {
         if k >= self.steps {
             return self.a_high;
         }
-        self.a_low + (self.a_high - self.a_low) * F::from_u64(k) / F::from_u64(self.steps)
+        // k/K first: (a_high - a_low) k could overflow for huge a_high.
+        let frac = F::from_u64(k) / F::from_u64(self.steps);
+        between(
+            self.a_low + (self.a_high - self.a_low) * frac,
+            self.a_low,
+            self.a_high,
+        )
     }
 }
 
 /// Geometric annealing: `a_k = a_low (a_high / a_low)^(k / K)` for `k < K`,
-/// then `a_high`. Spends more steps at low `a` (exploration) than
+/// then `a_high` (computed as `exp` of the interpolated logarithms, exact at
+/// both ends). Spends more steps at low `a` (exploration) than
 /// [`Linear`] and raises `a` fastest at the end.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Geometric<F> {
     a_low: F,
     a_high: F,
+    ln_low: F,
     log_ratio: F,
     steps: u64,
 }
@@ -93,6 +112,7 @@ impl<F: Float> Geometric<F> {
         Ok(Self {
             a_low,
             a_high,
+            ln_low: a_low.ln(),
             log_ratio: a_high.ln() - a_low.ln(),
             steps: count("steps", steps)?,
         })
@@ -105,7 +125,17 @@ impl<F: Float> Schedule<F> for Geometric<F> {
         if k >= self.steps {
             return self.a_high;
         }
-        self.a_low * (self.log_ratio * F::from_u64(k) / F::from_u64(self.steps)).exp()
+        if k == 0 {
+            return self.a_low;
+        }
+        // Interpolate the logarithms: a_low (a_high/a_low)^t could overflow
+        // in the ratio even when both ends are representable.
+        let frac = F::from_u64(k) / F::from_u64(self.steps);
+        between(
+            (self.ln_low + self.log_ratio * frac).exp(),
+            self.a_low,
+            self.a_high,
+        )
     }
 }
 

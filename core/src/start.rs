@@ -50,7 +50,7 @@ impl<F: Float, const D: usize> Gaussian<F, D> {
             finite("mean", m)?;
         }
         if !(std_dev.is_finite() && std_dev >= F::ZERO) {
-            return Err(Error::NotPositive {
+            return Err(Error::Negative {
                 name: "std_dev",
                 value: std_dev.to_f64(),
             });

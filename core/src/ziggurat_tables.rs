@@ -6,7 +6,8 @@
 // Copyright 2018 Developers of the Rand project.
 // Copyright 2013 The Rust Project Developers.
 // Licensed under the Apache License, Version 2.0 or the MIT license, at your
-// option. The host test `normal_tables` recomputes them independently.
+// option. The host test `normal.rs::ziggurat_tables_have_equal_areas` recomputes
+// them independently.
 
 /// Start of the tail: the right edge of the base layer.
 pub(crate) const R: f64 = 3.654152885361008796;

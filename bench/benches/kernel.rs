@@ -1,0 +1,115 @@
+//! Throughput of the kernel: chain-steps per second and nanoseconds per
+//! coordinate-step (criterion's "elements" are coordinate-steps), against
+//! the floor of unavoidable work measured in the same run.
+//!
+//! `cargo bench -p hrla-bench` runs everything; `cargo bench -p hrla-bench
+//! -- 'd10/'` a subset. docs/PERFORMANCE.md holds the results.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use hrla::{Float, Optimizer, Rastrigin, Schedule};
+use hrla_bench::{AnySampler, Bare, Method, constant, optimizer, rng, slow_linear};
+
+/// Chains per optimiser: larger swarms are split so that each optimiser
+/// (which holds its chains inline) stays small on the stack.
+const GROUP: usize = 100;
+
+type Group<F, C, const D: usize> = Box<Optimizer<F, Rastrigin, AnySampler<F>, C, D, GROUP>>;
+
+fn swarm<F: Float, C: Schedule<F> + Clone, const D: usize>(
+    method: Method,
+    schedule: C,
+    chains: usize,
+) -> (Vec<Group<F, C, D>>, rand_xoshiro::Xoshiro256PlusPlus) {
+    let mut r = rng(7);
+    let mut groups = Vec::new();
+    let mut left = chains;
+    while left > 0 {
+        let n = left.min(GROUP);
+        groups.push(Box::new(optimizer::<F, C, D, GROUP>(
+            method,
+            schedule.clone(),
+            n,
+            &mut r,
+        )));
+        left -= n;
+    }
+    (groups, r)
+}
+
+fn float_name<F: Float>() -> &'static str {
+    if core::mem::size_of::<F>() == 8 {
+        "f64"
+    } else {
+        "f32"
+    }
+}
+
+/// Algorithm 1 (value and running best every step), sampler alone (no
+/// value), and the floor, for one (float, D).
+fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
+    let mut g = c.benchmark_group(format!("{}/d{D}", float_name::<F>()));
+    g.warm_up_time(Duration::from_millis(300));
+    g.measurement_time(Duration::from_millis(1200));
+    g.sample_size(20);
+    for chains in [1usize, 10, 1000] {
+        g.throughput(Throughput::Elements((chains * D) as u64));
+        for method in Method::ALL {
+            let (mut opt, mut r) = swarm::<F, _, D>(method, constant::<F>(), chains);
+            g.bench_function(
+                BenchmarkId::new(format!("{}/best", method.name()), chains),
+                |b| {
+                    b.iter(|| {
+                        for o in opt.iter_mut() {
+                            black_box(o.step(&mut r).expect("valid"));
+                        }
+                    })
+                },
+            );
+            let sampler = AnySampler::<F>::paper(method);
+            let mut bare = Bare::<F, D>::new(chains, &mut r);
+            g.bench_function(
+                BenchmarkId::new(format!("{}/no-value", method.name()), chains),
+                |b| b.iter(|| bare.step(&sampler, &mut r)),
+            );
+        }
+        // HRLA with a = a_k changing every step: the cost of the per-step
+        // refresh of the temperature-dependent coefficients.
+        let (mut opt, mut r) = swarm::<F, _, D>(Method::Hrla, slow_linear::<F>(), chains);
+        g.bench_function(BenchmarkId::new("hrla/best-annealed", chains), |b| {
+            b.iter(|| {
+                for o in opt.iter_mut() {
+                    black_box(o.step(&mut r).expect("valid"));
+                }
+            })
+        });
+        let mut bare = Bare::<F, D>::new(chains, &mut r);
+        g.bench_function(BenchmarkId::new("floor/normals+value+grad", chains), |b| {
+            b.iter(|| black_box(bare.floor(&mut r)))
+        });
+        g.bench_function(BenchmarkId::new("floor/normals", chains), |b| {
+            b.iter(|| black_box(bare.normals(&mut r)))
+        });
+        g.bench_function(BenchmarkId::new("floor/value+grad", chains), |b| {
+            b.iter(|| black_box(bare.value_and_gradient()))
+        });
+        g.bench_function(BenchmarkId::new("floor/random-bits", chains), |b| {
+            b.iter(|| black_box(bare.bits(&mut r)))
+        });
+    }
+    g.finish();
+}
+
+fn all(c: &mut Criterion) {
+    throughput::<f64, 2>(c);
+    throughput::<f64, 10>(c);
+    throughput::<f64, 100>(c);
+    throughput::<f32, 2>(c);
+    throughput::<f32, 10>(c);
+    throughput::<f32, 100>(c);
+}
+
+criterion_group!(benches, all);
+criterion_main!(benches);

@@ -1,0 +1,221 @@
+//! Workloads shared by the criterion benchmarks (`benches/kernel.rs`) and
+//! the peer comparison (`peers/`): the exact loops whose time is reported.
+
+use hrla::rand_core::Rng;
+use hrla::{
+    Constant, Float, Gaussian, Hrla, HrlaParams, Linear, Ola, OlaParams, Optimizer, Potential,
+    Rastrigin, Sampler, Schedule, Ula, UlaParams,
+};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+
+/// The samplers, by name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// [`Hrla`] with the paper's parameters.
+    Hrla,
+    /// [`Ula`] with the paper's parameters.
+    Ula,
+    /// [`Ola`] with the paper's parameters.
+    Ola,
+}
+
+impl Method {
+    /// All three.
+    pub const ALL: [Method; 3] = [Method::Hrla, Method::Ula, Method::Ola];
+
+    /// Lower-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Hrla => "hrla",
+            Method::Ula => "ula",
+            Method::Ola => "ola",
+        }
+    }
+}
+
+/// One of the three samplers at the paper's setting (a = 4, h = 0.01).
+#[derive(Clone, Copy, Debug)]
+pub enum AnySampler<F> {
+    /// HRLA.
+    Hrla(Hrla<F>),
+    /// ULA.
+    Ula(Ula<F>),
+    /// OLA.
+    Ola(Ola<F>),
+}
+
+impl<F: Float> AnySampler<F> {
+    /// The paper's setting of `method`.
+    pub fn paper(method: Method) -> Self {
+        let (a, h) = (F::from_f64(4.0), F::from_f64(0.01));
+        match method {
+            Method::Hrla => Self::Hrla(Hrla::new(HrlaParams::paper(a, h)).expect("valid")),
+            Method::Ula => Self::Ula(Ula::new(UlaParams::paper(a, h)).expect("valid")),
+            Method::Ola => Self::Ola(Ola::new(OlaParams::paper(a, h)).expect("valid")),
+        }
+    }
+}
+
+impl<F: Float> Sampler<F> for AnySampler<F> {
+    fn inverse_temperature(&self) -> F {
+        match self {
+            Self::Hrla(s) => s.inverse_temperature(),
+            Self::Ula(s) => s.inverse_temperature(),
+            Self::Ola(s) => s.inverse_temperature(),
+        }
+    }
+    fn set_inverse_temperature(&mut self, a: F) -> Result<(), hrla::Error> {
+        match self {
+            Self::Hrla(s) => s.set_inverse_temperature(a),
+            Self::Ula(s) => s.set_inverse_temperature(a),
+            Self::Ola(s) => s.set_inverse_temperature(a),
+        }
+    }
+    #[inline]
+    fn step<R: Rng + ?Sized, const D: usize>(
+        &self,
+        x: &mut [F; D],
+        y: &mut [F; D],
+        grad: &[F; D],
+        rng: &mut R,
+    ) {
+        match self {
+            Self::Hrla(s) => s.step(x, y, grad, rng),
+            Self::Ula(s) => s.step(x, y, grad, rng),
+            Self::Ola(s) => s.step(x, y, grad, rng),
+        }
+    }
+}
+
+/// The generator every benchmark uses.
+pub fn rng(seed: u64) -> Xoshiro256PlusPlus {
+    Xoshiro256PlusPlus::seed_from_u64(seed)
+}
+
+/// Algorithm 1 on D-dimensional Rastrigin from the paper's start, with a
+/// schedule: every step evaluates `U` and `∇U` and updates the running best.
+pub fn optimizer<F: Float, C: Schedule<F>, const D: usize, const N: usize>(
+    method: Method,
+    schedule: C,
+    chains: usize,
+    rng: &mut Xoshiro256PlusPlus,
+) -> Optimizer<F, Rastrigin, AnySampler<F>, C, D, N> {
+    let mut start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10f64.sqrt())).expect("valid");
+    Optimizer::with_schedule(
+        Rastrigin,
+        AnySampler::paper(method),
+        schedule,
+        chains,
+        &mut start,
+        rng,
+    )
+    .expect("valid")
+}
+
+/// The constant schedule of the paper's setting.
+pub fn constant<F: Float>() -> Constant<F> {
+    Constant::new(F::from_f64(4.0)).expect("valid")
+}
+
+/// A linear annealing from 4 to 4.4 over 10^9 steps: `a_k` changes at
+/// every step (so the sampler refreshes its coefficients every step) while
+/// the dynamics stay those of the constant benchmark (a = 4), so the two
+/// differ only by the refresh.
+pub fn slow_linear<F: Float>() -> Linear<F> {
+    Linear::new(F::from_f64(4.0), F::from_f64(4.4), 1_000_000_000).expect("valid")
+}
+
+/// Chains without the optimiser: position, velocity, gradient.
+pub struct Bare<F, const D: usize> {
+    x: Vec<[F; D]>,
+    y: Vec<[F; D]>,
+    g: Vec<[F; D]>,
+}
+
+impl<F: Float, const D: usize> Bare<F, D> {
+    /// `chains` chains at the paper's start.
+    pub fn new(chains: usize, rng: &mut Xoshiro256PlusPlus) -> Self {
+        let mut x = Vec::with_capacity(chains);
+        for _ in 0..chains {
+            let mut p = [F::from_f64(3.0); D];
+            for v in &mut p {
+                *v += F::from_f64(10f64.sqrt()) * F::standard_normal(rng);
+            }
+            x.push(p);
+        }
+        let g = x
+            .iter()
+            .map(|p| {
+                let mut g = [F::ZERO; D];
+                Potential::<F, D>::gradient(&Rastrigin, p, &mut g);
+                g
+            })
+            .collect();
+        Self {
+            y: vec![[F::ZERO; D]; chains],
+            x,
+            g,
+        }
+    }
+
+    /// One step of every chain and a gradient evaluation, without `U`: the
+    /// sampler alone, as a pure sampling loop would run it.
+    #[inline]
+    pub fn step<S: Sampler<F>>(&mut self, sampler: &S, rng: &mut Xoshiro256PlusPlus) {
+        for ((x, y), g) in self.x.iter_mut().zip(&mut self.y).zip(&mut self.g) {
+            sampler.step(x, y, g, rng);
+            Potential::<F, D>::gradient(&Rastrigin, x, g);
+        }
+    }
+
+    /// The unavoidable work of one step of every chain: `2 D` standard
+    /// normals and one value-and-gradient evaluation (the floor).
+    #[inline]
+    pub fn floor(&mut self, rng: &mut Xoshiro256PlusPlus) -> F {
+        let mut acc = F::ZERO;
+        for (x, g) in self.x.iter_mut().zip(&mut self.g) {
+            for _ in 0..2 * D {
+                acc += F::standard_normal(rng);
+            }
+            acc += Rastrigin.value_and_gradient(x, g);
+        }
+        acc
+    }
+
+    /// The floor's normals alone: `2 D` per chain.
+    #[inline]
+    pub fn normals(&mut self, rng: &mut Xoshiro256PlusPlus) -> F {
+        let mut acc = F::ZERO;
+        for _ in 0..self.x.len() * 2 * D {
+            acc += F::standard_normal(rng);
+        }
+        acc
+    }
+
+    /// The floor's value-and-gradient evaluations alone.
+    #[inline]
+    pub fn value_and_gradient(&mut self) -> F {
+        let mut acc = F::ZERO;
+        for (x, g) in self.x.iter().zip(&mut self.g) {
+            acc += Rastrigin.value_and_gradient(x, g);
+        }
+        acc
+    }
+
+    /// The random bits of the floor's normals: `2 D` words per chain (one
+    /// `next_u64` for f64, one `next_u32` for f32, as the Ziggurat's fast
+    /// path draws).
+    #[inline]
+    pub fn bits(&mut self, rng: &mut Xoshiro256PlusPlus) -> u64 {
+        let mut acc = 0u64;
+        for _ in 0..self.x.len() * 2 * D {
+            acc ^= if core::mem::size_of::<F>() == 8 {
+                rng.next_u64()
+            } else {
+                rng.next_u32() as u64
+            };
+        }
+        acc
+    }
+}

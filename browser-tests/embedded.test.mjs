@@ -1,0 +1,71 @@
+// The firmware example's computation (tests/embedded, crate hrla-embedded)
+// compiled to wasm (tests/embedded-wasm) and run in Node prints the same
+// report, byte for byte, as the host (hrla-embedded-host) and as the
+// Cortex-M3 firmware under QEMU: in f32, f64, and both with micromath.
+//
+// Needs, from scripts/test-web.sh: $HRLA_WEB_OUT/embedded-node and
+// embedded-node-micromath (wasm-bindgen --target nodejs) and
+// $HRLA_WEB_OUT/embedded/<variant>.host.txt. The firmware's output,
+// <variant>.qemu-results.txt, is read from $HRLA_FIRMWARE_OUT, which
+// scripts/test.sh sets after a fresh firmware run; run alone, test-web.sh
+// does not set it and those comparisons are skipped rather than made against
+// a possibly stale run.
+import assert from "node:assert/strict";
+import { readFileSync } from "node:fs";
+import { createRequire } from "node:module";
+import { join } from "node:path";
+import { test } from "node:test";
+import { OUT } from "./browser.mjs";
+
+const require = createRequire(import.meta.url);
+const plain = require(join(OUT, "embedded-node", "hrla_embedded_wasm.js"));
+const micromath = require(join(OUT, "embedded-node-micromath", "hrla_embedded_wasm.js"));
+const FIRMWARE = process.env.HRLA_FIRMWARE_OUT;
+
+// Variant names as test-firmware.sh names its files.
+const VARIANTS = [
+  { name: "f32", float: "f32", wasm: plain },
+  { name: "f64", float: "f64", wasm: plain },
+  { name: "f32+micromath", float: "f32", wasm: micromath },
+  { name: "f64+micromath", float: "f64", wasm: micromath },
+];
+
+/** Four lines of "<float> <label> <hex>...", as hrla_embedded::report writes them. */
+function assertWellFormed(text, float) {
+  const lines = text.split("\n");
+  assert.equal(lines.pop(), "", "the report ends with a newline");
+  assert.deepEqual(
+    lines.map((l) => l.split(" ").slice(0, 2).join(" ")),
+    ["best.value", "best.x", "best.iteration", "chains.fnv1a"].map((l) => `${float} ${l}`),
+  );
+  for (const l of lines) assert.match(l, /^f(32|64) [a-z.0-9]+( [0-9a-f]{8}| [0-9a-f]{16})+$/);
+}
+
+const reports = new Map(VARIANTS.map((v) => [v.name, v.wasm.report(v.float)]));
+
+for (const { name, float } of VARIANTS) {
+  test(`embedded ${name}: wasm in Node == host, bit for bit`, () => {
+    const host = readFileSync(join(OUT, "embedded", `${name}.host.txt`), "utf8");
+    assertWellFormed(host, float);
+    assert.equal(reports.get(name), host);
+  });
+
+  test(
+    `embedded ${name}: wasm in Node == firmware under QEMU, bit for bit`,
+    { skip: FIRMWARE ? false : "HRLA_FIRMWARE_OUT not set (scripts/test.sh sets it)" },
+    () => {
+      const qemu = readFileSync(join(FIRMWARE, `${name}.qemu-results.txt`), "utf8");
+      assertWellFormed(qemu, float);
+      assert.equal(reports.get(name), qemu);
+    },
+  );
+}
+
+test("embedded: the two wasm builds are the ones intended", () => {
+  // Else the micromath comparisons would silently repeat the plain ones.
+  assert.equal(plain.micromath(), false);
+  assert.equal(micromath.micromath(), true);
+  assert.notEqual(reports.get("f32+micromath"), reports.get("f32"));
+  assert.equal(reports.get("f64+micromath"), reports.get("f64"));
+  assert.throws(() => plain.report("f16"), /unknown float type "f16"/);
+});

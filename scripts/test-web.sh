@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# The wasm wrapper and the demo page: bit-identity of the wasm build (in
+# Node) with the native build, and the page in Debian's Chromium; and the
+# firmware example's computation in wasm, bit-identical to the host's (and
+# to the firmware's under QEMU).
+# Installs what is missing: the rustup target, wasm-bindgen-cli, chromium,
+# playwright-core (npm ci from the committed lock file).
+# Artefacts (screenshots) go to target/web-tests/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/wasm-tools.sh
+
+export HRLA_WEB_OUT="$PWD/$TARGET_DIR/web-tests"
+case "$TARGET_DIR" in /*) HRLA_WEB_OUT="$TARGET_DIR/web-tests" ;; esac
+mkdir -p "$HRLA_WEB_OUT"
+
+ensure_wasm_target
+ensure_wasm_bindgen
+build_wasm "$HRLA_WEB_OUT/pkg-node"
+wasm="$TARGET_DIR/wasm32-unknown-unknown/release/hrla_wasm.wasm"
+echo "hrla_wasm_bg.wasm: $(wc -c <web/pkg/hrla_wasm_bg.wasm) bytes, $(gzip -9c web/pkg/hrla_wasm_bg.wasm | wc -c) gzipped"
+
+# The native side of the bit-identity test.
+cargo run --quiet -p hrla-wasm --example trace -- wasm/tests/trace-cases.txt \
+  >"$HRLA_WEB_OUT/native-trace.txt"
+
+# The firmware example's computation in wasm, without and with micromath, and
+# the host's report of each variant (file names as in test-firmware.sh), for
+# browser-tests/embedded.test.mjs. It also compares with the firmware's output
+# under QEMU when $HRLA_FIRMWARE_OUT names it (scripts/test.sh does).
+build_embedded_wasm "$HRLA_WEB_OUT/embedded-node"
+build_embedded_wasm "$HRLA_WEB_OUT/embedded-node-micromath" micromath
+mkdir -p "$HRLA_WEB_OUT/embedded"
+for fp in f32 f64; do
+  for features in "" micromath; do
+    cargo run --quiet --release -p hrla-embedded ${features:+--features $features} \
+      --bin hrla-embedded-host -- "$fp" >"$HRLA_WEB_OUT/embedded/$fp${features:++$features}.host.txt"
+  done
+done
+
+if [ ! -x /usr/bin/chromium ]; then
+  echo "installing Debian's chromium (about a minute)"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  # A half-configured package left by an earlier run would block the install.
+  apt-get install -y -qq chromium || { apt-get -y -qq --fix-broken install && apt-get install -y -qq chromium; }
+fi
+
+# Always: npm ci installs exactly the lock file (one package, a second or two).
+(cd browser-tests && npm ci --no-audit --no-fund)
+
+node --test browser-tests/*.test.mjs

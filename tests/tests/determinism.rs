@@ -1,0 +1,323 @@
+//! Reproducibility: a run is a pure function of its seed.
+//!
+//! - the same seed gives bit-identical trajectories (every `x`, `y`, `U`,
+//!   `∇U`, running best and report, compared through `to_bits`) for HRLA,
+//!   ULA and OLA, in `f32` and `f64`, at constant temperature and with a
+//!   linear schedule; different seeds give different trajectories;
+//! - driving the optimiser by `step`, by `run`, or by any mix of the two
+//!   gives the same chains, report and final RNG state;
+//! - a clone taken mid-run, continued with a clone of the RNG, follows the
+//!   original bit for bit;
+//! - golden values pin the random stream and the arithmetic across kernel
+//!   versions and targets.
+
+use hrla::{
+    Chain, Float, Gaussian, Hrla, HrlaParams, Linear, Ola, OlaParams, Optimizer, Rastrigin, Report,
+    Sampler, Schedule, Status, Ula, UlaParams,
+};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::{Rng, SeedableRng};
+
+const D: usize = 3;
+const N: usize = 5;
+const STEPS: u64 = 500;
+
+type Opt<F, S, C> = Optimizer<F, Rastrigin, S, C, D, N>;
+
+fn chain_bits<F: Float, const DD: usize>(c: &Chain<F, DD>, out: &mut Vec<u64>) {
+    out.extend(c.x().iter().map(|v| v.to_bits_u64()));
+    out.extend(c.y().iter().map(|v| v.to_bits_u64()));
+    out.extend(c.gradient().iter().map(|v| v.to_bits_u64()));
+    out.push(c.value().to_bits_u64());
+    out.extend(c.best().x.iter().map(|v| v.to_bits_u64()));
+    out.push(c.best().value.to_bits_u64());
+    out.push(c.best().iteration);
+    out.push(u64::from(c.is_diverged()));
+}
+
+fn report_bits<F: Float, const DD: usize>(r: &Report<F, DD>, out: &mut Vec<u64>) {
+    out.extend(r.best.x.iter().map(|v| v.to_bits_u64()));
+    out.push(r.best.value.to_bits_u64());
+    out.push(r.best.iteration);
+    out.push(r.iterations);
+    out.push(r.gradient_evaluations);
+    out.push(r.diverged_chains as u64);
+    out.push(match r.status {
+        Status::Running => 0,
+        Status::TargetReached => 1,
+        Status::AllDiverged => 2,
+    });
+}
+
+/// Every float of the optimiser's observable state, as bits.
+fn state_bits<F: Float, S: Sampler<F>, C: Schedule<F>>(opt: &Opt<F, S, C>) -> Vec<u64> {
+    let mut out = Vec::new();
+    for c in opt.chains() {
+        chain_bits(c, &mut out);
+    }
+    report_bits(&opt.report(), &mut out);
+    out.push(opt.sampler().inverse_temperature().to_bits_u64());
+    out
+}
+
+/// N chains from the paper's start `N(3·1, 10 I)` on 3-D Rastrigin.
+fn build<F: Float, S: Sampler<F>, C: Schedule<F>>(
+    sampler: S,
+    schedule: C,
+    rng: &mut Xoshiro256PlusPlus,
+) -> Opt<F, S, C> {
+    let mut start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10f64.sqrt())).unwrap();
+    Optimizer::with_schedule(Rastrigin, sampler, schedule, N, &mut start, rng).unwrap()
+}
+
+/// The whole trajectory (the state after every step), as bits.
+fn trajectory<F: Float, S: Sampler<F>, C: Schedule<F>>(
+    sampler: S,
+    schedule: C,
+    seed: u64,
+) -> Vec<Vec<u64>> {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut opt = build(sampler, schedule, &mut rng);
+    let mut states = vec![state_bits(&opt)];
+    for _ in 0..STEPS {
+        assert_eq!(opt.step(&mut rng), Ok(Status::Running));
+        states.push(state_bits(&opt));
+    }
+    states
+}
+
+/// Same seed: identical trajectories; other seed: different ones.
+fn check_seed_determinism<F: Float, S: Sampler<F> + Clone, C: Schedule<F> + Clone>(
+    sampler: S,
+    schedule: C,
+) {
+    let a = trajectory::<F, _, _>(sampler.clone(), schedule.clone(), 7);
+    let b = trajectory::<F, _, _>(sampler.clone(), schedule.clone(), 7);
+    let c = trajectory::<F, _, _>(sampler, schedule, 8);
+    assert_eq!(a.len(), STEPS as usize + 1);
+    // The chains did move (otherwise equality below would prove nothing).
+    assert_ne!(a[0], a[STEPS as usize]);
+    for (k, (sa, sb)) in a.iter().zip(&b).enumerate() {
+        assert_eq!(sa, sb, "same seed, states differ at iterate {k}");
+    }
+    // Other seed: the initial points already differ, and so does the end.
+    assert_ne!(a[0], c[0]);
+    assert_ne!(a[STEPS as usize], c[STEPS as usize]);
+}
+
+fn samplers_and_schedules<F: Float>() {
+    let f = F::from_f64;
+    let hrla = Hrla::new(HrlaParams::paper(f(4.0), f(0.01))).unwrap();
+    let ula = Ula::new(UlaParams::paper(f(4.0), f(0.01))).unwrap();
+    let ola = Ola::new(OlaParams::paper(f(4.0), f(0.01))).unwrap();
+    let constant = hrla::Constant::new(f(4.0)).unwrap();
+    let linear = Linear::new(f(0.1), f(4.0), STEPS).unwrap();
+    check_seed_determinism::<F, _, _>(hrla, constant);
+    check_seed_determinism::<F, _, _>(hrla, linear);
+    check_seed_determinism::<F, _, _>(ula, constant);
+    check_seed_determinism::<F, _, _>(ula, linear);
+    check_seed_determinism::<F, _, _>(ola, constant);
+    check_seed_determinism::<F, _, _>(ola, linear);
+}
+
+#[test]
+fn same_seed_same_bits_f64() {
+    samplers_and_schedules::<f64>();
+}
+
+#[test]
+fn same_seed_same_bits_f32() {
+    samplers_and_schedules::<f32>();
+}
+
+/// `Optimizer::new` (constant temperature) is `with_schedule` at the
+/// sampler's `a`: same bits.
+#[test]
+fn new_equals_with_constant_schedule() {
+    let sampler = Hrla::new(HrlaParams::paper(4.0f64, 0.01)).unwrap();
+    let mut rng_a = Xoshiro256PlusPlus::seed_from_u64(3);
+    let mut rng_b = rng_a.clone();
+    let mut start = Gaussian::new([3.0; D], 10f64.sqrt()).unwrap();
+    let mut a: Opt<f64, _, _> =
+        Optimizer::new(Rastrigin, sampler, N, &mut start, &mut rng_a).unwrap();
+    let mut b = build(sampler, hrla::Constant::new(4.0).unwrap(), &mut rng_b);
+    a.run(STEPS, &mut rng_a).unwrap();
+    b.run(STEPS, &mut rng_b).unwrap();
+    assert_eq!(state_bits(&a), state_bits(&b));
+}
+
+/// `run(K)`, K calls of `step`, and a mix of both reach the same state,
+/// report and RNG state.
+fn check_step_vs_run<F: Float, S: Sampler<F> + Clone, C: Schedule<F> + Clone>(
+    sampler: S,
+    schedule: C,
+) {
+    let seed = 11;
+    let mut rng_run = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut by_run = build(sampler.clone(), schedule.clone(), &mut rng_run);
+    let report_run = by_run.run(STEPS, &mut rng_run).unwrap();
+
+    let mut rng_step = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut by_step = build(sampler.clone(), schedule.clone(), &mut rng_step);
+    for _ in 0..STEPS {
+        by_step.step(&mut rng_step).unwrap();
+    }
+
+    let mut rng_mix = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut by_mix = build(sampler, schedule, &mut rng_mix);
+    by_mix.run(123, &mut rng_mix).unwrap();
+    for _ in 0..37 {
+        by_mix.step(&mut rng_mix).unwrap();
+    }
+    by_mix.run(0, &mut rng_mix).unwrap();
+    let report_mix = by_mix.run(STEPS - 160, &mut rng_mix).unwrap();
+
+    assert_eq!(report_run.iterations, STEPS);
+    assert_eq!(report_run, by_step.report());
+    assert_eq!(report_run, report_mix);
+    let mut rb = Vec::new();
+    report_bits(&report_run, &mut rb);
+    let mut rm = Vec::new();
+    report_bits(&report_mix, &mut rm);
+    assert_eq!(rb, rm);
+    assert_eq!(state_bits(&by_run), state_bits(&by_step));
+    assert_eq!(state_bits(&by_run), state_bits(&by_mix));
+    // All three consumed exactly the same random numbers.
+    let next = rng_run.next_u64();
+    assert_eq!(next, rng_step.next_u64());
+    assert_eq!(next, rng_mix.next_u64());
+}
+
+#[test]
+fn step_and_run_agree() {
+    let linear64 = Linear::new(0.1f64, 4.0, STEPS).unwrap();
+    let linear32 = Linear::new(0.1f32, 4.0, STEPS).unwrap();
+    check_step_vs_run(
+        Hrla::new(HrlaParams::paper(4.0f64, 0.01)).unwrap(),
+        linear64,
+    );
+    check_step_vs_run(
+        Hrla::new(HrlaParams::paper(4.0f32, 0.01)).unwrap(),
+        linear32,
+    );
+    check_step_vs_run(Ula::new(UlaParams::paper(4.0f64, 0.01)).unwrap(), linear64);
+    check_step_vs_run(Ola::new(OlaParams::paper(4.0f32, 0.01)).unwrap(), linear32);
+}
+
+/// A clone of the optimiser and of the RNG, taken mid-run, continues
+/// exactly like the original, which itself matches an uninterrupted run.
+fn check_clone_mid_run<F: Float, S: Sampler<F> + Clone, C: Schedule<F> + Clone>(
+    sampler: S,
+    schedule: C,
+) {
+    let seed = 5;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut opt = build(sampler.clone(), schedule.clone(), &mut rng);
+    opt.run(STEPS / 2, &mut rng).unwrap();
+    let mut twin = opt.clone();
+    let mut twin_rng = rng.clone();
+    assert_eq!(state_bits(&opt), state_bits(&twin));
+    let r1 = opt.run(STEPS / 2, &mut rng).unwrap();
+    let r2 = twin.run(STEPS / 2, &mut twin_rng).unwrap();
+    assert_eq!(r1, r2);
+    assert_eq!(state_bits(&opt), state_bits(&twin));
+    assert_eq!(rng.next_u64(), twin_rng.next_u64());
+
+    let mut straight_rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut straight = build(sampler, schedule, &mut straight_rng);
+    straight.run(STEPS, &mut straight_rng).unwrap();
+    assert_eq!(state_bits(&opt), state_bits(&straight));
+}
+
+#[test]
+fn clone_mid_run_continues_identically() {
+    check_clone_mid_run(
+        Hrla::new(HrlaParams::paper(4.0f64, 0.01)).unwrap(),
+        Linear::new(0.1f64, 4.0, STEPS).unwrap(),
+    );
+    check_clone_mid_run(
+        Hrla::new(HrlaParams::paper(4.0f32, 0.01)).unwrap(),
+        hrla::Constant::new(4.0f32).unwrap(),
+    );
+    check_clone_mid_run(
+        Ola::new(OlaParams::paper(2.0f64, 0.01)).unwrap(),
+        hrla::Constant::new(2.0f64).unwrap(),
+    );
+}
+
+// Golden values.
+//
+// Setup: 2-D Rastrigin, HRLA with the paper's parameters (a = 4, b = 10,
+// alpha = beta = 1, h = 0.01) at constant temperature, N = 4 chains from
+// `Gaussian::new([3, 3], sqrt(10))`, RNG `Xoshiro256PlusPlus::seed_from_u64
+// (GOLDEN_SEED)`, 100 calls of `step`. Recorded on x86_64 from the kernel
+// of commit 4db91ee; the same constants must come out on every target (the
+// kernel uses libm only and never fuses multiply-adds), so a later test on
+// wasm32 and Cortex-M compares against exactly these numbers.
+//
+// A deliberate change of the random stream or of the arithmetic (Ziggurat
+// tables, draw order, coefficient formulas, potential evaluation) changes
+// them. Such a change must update these constants in its own commit, saying
+// why, so that no accidental drift hides inside an unrelated change.
+
+const GOLDEN_SEED: u64 = 20_241_017;
+const GOLDEN_STEPS: u64 = 100;
+
+fn golden_run<F: Float>() -> (Report<F, 2>, [F; 2]) {
+    let f = F::from_f64;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(GOLDEN_SEED);
+    let sampler = Hrla::new(HrlaParams::paper(f(4.0), f(0.01))).unwrap();
+    let mut start = Gaussian::new([f(3.0); 2], f(10f64.sqrt())).unwrap();
+    let mut opt: Optimizer<F, Rastrigin, Hrla<F>, _, 2, 4> =
+        Optimizer::new(Rastrigin, sampler, 4, &mut start, &mut rng).unwrap();
+    for _ in 0..GOLDEN_STEPS {
+        opt.step(&mut rng).unwrap();
+    }
+    (opt.report(), *opt.chains()[0].x())
+}
+
+#[test]
+fn golden_values_f64() {
+    let (report, x0) = golden_run::<f64>();
+    println!(
+        "f64: best {:#018x} ({}) at k = {}, chain 0 x = [{:#018x}, {:#018x}] ({:?})",
+        report.best.value.to_bits(),
+        report.best.value,
+        report.best.iteration,
+        x0[0].to_bits(),
+        x0[1].to_bits(),
+        x0
+    );
+    assert_eq!(report.iterations, GOLDEN_STEPS);
+    assert_eq!(report.best.value.to_bits(), GOLDEN_F64_BEST);
+    assert_eq!(report.best.iteration, GOLDEN_F64_BEST_ITERATION);
+    assert_eq!([x0[0].to_bits(), x0[1].to_bits()], GOLDEN_F64_X0);
+}
+
+#[test]
+fn golden_values_f32() {
+    let (report, x0) = golden_run::<f32>();
+    println!(
+        "f32: best {:#010x} ({}) at k = {}, chain 0 x = [{:#010x}, {:#010x}] ({:?})",
+        report.best.value.to_bits(),
+        report.best.value,
+        report.best.iteration,
+        x0[0].to_bits(),
+        x0[1].to_bits(),
+        x0
+    );
+    assert_eq!(report.iterations, GOLDEN_STEPS);
+    assert_eq!(report.best.value.to_bits(), GOLDEN_F32_BEST);
+    assert_eq!(report.best.iteration, GOLDEN_F32_BEST_ITERATION);
+    assert_eq!([x0[0].to_bits(), x0[1].to_bits()], GOLDEN_F32_X0);
+}
+
+// f64: best 1.9265783940793355 at k = 64; chain 0 ends at
+// (1.8815211746431852, 0.01708656423740678).
+const GOLDEN_F64_BEST: u64 = 0x3ffe_d343_ddbc_03e0;
+const GOLDEN_F64_BEST_ITERATION: u64 = 64;
+const GOLDEN_F64_X0: [u64; 2] = [0x3ffe_1ab5_f27d_2f0b, 0x3f91_7f23_ea67_14ce];
+// f32: best 4.758277 at k = 85; chain 0 ends at (1.9670361, -0.9792514).
+const GOLDEN_F32_BEST: u32 = 0x4098_43ce;
+const GOLDEN_F32_BEST_ITERATION: u64 = 85;
+const GOLDEN_F32_X0: [u32; 2] = [0x3ffb_c7d7, 0xbf7a_b038];

@@ -1,0 +1,95 @@
+//! Prints the bit patterns of runs of the wrapper, natively, for the
+//! bit-identity test: `browser-tests/same-numbers.test.mjs` runs the same
+//! cases in the wasm build under Node and compares the lines.
+//!
+//! Usage: `cargo run -p hrla-wasm --example trace -- wasm/tests/trace-cases.txt`
+
+use std::process::ExitCode;
+
+use hrla_wasm::{Optimizer, SamplerKind, Settings, Summary, Temperature};
+
+fn main() -> ExitCode {
+    let Some(path) = std::env::args().nth(1) else {
+        eprintln!("usage: trace CASES_FILE");
+        return ExitCode::FAILURE;
+    };
+    let text = match std::fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("{path}: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    for line in text.lines().map(str::trim) {
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        match run(line) {
+            Ok(out) => print!("{out}"),
+            Err(e) => {
+                eprintln!("{path}: `{line}`: {e}");
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    ExitCode::SUCCESS
+}
+
+/// Runs one case line and renders its trace.
+fn run(line: &str) -> Result<String, String> {
+    let f: Vec<&str> = line.split_whitespace().collect();
+    let [name, sampler, a, h, chains, cx, cy, spread, seed, steps] = f[..] else {
+        return Err(format!("expected 10 fields, got {}", f.len()));
+    };
+    let num = |s: &str| s.parse::<f64>().map_err(|e| format!("`{s}`: {e}"));
+    let int = |s: &str| s.parse::<u64>().map_err(|e| format!("`{s}`: {e}"));
+    let temperature = match a.split(':').collect::<Vec<_>>()[..] {
+        [a] => Temperature::Constant(num(a)?),
+        [low, high, k] => Temperature::Linear {
+            a_low: num(low)?,
+            a_high: num(high)?,
+            steps: int(k)?,
+        },
+        _ => return Err(format!("bad temperature `{a}`")),
+    };
+    let settings = Settings {
+        sampler: SamplerKind::parse(sampler).map_err(|e| e.to_string())?,
+        temperature,
+        h: num(h)?,
+        chains: int(chains)? as usize,
+        centre: [num(cx)?, num(cy)?],
+        spread: num(spread)?,
+        seed: int(seed)?,
+    };
+    let mut opt = Optimizer::from_settings(&settings).map_err(|e| e.to_string())?;
+    let steps = u32::try_from(int(steps)?).map_err(|e| e.to_string())?;
+    opt.step_n(steps).map_err(|e| e.to_string())?;
+    Ok(render(name, &opt))
+}
+
+/// The trace format, shared with the Node side: one line per quantity,
+/// f64 as 16 hex digits of its bit pattern.
+fn render(name: &str, opt: &Optimizer) -> String {
+    let hex = |v: f64| format!("{:016x}", v.to_bits());
+    let s = opt.summary();
+    let mut out = format!(
+        "{name} iteration {}\n{name} best {} {} {} at {}\n",
+        s[Summary::Iteration as usize],
+        hex(s[Summary::BestValue as usize]),
+        hex(s[Summary::BestX0 as usize]),
+        hex(s[Summary::BestX1 as usize]),
+        s[Summary::BestIteration as usize],
+    );
+    for (c, x) in opt.positions().chunks(2).enumerate() {
+        let y = &opt.velocities()[2 * c..2 * c + 2];
+        out += &format!(
+            "{name} chain {c} x {} {} y {} {} u {}\n",
+            hex(x[0]),
+            hex(x[1]),
+            hex(y[0]),
+            hex(y[1]),
+            hex(opt.values()[c]),
+        );
+    }
+    out
+}

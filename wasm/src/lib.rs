@@ -1,0 +1,340 @@
+//! WebAssembly face of the `hrla` kernel for the live 2-D Rastrigin demo.
+//!
+//! A thin `wasm-bindgen` layer with no maths of its own: one exported type,
+//! [`Optimizer`], owns the kernel's [`hrla::Optimizer`] on 2-D Rastrigin in
+//! f64 with up to [`MAX_CHAINS`] chains, its random generator, and flat
+//! buffers that JavaScript reads through typed-array views into wasm memory:
+//!
+//! ```js
+//! import init, { Optimizer, Summary, wasm_memory } from "./pkg/hrla_wasm.js";
+//! await init();
+//! const opt = new Optimizer({ sampler: "hrla", a: 4, h: 0.01, chains: 256,
+//!                             centre: [3, 3], spread: Math.sqrt(10), seed: 1n });
+//! opt.advance(100);
+//! const x = new Float64Array(wasm_memory().buffer, opt.positions_ptr(), 2 * opt.chains());
+//! const s = new Float64Array(wasm_memory().buffer, opt.summary_ptr(), Summary.Len);
+//! console.log(s[Summary.Iteration], s[Summary.BestValue]);
+//! ```
+//!
+//! Views stay valid until wasm memory grows (creating an optimiser may grow
+//! it): rebuild them when `view.buffer !== wasm_memory().buffer`.
+//!
+//! Bad settings come back as a JS `Error` whose message is the kernel's
+//! typed [`hrla::Error`] (or a [`SettingsError`] for a malformed object),
+//! never a trap.
+//!
+//! Seeds are `u64`: a JS number up to `2^53 - 1` or a BigInt; the generator
+//! is `Xoshiro256PlusPlus::seed_from_u64(seed)`, the same on every target, so
+//! a seed and settings give bit-identical runs natively, in Node and in the
+//! browser (checked by `scripts/test-web.sh`). [`random_seed`] draws a seed
+//! from the browser's crypto (or the OS natively), to be shown and replayed.
+
+#![deny(missing_docs)]
+#![forbid(unsafe_code)]
+
+mod choice;
+mod settings;
+
+use hrla::{Gaussian, Rastrigin, Sampler};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+use wasm_bindgen::prelude::*;
+
+pub use choice::{AnySampler, AnySchedule};
+pub use settings::{SamplerKind, Settings, SettingsError, Temperature};
+
+/// Capacity in chains (the page offers up to 1024).
+pub const MAX_CHAINS: usize = 1024;
+
+/// The kernel's optimiser as the page runs it.
+pub type Kernel = hrla::Optimizer<f64, Rastrigin, AnySampler, AnySchedule, 2, MAX_CHAINS>;
+
+/// Slots of the summary buffer ([`Optimizer::summary_ptr`]), all f64.
+#[wasm_bindgen]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
+pub enum Summary {
+    /// Steps done (the current iterate index `k`); exact below `2^53`.
+    Iteration = 0,
+    /// First coordinate of the running best point.
+    BestX0 = 1,
+    /// Second coordinate of the running best point.
+    BestX1 = 2,
+    /// `U` at the running best point.
+    BestValue = 3,
+    /// Iterate at which the running best was visited.
+    BestIteration = 4,
+    /// Inverse temperature `a` of the last step (of the first, before any).
+    A = 5,
+    /// Chains that diverged (frozen, excluded from the best).
+    Diverged = 6,
+    /// Number of slots.
+    Len = 7,
+}
+
+/// One run of Algorithm 1 on 2-D Rastrigin, with its generator and the
+/// buffers that JavaScript views.
+#[wasm_bindgen]
+pub struct Optimizer {
+    kernel: Kernel,
+    rng: Xoshiro256PlusPlus,
+    seed: u64,
+    /// `x` of chain `c` at `2c`, `2c + 1`.
+    positions: Vec<f64>,
+    /// `y` of chain `c` at `2c`, `2c + 1` (zero for OLA).
+    velocities: Vec<f64>,
+    /// `U(x)` of each chain; non-finite once a chain diverged.
+    values: Vec<f64>,
+    summary: [f64; Summary::Len as usize],
+}
+
+// Rust side: used by the exports below and by native code (the bit-identity
+// trace).
+impl Optimizer {
+    /// Draws the initial points and evaluates them, as the kernel does.
+    pub fn from_settings(settings: &Settings) -> Result<Self, SettingsError> {
+        let schedule = AnySchedule::new(settings.temperature)?;
+        // The sampler starts at a_0, so a bad first temperature is caught here.
+        let a0 = hrla::Schedule::inverse_temperature(&schedule, 0);
+        let sampler = AnySampler::new(settings.sampler, a0, settings.h)?;
+        let mut start = Gaussian::new(settings.centre, settings.spread)?;
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
+        let kernel = Kernel::with_schedule(
+            Rastrigin,
+            sampler,
+            schedule,
+            settings.chains,
+            &mut start,
+            &mut rng,
+        )?;
+        let n = settings.chains;
+        let mut this = Self {
+            kernel,
+            rng,
+            seed: settings.seed,
+            positions: vec![0.0; 2 * n],
+            velocities: vec![0.0; 2 * n],
+            values: vec![0.0; n],
+            summary: [0.0; Summary::Len as usize],
+        };
+        this.publish();
+        Ok(this)
+    }
+
+    /// Advances every chain by `steps` steps (fewer only on error).
+    pub fn step_n(&mut self, steps: u32) -> Result<(), hrla::Error> {
+        let result = (0..steps).try_for_each(|_| self.kernel.step(&mut self.rng).map(drop));
+        self.publish();
+        result
+    }
+
+    /// The kernel's optimiser.
+    pub fn kernel(&self) -> &Kernel {
+        &self.kernel
+    }
+
+    /// Positions, `[x0, x1]` per chain.
+    pub fn positions(&self) -> &[f64] {
+        &self.positions
+    }
+
+    /// Velocities, `[y0, y1]` per chain.
+    pub fn velocities(&self) -> &[f64] {
+        &self.velocities
+    }
+
+    /// `U(x)` per chain.
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// The summary, indexed by [`Summary`].
+    pub fn summary(&self) -> &[f64; Summary::Len as usize] {
+        &self.summary
+    }
+
+    /// Copies the kernel's state into the flat buffers JavaScript views:
+    /// the kernel keeps each chain as one struct, JS wants one array per
+    /// quantity.
+    fn publish(&mut self) {
+        for (c, chain) in self.kernel.chains().iter().enumerate() {
+            self.positions[2 * c..2 * c + 2].copy_from_slice(chain.x());
+            self.velocities[2 * c..2 * c + 2].copy_from_slice(chain.y());
+            self.values[c] = chain.value();
+        }
+        let best = self.kernel.best();
+        let report = self.kernel.report();
+        self.summary = [
+            self.kernel.iteration() as f64,
+            best.x[0],
+            best.x[1],
+            best.value,
+            best.iteration as f64,
+            self.kernel.sampler().inverse_temperature(),
+            report.diverged_chains as f64,
+        ];
+    }
+}
+
+/// Exported to JavaScript.
+#[wasm_bindgen]
+impl Optimizer {
+    /// Creates a run from a settings object (see [`Settings::from_js`]);
+    /// throws an `Error` with the reason when a setting is refused.
+    #[wasm_bindgen(constructor)]
+    pub fn new(settings: &JsValue) -> Result<Optimizer, JsError> {
+        Settings::from_js(settings)
+            .and_then(|s| Self::from_settings(&s))
+            .map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// Advances every chain by `steps` steps and refreshes the buffers.
+    /// Throws only if annealing reaches a temperature the sampler refuses.
+    pub fn advance(&mut self, steps: u32) -> Result<(), JsError> {
+        self.step_n(steps).map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// Number of chains.
+    #[wasm_bindgen(js_name = chains)]
+    pub fn chain_count(&self) -> usize {
+        self.values.len()
+    }
+
+    /// The seed of this run (a BigInt).
+    #[wasm_bindgen(js_name = seed)]
+    pub fn seed_value(&self) -> u64 {
+        self.seed
+    }
+
+    /// Address of the positions, `2 * chains()` f64.
+    pub fn positions_ptr(&self) -> *const f64 {
+        self.positions.as_ptr()
+    }
+
+    /// Address of the velocities, `2 * chains()` f64.
+    pub fn velocities_ptr(&self) -> *const f64 {
+        self.velocities.as_ptr()
+    }
+
+    /// Address of the per-chain values, `chains()` f64.
+    pub fn values_ptr(&self) -> *const f64 {
+        self.values.as_ptr()
+    }
+
+    /// Address of the summary, `Summary.Len` f64 indexed by `Summary`.
+    pub fn summary_ptr(&self) -> *const f64 {
+        self.summary.as_ptr()
+    }
+}
+
+/// The capacity in chains, [`MAX_CHAINS`].
+#[wasm_bindgen]
+pub fn max_chains() -> usize {
+    MAX_CHAINS
+}
+
+/// A fresh seed from the browser's `crypto.getRandomValues` (the OS
+/// natively), as a BigInt, for the "random" button: the page shows it so
+/// the run can be replayed.
+#[wasm_bindgen]
+pub fn random_seed() -> Result<u64, JsError> {
+    getrandom::u64().map_err(|e| JsError::new(&format!("no random seed available: {e}")))
+}
+
+/// The module's `WebAssembly.Memory`, for typed-array views (named so as
+/// not to clash with the module's own `memory` export).
+#[wasm_bindgen]
+pub fn wasm_memory() -> JsValue {
+    wasm_bindgen::memory()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn buffers_follow_the_kernel() {
+        let settings = Settings {
+            chains: 7,
+            ..Settings::default()
+        };
+        let mut opt = Optimizer::from_settings(&settings).unwrap();
+        opt.step_n(50).unwrap();
+        let kernel = opt.kernel();
+        assert_eq!(opt.summary()[Summary::Iteration as usize], 50.0);
+        assert_eq!(
+            opt.summary()[Summary::BestValue as usize],
+            kernel.best().value
+        );
+        for (c, chain) in kernel.chains().iter().enumerate() {
+            assert_eq!(&opt.positions()[2 * c..2 * c + 2], chain.x());
+            assert_eq!(&opt.velocities()[2 * c..2 * c + 2], chain.y());
+            assert_eq!(opt.values()[c].to_bits(), chain.value().to_bits());
+        }
+    }
+
+    #[test]
+    fn bad_settings_are_typed_errors() {
+        let bad_h = Settings {
+            h: -1.0,
+            ..Settings::default()
+        };
+        assert!(matches!(
+            Optimizer::from_settings(&bad_h),
+            Err(SettingsError::Kernel(hrla::Error::NotPositive {
+                name: "h",
+                ..
+            }))
+        ));
+        for sampler in [SamplerKind::Hrla, SamplerKind::Ula, SamplerKind::Ola] {
+            let nan_h = Settings {
+                sampler,
+                h: f64::NAN,
+                ..Settings::default()
+            };
+            assert!(Optimizer::from_settings(&nan_h).is_err(), "{sampler:?}");
+        }
+        let too_many = Settings {
+            chains: MAX_CHAINS + 1,
+            ..Settings::default()
+        };
+        let message = Optimizer::from_settings(&too_many)
+            .err()
+            .unwrap()
+            .to_string();
+        assert_eq!(message, "`chains` must be between 1 and 1024, got 1025");
+        let bad_schedule = Settings {
+            temperature: Temperature::Linear {
+                a_low: 0.1,
+                a_high: 4.0,
+                steps: 0,
+            },
+            ..Settings::default()
+        };
+        assert!(Optimizer::from_settings(&bad_schedule).is_err());
+    }
+
+    #[test]
+    fn same_seed_same_run() {
+        let settings = Settings {
+            sampler: SamplerKind::Ula,
+            temperature: Temperature::Linear {
+                a_low: 0.1,
+                a_high: 4.0,
+                steps: 300,
+            },
+            chains: 16,
+            seed: u64::MAX,
+            ..Settings::default()
+        };
+        let mut a = Optimizer::from_settings(&settings).unwrap();
+        let mut b = Optimizer::from_settings(&settings).unwrap();
+        a.step_n(400).unwrap();
+        for _ in 0..4 {
+            b.step_n(100).unwrap();
+        }
+        assert_eq!(a.positions(), b.positions());
+        assert_eq!(a.summary(), b.summary());
+        assert_eq!(a.summary()[Summary::A as usize], 4.0);
+    }
+}
