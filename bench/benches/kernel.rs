@@ -9,8 +9,8 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use hrla::{Float, Optimizer, Rastrigin, Schedule};
-use hrla_bench::{AnySampler, Bare, Method, constant, optimizer, rng, slow_linear};
+use hrla::{AnySampler, Float, Optimizer, Rastrigin, SamplerKind, Schedule};
+use hrla_bench::{Bare, constant, optimizer, paper, rng, slow_linear};
 
 /// Chains per optimiser: larger swarms are split so that each optimiser
 /// (which holds its chains inline) stays small on the stack.
@@ -19,7 +19,7 @@ const GROUP: usize = 100;
 type Group<F, C, const D: usize> = Box<Optimizer<F, Rastrigin, AnySampler<F>, C, D, GROUP>>;
 
 fn swarm<F: Float, C: Schedule<F> + Clone, const D: usize>(
-    method: Method,
+    method: SamplerKind,
     schedule: C,
     chains: usize,
 ) -> (Vec<Group<F, C, D>>, rand_xoshiro::Xoshiro256PlusPlus) {
@@ -56,7 +56,7 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
     g.sample_size(20);
     for chains in [1usize, 10, 1000] {
         g.throughput(Throughput::Elements((chains * D) as u64));
-        for method in Method::ALL {
+        for method in SamplerKind::ALL {
             let (mut opt, mut r) = swarm::<F, _, D>(method, constant::<F>(), chains);
             g.bench_function(
                 BenchmarkId::new(format!("{}/best", method.name()), chains),
@@ -68,7 +68,7 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
                     })
                 },
             );
-            let sampler = AnySampler::<F>::paper(method);
+            let sampler = paper::<F>(method);
             let mut bare = Bare::<F, D>::new(chains, &mut r);
             g.bench_function(
                 BenchmarkId::new(format!("{}/no-value", method.name()), chains),
@@ -77,7 +77,7 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
         }
         // HRLA with a = a_k changing every step: the cost of the per-step
         // refresh of the temperature-dependent coefficients.
-        let (mut opt, mut r) = swarm::<F, _, D>(Method::Hrla, slow_linear::<F>(), chains);
+        let (mut opt, mut r) = swarm::<F, _, D>(SamplerKind::Hrla, slow_linear::<F>(), chains);
         g.bench_function(BenchmarkId::new("hrla/best-annealed", chains), |b| {
             b.iter(|| {
                 for o in opt.iter_mut() {

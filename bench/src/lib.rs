@@ -3,89 +3,15 @@
 
 use hrla::rand_core::Rng;
 use hrla::{
-    Constant, Float, Gaussian, Hrla, HrlaParams, Linear, Ola, OlaParams, Optimizer, Potential,
-    Rastrigin, Sampler, Schedule, Ula, UlaParams,
+    AnySampler, Constant, Float, Gaussian, Linear, Optimizer, Potential, Rastrigin, Sampler,
+    SamplerKind, Schedule,
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
-/// The samplers, by name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Method {
-    /// [`Hrla`] with the paper's parameters.
-    Hrla,
-    /// [`Ula`] with the paper's parameters.
-    Ula,
-    /// [`Ola`] with the paper's parameters.
-    Ola,
-}
-
-impl Method {
-    /// All three.
-    pub const ALL: [Method; 3] = [Method::Hrla, Method::Ula, Method::Ola];
-
-    /// Lower-case name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Hrla => "hrla",
-            Method::Ula => "ula",
-            Method::Ola => "ola",
-        }
-    }
-}
-
 /// One of the three samplers at the paper's setting (a = 4, h = 0.01).
-#[derive(Clone, Copy, Debug)]
-pub enum AnySampler<F> {
-    /// HRLA.
-    Hrla(Hrla<F>),
-    /// ULA.
-    Ula(Ula<F>),
-    /// OLA.
-    Ola(Ola<F>),
-}
-
-impl<F: Float> AnySampler<F> {
-    /// The paper's setting of `method`.
-    pub fn paper(method: Method) -> Self {
-        let (a, h) = (F::from_f64(4.0), F::from_f64(0.01));
-        match method {
-            Method::Hrla => Self::Hrla(Hrla::new(HrlaParams::paper(a, h)).expect("valid")),
-            Method::Ula => Self::Ula(Ula::new(UlaParams::paper(a, h)).expect("valid")),
-            Method::Ola => Self::Ola(Ola::new(OlaParams::paper(a, h)).expect("valid")),
-        }
-    }
-}
-
-impl<F: Float> Sampler<F> for AnySampler<F> {
-    fn inverse_temperature(&self) -> F {
-        match self {
-            Self::Hrla(s) => s.inverse_temperature(),
-            Self::Ula(s) => s.inverse_temperature(),
-            Self::Ola(s) => s.inverse_temperature(),
-        }
-    }
-    fn set_inverse_temperature(&mut self, a: F) -> Result<(), hrla::Error> {
-        match self {
-            Self::Hrla(s) => s.set_inverse_temperature(a),
-            Self::Ula(s) => s.set_inverse_temperature(a),
-            Self::Ola(s) => s.set_inverse_temperature(a),
-        }
-    }
-    #[inline]
-    fn step<R: Rng + ?Sized, const D: usize>(
-        &self,
-        x: &mut [F; D],
-        y: &mut [F; D],
-        grad: &[F; D],
-        rng: &mut R,
-    ) {
-        match self {
-            Self::Hrla(s) => s.step(x, y, grad, rng),
-            Self::Ula(s) => s.step(x, y, grad, rng),
-            Self::Ola(s) => s.step(x, y, grad, rng),
-        }
-    }
+pub fn paper<F: Float>(kind: SamplerKind) -> AnySampler<F> {
+    AnySampler::paper(kind, F::from_f64(4.0), F::from_f64(0.01)).expect("valid")
 }
 
 /// The generator every benchmark uses.
@@ -96,21 +22,14 @@ pub fn rng(seed: u64) -> Xoshiro256PlusPlus {
 /// Algorithm 1 on D-dimensional Rastrigin from the paper's start, with a
 /// schedule: every step evaluates `U` and `∇U` and updates the running best.
 pub fn optimizer<F: Float, C: Schedule<F>, const D: usize, const N: usize>(
-    method: Method,
+    method: SamplerKind,
     schedule: C,
     chains: usize,
     rng: &mut Xoshiro256PlusPlus,
 ) -> Optimizer<F, Rastrigin, AnySampler<F>, C, D, N> {
     let mut start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10f64.sqrt())).expect("valid");
-    Optimizer::with_schedule(
-        Rastrigin,
-        AnySampler::paper(method),
-        schedule,
-        chains,
-        &mut start,
-        rng,
-    )
-    .expect("valid")
+    Optimizer::with_schedule(Rastrigin, paper(method), schedule, chains, &mut start, rng)
+        .expect("valid")
 }
 
 /// The constant schedule of the paper's setting.

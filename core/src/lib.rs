@@ -54,10 +54,12 @@
 //! - Potentials: the [`Potential`] trait, and [`Rastrigin`] (the paper's
 //!   form), [`Quadratic`], [`DoubleWell`], [`StyblinskiTang`] and [`Levy`],
 //!   each with its [`KnownMinimum`].
-//! - Samplers: [`Hrla`], [`Ula`], [`Ola`], with [`StepMoments`] giving the
+//! - Samplers: [`Hrla`], [`Ula`], [`Ola`] (and [`AnySampler`] to pick one
+//!   at run time), with [`StepMoments`] giving the
 //!   exact one-step mean and covariance and [`NoiseFactor`] its Cholesky
 //!   factor.
-//! - Schedules: [`Constant`], [`Linear`], [`Geometric`], [`FnSchedule`].
+//! - Schedules: [`Constant`], [`Linear`], [`Geometric`], [`FnSchedule`],
+//!   [`AnySchedule`].
 //! - Starts: [`Gaussian`], [`Point`], [`FromFn`].
 //! - Algorithm 1: [`Optimizer`], with [`Chain`], [`Best`], [`Report`].
 //!
@@ -108,8 +110,10 @@ pub use ou::{NoiseFactor, StepMoments};
 pub use potential::{
     DoubleWell, KnownMinimum, Levy, Potential, Quadratic, Rastrigin, StyblinskiTang,
 };
-pub use sampler::{Hrla, HrlaParams, Ola, OlaParams, Sampler, Ula, UlaParams};
-pub use schedule::{Constant, FnSchedule, Geometric, Linear, Schedule};
+pub use sampler::{
+    AnySampler, Hrla, HrlaParams, Ola, OlaParams, Sampler, SamplerKind, Ula, UlaParams,
+};
+pub use schedule::{AnySchedule, Constant, FnSchedule, Geometric, Linear, Schedule};
 pub use start::{FromFn, Gaussian, Point, Start};
 
 pub use rand_core;

@@ -157,3 +157,26 @@ impl<F: Float, G: Fn(u64) -> F> Schedule<F> for FnSchedule<G> {
         (self.0)(k)
     }
 }
+
+/// One of the built-in schedules, chosen at run time (see
+/// [`AnySampler`](crate::AnySampler)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AnySchedule<F> {
+    /// No annealing.
+    Constant(Constant<F>),
+    /// Linear annealing.
+    Linear(Linear<F>),
+    /// Geometric annealing.
+    Geometric(Geometric<F>),
+}
+
+impl<F: Float> Schedule<F> for AnySchedule<F> {
+    #[inline]
+    fn inverse_temperature(&self, k: u64) -> F {
+        match self {
+            Self::Constant(s) => s.inverse_temperature(k),
+            Self::Linear(s) => s.inverse_temperature(k),
+            Self::Geometric(s) => s.inverse_temperature(k),
+        }
+    }
+}

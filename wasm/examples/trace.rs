@@ -6,7 +6,7 @@
 
 use std::process::ExitCode;
 
-use hrla_wasm::{Optimizer, SamplerKind, Settings, Summary, Temperature};
+use hrla_wasm::{Optimizer, Settings, Summary, Temperature, parse_sampler};
 
 fn main() -> ExitCode {
     let Some(path) = std::env::args().nth(1) else {
@@ -53,7 +53,7 @@ fn run(line: &str) -> Result<String, String> {
         _ => return Err(format!("bad temperature `{a}`")),
     };
     let settings = Settings {
-        sampler: SamplerKind::parse(sampler).map_err(|e| e.to_string())?,
+        sampler: parse_sampler(sampler).map_err(|e| e.to_string())?,
         temperature,
         h: num(h)?,
         chains: int(chains)? as usize,

@@ -32,22 +32,20 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
-mod choice;
 mod settings;
 
-use hrla::{Gaussian, Rastrigin, Sampler};
+use hrla::{AnySampler, AnySchedule, Gaussian, Rastrigin, Sampler};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use wasm_bindgen::prelude::*;
 
-pub use choice::{AnySampler, AnySchedule};
-pub use settings::{SamplerKind, Settings, SettingsError, Temperature};
+pub use settings::{Settings, SettingsError, Temperature, parse_sampler};
 
 /// Capacity in chains (the page offers up to 1024).
 pub const MAX_CHAINS: usize = 1024;
 
 /// The kernel's optimiser as the page runs it.
-pub type Kernel = hrla::Optimizer<f64, Rastrigin, AnySampler, AnySchedule, 2, MAX_CHAINS>;
+pub type Kernel = hrla::Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, 2, MAX_CHAINS>;
 
 /// Slots of the summary buffer ([`Optimizer::summary_ptr`]), all f64.
 #[wasm_bindgen]
@@ -93,10 +91,10 @@ pub struct Optimizer {
 impl Optimizer {
     /// Draws the initial points and evaluates them, as the kernel does.
     pub fn from_settings(settings: &Settings) -> Result<Self, SettingsError> {
-        let schedule = AnySchedule::new(settings.temperature)?;
+        let schedule = settings.temperature.schedule()?;
         // The sampler starts at a_0, so a bad first temperature is caught here.
         let a0 = hrla::Schedule::inverse_temperature(&schedule, 0);
-        let sampler = AnySampler::new(settings.sampler, a0, settings.h)?;
+        let sampler = AnySampler::paper(settings.sampler, a0, settings.h)?;
         let mut start = Gaussian::new(settings.centre, settings.spread)?;
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
         let kernel = Kernel::with_schedule(
@@ -286,7 +284,7 @@ mod tests {
                 ..
             }))
         ));
-        for sampler in [SamplerKind::Hrla, SamplerKind::Ula, SamplerKind::Ola] {
+        for sampler in hrla::SamplerKind::ALL {
             let nan_h = Settings {
                 sampler,
                 h: f64::NAN,
@@ -317,7 +315,7 @@ mod tests {
     #[test]
     fn same_seed_same_run() {
         let settings = Settings {
-            sampler: SamplerKind::Ula,
+            sampler: hrla::SamplerKind::Ula,
             temperature: Temperature::Linear {
                 a_low: 0.1,
                 a_high: 4.0,

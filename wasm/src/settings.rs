@@ -3,29 +3,16 @@
 
 use core::fmt;
 
+use hrla::{AnySchedule, Constant, Linear, SamplerKind};
 use wasm_bindgen::JsValue;
 
-/// Which sampler drives the chains.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SamplerKind {
-    /// High-resolution Langevin (the paper's method).
-    Hrla,
-    /// Underdamped Langevin with the exact OU step.
-    Ula,
-    /// Overdamped Langevin, Euler–Maruyama.
-    Ola,
-}
-
-impl SamplerKind {
-    /// Parses `"hrla"`, `"ula"` or `"ola"` (any case).
-    pub fn parse(name: &str) -> Result<Self, SettingsError> {
-        match name.to_ascii_lowercase().as_str() {
-            "hrla" => Ok(Self::Hrla),
-            "ula" => Ok(Self::Ula),
-            "ola" => Ok(Self::Ola),
-            _ => Err(SettingsError::UnknownSampler),
-        }
-    }
+/// Parses a sampler's name, `"hrla"`, `"ula"` or `"ola"` (any case).
+pub fn parse_sampler(name: &str) -> Result<SamplerKind, SettingsError> {
+    let name = name.to_ascii_lowercase();
+    SamplerKind::ALL
+        .into_iter()
+        .find(|kind| kind.name() == name)
+        .ok_or(SettingsError::UnknownSampler)
 }
 
 /// The inverse temperature along the run.
@@ -43,6 +30,20 @@ pub enum Temperature {
         /// `K`.
         steps: u64,
     },
+}
+
+impl Temperature {
+    /// The kernel's schedule, its parameters validated by the kernel.
+    pub fn schedule(self) -> Result<AnySchedule<f64>, hrla::Error> {
+        Ok(match self {
+            Temperature::Constant(a) => AnySchedule::Constant(Constant::new(a)?),
+            Temperature::Linear {
+                a_low,
+                a_high,
+                steps,
+            } => AnySchedule::Linear(Linear::new(a_low, a_high, steps)?),
+        })
+    }
 }
 
 /// Everything that determines a run: the same settings give the same numbers
@@ -156,7 +157,7 @@ impl Settings {
             return Err(SettingsError::NotAnObject);
         }
         let sampler = match get(value, "sampler").as_string() {
-            Some(name) => SamplerKind::parse(&name)?,
+            Some(name) => parse_sampler(&name)?,
             None => return Err(SettingsError::UnknownSampler),
         };
         let annealing = get(value, "annealing");

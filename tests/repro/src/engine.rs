@@ -3,8 +3,8 @@
 
 use hrla::rand_core::Rng;
 use hrla::{
-    Constant, Gaussian, Hrla, HrlaParams, Linear, Ola, OlaParams, Optimizer, Point, Rastrigin,
-    Sampler, Schedule, Start, Ula, UlaParams,
+    AnySampler, AnySchedule, Constant, Gaussian, Linear, Optimizer, Point, Rastrigin, Schedule,
+    Start,
 };
 
 use crate::error::ReproError;
@@ -34,6 +34,15 @@ pub enum SamplerKind {
 }
 
 impl SamplerKind {
+    /// The kernel's name for the same sampler.
+    pub fn kernel(self) -> hrla::SamplerKind {
+        match self {
+            SamplerKind::Hrla => hrla::SamplerKind::Hrla,
+            SamplerKind::Ula => hrla::SamplerKind::Ula,
+            SamplerKind::Ola => hrla::SamplerKind::Ola,
+        }
+    }
+
     /// The name used in tables and legends.
     pub fn name(self) -> &'static str {
         match self {
@@ -171,101 +180,32 @@ impl RunSpec {
         {
             return bad("the start variance must be finite and >= 0");
         }
-        let schedule = AnySchedule::new(self.temperature, self.steps)?;
+        let schedule = self.temperature.schedule(self.steps)?;
         // Every a_k of a linear schedule lies between its ends, and the
         // coefficients are monotone in a, so checking both ends suffices.
-        AnySampler::new(self.sampler, schedule.inverse_temperature(0), self.h)?;
-        AnySampler::new(self.sampler, self.temperature.label_value(), self.h)?;
+        AnySampler::paper(
+            self.sampler.kernel(),
+            schedule.inverse_temperature(0),
+            self.h,
+        )?;
+        AnySampler::paper(
+            self.sampler.kernel(),
+            self.temperature.label_value(),
+            self.h,
+        )?;
         Ok(())
     }
 }
 
-/// The paper's three samplers behind one type, so the run loop is compiled
-/// once per dimension rather than once per sampler and schedule. The match
-/// per chain-step is perfectly predicted and costs nothing measurable next
-/// to the 2d normals of a step.
-#[derive(Clone, Copy, Debug)]
-pub enum AnySampler {
-    /// HRLA.
-    Hrla(Hrla<f64>),
-    /// ULA.
-    Ula(Ula<f64>),
-    /// OLA.
-    Ola(Ola<f64>),
-}
-
-impl AnySampler {
-    /// The sampler `kind` with the paper's parameters at `a` and `h`.
-    pub fn new(kind: SamplerKind, a: f64, h: f64) -> Result<Self, hrla::Error> {
-        Ok(match kind {
-            SamplerKind::Hrla => AnySampler::Hrla(Hrla::new(HrlaParams::paper(a, h))?),
-            SamplerKind::Ula => AnySampler::Ula(Ula::new(UlaParams::paper(a, h))?),
-            SamplerKind::Ola => AnySampler::Ola(Ola::new(OlaParams::paper(a, h))?),
-        })
-    }
-}
-
-impl Sampler<f64> for AnySampler {
-    fn inverse_temperature(&self) -> f64 {
-        match self {
-            AnySampler::Hrla(s) => s.inverse_temperature(),
-            AnySampler::Ula(s) => s.inverse_temperature(),
-            AnySampler::Ola(s) => s.inverse_temperature(),
-        }
-    }
-
-    fn set_inverse_temperature(&mut self, a: f64) -> Result<(), hrla::Error> {
-        match self {
-            AnySampler::Hrla(s) => s.set_inverse_temperature(a),
-            AnySampler::Ula(s) => s.set_inverse_temperature(a),
-            AnySampler::Ola(s) => s.set_inverse_temperature(a),
-        }
-    }
-
-    #[inline]
-    fn step<R: Rng + ?Sized, const D: usize>(
-        &self,
-        x: &mut [f64; D],
-        y: &mut [f64; D],
-        grad: &[f64; D],
-        rng: &mut R,
-    ) {
-        match self {
-            AnySampler::Hrla(s) => s.step(x, y, grad, rng),
-            AnySampler::Ula(s) => s.step(x, y, grad, rng),
-            AnySampler::Ola(s) => s.step(x, y, grad, rng),
-        }
-    }
-}
-
-/// Constant or linear inverse temperature behind one type.
-#[derive(Clone, Copy, Debug)]
-pub enum AnySchedule {
-    /// No annealing.
-    Constant(Constant<f64>),
-    /// Linear annealing over `K` steps.
-    Linear(Linear<f64>),
-}
-
-impl AnySchedule {
-    /// The schedule of `temperature` over `steps` iterations.
-    pub fn new(temperature: Temperature, steps: u64) -> Result<Self, hrla::Error> {
-        Ok(match temperature {
+impl Temperature {
+    /// The kernel's schedule over `steps` iterations.
+    pub fn schedule(self, steps: u64) -> Result<AnySchedule<f64>, hrla::Error> {
+        Ok(match self {
             Temperature::Constant(a) => AnySchedule::Constant(Constant::new(a)?),
             Temperature::Linear { low, high } => {
                 AnySchedule::Linear(Linear::new(low, high, steps)?)
             }
         })
-    }
-}
-
-impl Schedule<f64> for AnySchedule {
-    #[inline]
-    fn inverse_temperature(&self, k: u64) -> f64 {
-        match self {
-            AnySchedule::Constant(s) => s.inverse_temperature(k),
-            AnySchedule::Linear(s) => s.inverse_temperature(k),
-        }
     }
 }
 
@@ -296,7 +236,7 @@ impl<const D: usize> Start<f64, D> for AnyStart<D> {
     }
 }
 
-type Part<const D: usize> = Optimizer<f64, Rastrigin, AnySampler, AnySchedule, D, CHUNK>;
+type Part<const D: usize> = Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, D, CHUNK>;
 
 /// `N` chains as a list of boxed kernel optimisers of at most [`CHUNK`]
 /// chains each, stepped in order with one generator.
@@ -307,8 +247,12 @@ pub struct Swarm<const D: usize> {
 impl<const D: usize> Swarm<D> {
     /// Draws the initial points of `spec.chains` chains, chunk after chunk.
     pub fn new<R: Rng + ?Sized>(spec: &RunSpec, rng: &mut R) -> Result<Self, hrla::Error> {
-        let schedule = AnySchedule::new(spec.temperature, spec.steps)?;
-        let sampler = AnySampler::new(spec.sampler, schedule.inverse_temperature(0), spec.h)?;
+        let schedule = spec.temperature.schedule(spec.steps)?;
+        let sampler = AnySampler::paper(
+            spec.sampler.kernel(),
+            schedule.inverse_temperature(0),
+            spec.h,
+        )?;
         let mut start = AnyStart::<D>::new(spec.start)?;
         let mut parts = Vec::with_capacity(spec.chains.div_ceil(CHUNK));
         let mut left = spec.chains;
@@ -471,16 +415,17 @@ mod tests {
             let mut rng_a = run_rng(11, 0);
             let mut swarm = Swarm::<10>::new(&s, &mut rng_a).unwrap();
             let mut rng_b = run_rng(11, 0);
-            let schedule = AnySchedule::new(s.temperature, s.steps).unwrap();
-            let sampler = AnySampler::new(s.sampler, schedule.inverse_temperature(0), s.h).unwrap();
+            let schedule = s.temperature.schedule(s.steps).unwrap();
+            let sampler =
+                AnySampler::paper(s.sampler.kernel(), schedule.inverse_temperature(0), s.h)
+                    .unwrap();
             let mut start = AnyStart::<10>::new(s.start).unwrap();
-            let mut whole: Box<Optimizer<f64, Rastrigin, AnySampler, AnySchedule, 10, N>> =
-                Box::new(
-                    Optimizer::with_schedule(
-                        Rastrigin, sampler, schedule, N, &mut start, &mut rng_b,
-                    )
+            let mut whole: Box<
+                Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, 10, N>,
+            > = Box::new(
+                Optimizer::with_schedule(Rastrigin, sampler, schedule, N, &mut start, &mut rng_b)
                     .unwrap(),
-                );
+            );
             for _ in 0..s.steps {
                 swarm.step(&mut rng_a).unwrap();
                 whole.step(&mut rng_b).unwrap();
