@@ -43,29 +43,13 @@ pub(crate) const COS_2PI: [f64; 9] = [
     0.28200596845579123,
 ];
 
-/// Horner's rule in `r2` over coefficients `1..terms` (the polynomial
-/// without its constant term, divided by `r2`).
+/// `sum_k coef[k] r2^k` by Horner's rule (`coef` non-empty).
 #[inline(always)]
-fn horner_tail<F: Float>(coef: &[f64; 9], terms: usize, r2: F) -> F {
-    let mut acc = F::from_f64(coef[terms - 1]);
-    let mut k = terms - 1;
-    while k > 1 {
-        k -= 1;
-        acc = acc * r2 + F::from_f64(coef[k]);
-    }
-    acc
-}
-
-/// Horner's rule in `r2` over the first `terms` coefficients.
-#[inline(always)]
-fn horner<F: Float>(coef: &[f64; 9], terms: usize, r2: F) -> F {
-    let mut acc = F::from_f64(coef[terms - 1]);
-    let mut k = terms - 1;
-    while k > 0 {
-        k -= 1;
-        acc = acc * r2 + F::from_f64(coef[k]);
-    }
-    acc
+fn horner<F: Float>(coef: &[f64], r2: F) -> F {
+    let (last, rest) = coef.split_last().expect("non-empty");
+    rest.iter()
+        .rev()
+        .fold(F::from_f64(*last), |acc, &c| acc * r2 + F::from_f64(c))
 }
 
 /// Writes `sin(2π x_i)` into `s` and `1 - cos(2π x_i)` into `omc`, the
@@ -88,10 +72,10 @@ pub(crate) fn sin_omc_2pi<F: Float, const D: usize>(x: &[F; D], s: &mut [F; D], 
         let m = (n * quarter + magic) - magic;
         let q = n - four * m;
         let r2 = r * r;
-        let sr = r * horner(&SIN_2PI, sin_terms, r2);
+        let sr = r * horner(&SIN_2PI[..sin_terms], r2);
         // cos(2πr) = 1 - omc_r, with omc_r = -r2 (c1 + c2 r2 + ...) free of
         // the cancellation of 1 - cos.
-        let omc_r = -(r2 * horner_tail(&COS_2PI, cos_terms, r2));
+        let omc_r = -(r2 * horner(&COS_2PI[1..cos_terms], r2));
         let cr = F::ONE - omc_r;
         let (sin, omc) = if q == F::ZERO {
             (sr, omc_r)
