@@ -59,8 +59,9 @@ pub trait Float:
     const ROUND_MAGIC: Self;
     /// Below this `|x|` the fused `sin(2πx)` takes its polynomial path.
     const TRIG_FAST_LIMIT: Self;
-    /// Taylor terms of `sin(2πr)` and `cos(2πr)` on `|r| <= 1/8` that reach
-    /// this type's precision.
+    /// How many of fdlibm's minimax coefficients of `sin t` and `cos t` on
+    /// `|t| <= π/4` this type's precision needs (the dropped terms are below
+    /// a tenth of an ulp).
     const TRIG_TERMS: (usize, usize);
 
     /// Rounds an `f64` to this type (round to nearest, as `as` does).
@@ -190,7 +191,7 @@ impl Float for f64 {
     const INFINITY: Self = f64::INFINITY;
     const ROUND_MAGIC: Self = 6755399441055744.0;
     const TRIG_FAST_LIMIT: Self = 562949953421312.0; // 2^49
-    const TRIG_TERMS: (usize, usize) = (9, 9);
+    const TRIG_TERMS: (usize, usize) = (6, 6);
 
     #[inline]
     fn from_f64(v: f64) -> Self {
@@ -284,7 +285,7 @@ impl Float for f32 {
     const INFINITY: Self = f32::INFINITY;
     const ROUND_MAGIC: Self = 12582912.0;
     const TRIG_FAST_LIMIT: Self = 1048576.0; // 2^20
-    const TRIG_TERMS: (usize, usize) = (5, 6);
+    const TRIG_TERMS: (usize, usize) = (4, 4);
 
     #[inline]
     fn from_f64(v: f64) -> Self {

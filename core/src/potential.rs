@@ -44,11 +44,13 @@ fn tau<F: Float>() -> F {
 ///
 /// Global minimum `U* = 0` at `x* = 0`; a local minimum near every integer
 /// point. The value is computed as `sum_i x_i^2 + (1 - cos 2π x_i)` with the
-/// bracket formed without cancellation, so it is accurate near the minimum
-/// even in f32. The sine and `1 - cos` of all coordinates come from one fused,
-/// vectorisable polynomial evaluation after an exact reduction of `x` modulo
-/// 1/4 (within a few ulps of the exact values; `Float::fast_sin_cos` only for
-/// `|x| >= 2^49`, or `2^20` in f32).
+/// bracket formed without cancellation (as `2 sin^2(πx_i)` or
+/// `2 cos^2(πx_i)`), so it is accurate near the minimum even in f32. The sine
+/// and `1 - cos` come from a vectorisable polynomial evaluation, one 128-bit
+/// vector of coordinates at a time, after an exact reduction of `x` modulo
+/// 1/2 (within a few ulps of the exact values; `Float::fast_sin_cos` only for
+/// `|x| >= 2^49`, or `2^20` in f32). The sum runs in one partial sum per
+/// vector lane, added pairwise at the end.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Rastrigin;
 
@@ -64,16 +66,100 @@ impl<F: Float, const D: usize> Potential<F, D> for Rastrigin {
 
     #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        let mut s = [F::ZERO; D];
-        let mut omc = [F::ZERO; D];
-        trig::sin_omc_2pi(x, &mut s, &mut omc);
-        let mut u = F::ZERO;
-        for ((&xi, gi), (&si, &oi)) in x.iter().zip(grad.iter_mut()).zip(s.iter().zip(&omc)) {
-            *gi = F::TWO * xi + tau::<F>() * si;
-            u += xi * xi + oi;
+        // Blocks of one 128-bit vector: a constant choice, folded away.
+        match trig::lanes::<F>() {
+            2 => rastrigin::<F, D, 2>(x, grad),
+            _ => rastrigin::<F, D, 4>(x, grad),
         }
-        u
     }
+}
+
+/// Rastrigin's value and gradient, `L` coordinates at a time.
+#[inline(always)]
+fn rastrigin<F: Float, const D: usize, const L: usize>(x: &[F; D], grad: &mut [F; D]) -> F {
+    let mut lanes = [F::ZERO; L];
+    let mut all_small = true;
+    for_each_block::<F, L>(x, grad, |xb, gc| {
+        all_small &= trig::all_small(xb);
+        let (s, omc) = trig::block(xb);
+        accumulate(xb, gc, &s, &omc, &mut lanes);
+    });
+    if all_small {
+        sum_lanes(lanes)
+    } else {
+        rastrigin_large::<F, D, L>(x, grad)
+    }
+}
+
+/// [`rastrigin`] again, with the trigonometry of huge or non-finite
+/// coordinates from [`Float::fast_sin_cos`]: out of line, so that it costs
+/// the hot path neither code nor stack.
+#[cold]
+#[inline(never)]
+fn rastrigin_large<F: Float, const D: usize, const L: usize>(x: &[F; D], grad: &mut [F; D]) -> F {
+    let mut lanes = [F::ZERO; L];
+    for_each_block::<F, L>(x, grad, |xb, gc| {
+        let (mut s, mut omc) = trig::block(xb);
+        trig::patch_large(xb, &mut s, &mut omc);
+        accumulate(xb, gc, &s, &omc, &mut lanes);
+    });
+    sum_lanes(lanes)
+}
+
+/// Calls `f(x_block, grad_block)` on the blocks of `L` coordinates, as fixed
+/// arrays (which the compiler vectorises); a short tail is padded with
+/// zeros and its gradient copied back.
+#[inline(always)]
+fn for_each_block<F: Float, const L: usize>(
+    x: &[F],
+    grad: &mut [F],
+    mut f: impl FnMut(&[F; L], &mut [F; L]),
+) {
+    let mut xs = x.chunks_exact(L);
+    let mut gs = grad.chunks_exact_mut(L);
+    for (xc, gc) in (&mut xs).zip(&mut gs) {
+        let mut gb = [F::ZERO; L];
+        f(&core::array::from_fn(|k| xc[k]), &mut gb);
+        gc.copy_from_slice(&gb);
+    }
+    let tail = xs.remainder();
+    if !tail.is_empty() {
+        let mut gb = [F::ZERO; L];
+        f(&trig::pad::<F, L>(tail), &mut gb);
+        let gc = gs.into_remainder();
+        gc.copy_from_slice(&gb[..gc.len()]);
+    }
+}
+
+/// Gradients of a block, and its terms `x^2 + 1 - cos(2πx)` into one partial
+/// sum per lane (coordinate `j` into lane `j mod L`), so that the additions
+/// vectorise and do not wait on one another.
+#[inline(always)]
+fn accumulate<F: Float, const L: usize>(
+    x: &[F; L],
+    grad: &mut [F; L],
+    s: &[F; L],
+    omc: &[F; L],
+    lanes: &mut [F; L],
+) {
+    for k in 0..L {
+        // Padding lanes add x^2 + omc = 0 exactly.
+        lanes[k] += x[k] * x[k] + omc[k];
+        grad[k] = F::TWO * x[k] + tau::<F>() * s[k];
+    }
+}
+
+/// The lanes summed pairwise (`L` a power of two).
+#[inline(always)]
+fn sum_lanes<F: Float, const L: usize>(mut lanes: [F; L]) -> F {
+    let mut width = L;
+    while width > 1 {
+        width /= 2;
+        for k in 0..width {
+            lanes[k] = lanes[2 * k] + lanes[2 * k + 1];
+        }
+    }
+    lanes[0]
 }
 
 impl<F: Float, const D: usize> KnownMinimum<F, D> for Rastrigin {
