@@ -89,35 +89,38 @@ impl<F: Float, const D: usize> Bare<F, D> {
     }
 
     /// The unavoidable work of one step of every chain: `2 D` standard
-    /// normals and one value-and-gradient evaluation (the floor).
+    /// normals and one value-and-gradient evaluation (the floor). The results
+    /// are folded by XOR of their bits, not summed: a chain of dependent
+    /// float additions (3-4 cycles each) would itself cost as much as a
+    /// normal and inflate the floor.
     #[inline]
-    pub fn floor(&mut self, rng: &mut Xoshiro256PlusPlus) -> F {
-        let mut acc = F::ZERO;
+    pub fn floor(&mut self, rng: &mut Xoshiro256PlusPlus) -> u64 {
+        let mut acc = 0u64;
         for (x, g) in self.x.iter_mut().zip(&mut self.g) {
             for _ in 0..2 * D {
-                acc += F::standard_normal(rng);
+                acc ^= F::standard_normal(rng).to_bits_u64();
             }
-            acc += Rastrigin.value_and_gradient(x, g);
+            acc ^= Rastrigin.value_and_gradient(x, g).to_bits_u64();
         }
         acc
     }
 
     /// The floor's normals alone: `2 D` per chain.
     #[inline]
-    pub fn normals(&mut self, rng: &mut Xoshiro256PlusPlus) -> F {
-        let mut acc = F::ZERO;
+    pub fn normals(&mut self, rng: &mut Xoshiro256PlusPlus) -> u64 {
+        let mut acc = 0u64;
         for _ in 0..self.x.len() * 2 * D {
-            acc += F::standard_normal(rng);
+            acc ^= F::standard_normal(rng).to_bits_u64();
         }
         acc
     }
 
     /// The floor's value-and-gradient evaluations alone.
     #[inline]
-    pub fn value_and_gradient(&mut self) -> F {
-        let mut acc = F::ZERO;
+    pub fn value_and_gradient(&mut self) -> u64 {
+        let mut acc = 0u64;
         for (x, g) in self.x.iter().zip(&mut self.g) {
-            acc += Rastrigin.value_and_gradient(x, g);
+            acc ^= Rastrigin.value_and_gradient(x, g).to_bits_u64();
         }
         acc
     }
@@ -138,3 +141,4 @@ impl<F: Float, const D: usize> Bare<F, D> {
         acc
     }
 }
+
