@@ -141,4 +141,3 @@ impl<F: Float, const D: usize> Bare<F, D> {
         acc
     }
 }
-

@@ -52,6 +52,21 @@ fn horner<F: Float>(coef: &[f64], z: F) -> F {
         .fold(F::from_f64(*last), |acc, &c| acc * z + F::from_f64(c))
 }
 
+/// `sum_k coef[k] z^k` as two Horner halves, `lo(z) + z^m hi(z)` with
+/// `m = len/2`: two independent chains, half the latency.
+#[inline(always)]
+fn split_horner<F: Float>(coef: &[f64], z: F) -> F {
+    if coef.len() < 4 {
+        return horner(coef, z);
+    }
+    let (lo, hi) = coef.split_at(coef.len() / 2);
+    let mut zm = z;
+    for _ in 1..lo.len() {
+        zm *= z;
+    }
+    horner(lo, z) + zm * horner(hi, z)
+}
+
 /// Coordinates per block for `F`: one 128-bit vector (SSE2, NEON, wasm
 /// SIMD128), the unit the compiler vectorises; small, so that padding a
 /// short tail wastes little.
@@ -77,8 +92,8 @@ pub(crate) fn block<F: Float, const L: usize>(x: &[F; L]) -> ([F; L], [F; L]) {
         let odd = n - F::TWO * ((F::HALF * n + magic) - magic);
         let t = F::PI * r;
         let z = t * t;
-        let sin_t = t + (t * z) * horner(&SIN[..sin_terms], z);
-        let cos_t = F::ONE - (F::HALF * z - (z * z) * horner(&COS[..cos_terms], z));
+        let sin_t = t + (t * z) * split_horner(&SIN[..sin_terms], z);
+        let cos_t = F::ONE - (F::HALF * z - (z * z) * split_horner(&COS[..cos_terms], z));
         let two_sc = (sin_t + sin_t) * cos_t;
         let (sin, w) = if odd == F::ZERO {
             (two_sc, sin_t)
