@@ -97,8 +97,9 @@ impl<F: Float, const D: usize> Bare<F, D> {
     pub fn floor(&mut self, rng: &mut Xoshiro256PlusPlus) -> u64 {
         let mut acc = 0u64;
         for (x, g) in self.x.iter_mut().zip(&mut self.g) {
-            for _ in 0..2 * D {
-                acc ^= F::standard_normal(rng).to_bits_u64();
+            for _ in 0..D {
+                let (z1, z2) = F::standard_normal_pair(rng);
+                acc ^= z1.to_bits_u64() ^ z2.to_bits_u64();
             }
             acc ^= Rastrigin.value_and_gradient(x, g).to_bits_u64();
         }
@@ -109,8 +110,9 @@ impl<F: Float, const D: usize> Bare<F, D> {
     #[inline]
     pub fn normals(&mut self, rng: &mut Xoshiro256PlusPlus) -> u64 {
         let mut acc = 0u64;
-        for _ in 0..self.x.len() * 2 * D {
-            acc ^= F::standard_normal(rng).to_bits_u64();
+        for _ in 0..self.x.len() * D {
+            let (z1, z2) = F::standard_normal_pair(rng);
+            acc ^= z1.to_bits_u64() ^ z2.to_bits_u64();
         }
         acc
     }
@@ -125,18 +127,19 @@ impl<F: Float, const D: usize> Bare<F, D> {
         acc
     }
 
-    /// The random bits of the floor's normals: `2 D` words per chain (one
-    /// `next_u64` for f64, one `next_u32` for f32, as the Ziggurat's fast
-    /// path draws).
+    /// The random bits of the floor's normals, as the Ziggurat's fast path
+    /// draws them: `2 D` `next_u64` per chain for f64, `D` for f32 (whose
+    /// pairs of normals split one word).
     #[inline]
     pub fn bits(&mut self, rng: &mut Xoshiro256PlusPlus) -> u64 {
+        let words = if core::mem::size_of::<F>() == 8 {
+            2 * D
+        } else {
+            D
+        };
         let mut acc = 0u64;
-        for _ in 0..self.x.len() * 2 * D {
-            acc ^= if core::mem::size_of::<F>() == 8 {
-                rng.next_u64()
-            } else {
-                rng.next_u32() as u64
-            };
+        for _ in 0..self.x.len() * words {
+            acc ^= rng.next_u64();
         }
         acc
     }

@@ -105,11 +105,22 @@ pub trait Float:
     /// `f32` consumes `next_u32` only, so 32-bit cores never touch 64-bit
     /// arithmetic. Rare rejections and the tail draw more words.
     fn standard_normal<R: Rng + ?Sized>(rng: &mut R) -> Self;
+
+    /// Two independent exact standard normals (the same Ziggurat), for one
+    /// coordinate of a step.
+    ///
+    /// `f64`: two [`Float::standard_normal`] draws. `f32`: one `next_u64`,
+    /// whose low then high 32 bits are the two draws' first words (a 64-bit
+    /// generator's `next_u32` would throw half of its output away; a 32-bit
+    /// generator's `next_u64` is two `next_u32`, low first, so the stream is
+    /// the same as two draws there). Rejections draw more words as usual,
+    /// the first normal's before the second's.
+    fn standard_normal_pair<R: Rng + ?Sized>(rng: &mut R) -> (Self, Self);
 }
 
-/// The ZIGNOR method, shared by both float widths: `draw` returns the layer
-/// index and a uniform on [-1, 1), `uniform` a uniform on [0, 1) and
-/// `open01` one on (0, 1).
+/// The ZIGNOR method, shared by both float widths: `first` is the first
+/// word's layer index and uniform on [-1, 1), `draw` returns further such
+/// pairs, `uniform` a uniform on [0, 1) and `open01` one on (0, 1).
 ///
 /// The fast path (about 99% of draws: one random word, a multiply and a
 /// compare) is inlined into the caller; the rest lives in a cold function.
@@ -118,11 +129,12 @@ fn ziggurat<F: Float, R: Rng + ?Sized>(
     rng: &mut R,
     x_tab: &[F; 257],
     f_tab: &[F; 257],
+    first: (usize, F),
     draw: impl Fn(&mut R) -> (usize, F),
     uniform: impl Fn(&mut R) -> F,
     open01: impl Fn(&mut R) -> F,
 ) -> F {
-    let (i, u) = draw(rng);
+    let (i, u) = first;
     let x = u * x_tab[i];
     // Inside the layer's rectangle below the next edge: accept at once.
     if x.abs() < x_tab[i + 1] {
@@ -167,6 +179,36 @@ fn ziggurat_slow<F: Float, R: Rng + ?Sized>(
             return x;
         }
     }
+}
+
+/// A Ziggurat word of `f64`: the low 8 bits pick the layer, the top 52 a
+/// mantissa in [2, 4), shifted to a uniform on [-1, 1).
+#[inline(always)]
+fn split64(bits: u64) -> (usize, f64) {
+    let u = f64::from_bits((bits >> 12) | 0x4000_0000_0000_0000) - 3.0;
+    ((bits & 0xff) as usize, u)
+}
+
+/// A Ziggurat word of `f32`: the low 8 bits pick the layer, the top 23 a
+/// mantissa in [2, 4), shifted to a uniform on [-1, 1).
+#[inline(always)]
+fn split32(bits: u32) -> (usize, f32) {
+    let u = f32::from_bits((bits >> 9) | 0x4000_0000) - 3.0;
+    ((bits & 0xff) as usize, u)
+}
+
+/// An `f32` normal from its first word; any further words by `next_u32`.
+#[inline(always)]
+fn normal32<R: Rng + ?Sized>(rng: &mut R, first: (usize, f32)) -> f32 {
+    ziggurat(
+        rng,
+        &X32,
+        &F32,
+        first,
+        |rng| split32(rng.next_u32()),
+        |rng| (rng.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32),
+        |rng| ((rng.next_u32() >> 9) as f32 + 0.5) * (1.0 / (1u32 << 23) as f32),
+    )
 }
 
 const fn narrow(t: &[f64; 257]) -> [f32; 257] {
@@ -260,19 +302,22 @@ impl Float for f64 {
 
     #[inline(always)]
     fn standard_normal<R: Rng + ?Sized>(rng: &mut R) -> Self {
+        let first = split64(rng.next_u64());
         ziggurat(
             rng,
             &zig::X,
             &zig::F,
-            |rng| {
-                let bits = rng.next_u64();
-                // Low 8 bits pick the layer, the top 52 a mantissa in [2, 4).
-                let u = f64::from_bits((bits >> 12) | 0x4000_0000_0000_0000) - 3.0;
-                ((bits & 0xff) as usize, u)
-            },
+            first,
+            |rng| split64(rng.next_u64()),
             |rng| (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64),
             |rng| ((rng.next_u64() >> 11) as f64 + 0.5) * (1.0 / (1u64 << 53) as f64),
         )
+    }
+
+    #[inline(always)]
+    fn standard_normal_pair<R: Rng + ?Sized>(rng: &mut R) -> (Self, Self) {
+        let z1 = Self::standard_normal(rng);
+        (z1, Self::standard_normal(rng))
     }
 }
 
@@ -372,18 +417,14 @@ impl Float for f32 {
 
     #[inline(always)]
     fn standard_normal<R: Rng + ?Sized>(rng: &mut R) -> Self {
-        ziggurat(
-            rng,
-            &X32,
-            &F32,
-            |rng| {
-                let bits = rng.next_u32();
-                // Low 8 bits pick the layer, the top 23 a mantissa in [2, 4).
-                let u = f32::from_bits((bits >> 9) | 0x4000_0000) - 3.0;
-                ((bits & 0xff) as usize, u)
-            },
-            |rng| (rng.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32),
-            |rng| ((rng.next_u32() >> 9) as f32 + 0.5) * (1.0 / (1u32 << 23) as f32),
-        )
+        let first = split32(rng.next_u32());
+        normal32(rng, first)
+    }
+
+    #[inline(always)]
+    fn standard_normal_pair<R: Rng + ?Sized>(rng: &mut R) -> (Self, Self) {
+        let bits = rng.next_u64();
+        let z1 = normal32(rng, split32(bits as u32));
+        (z1, normal32(rng, split32((bits >> 32) as u32)))
     }
 }

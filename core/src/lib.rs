@@ -67,8 +67,9 @@
 //!
 //! Any [`rand_core::Rng`] drives the chains; `rand_xoshiro`'s
 //! `Xoshiro256PlusPlus` is the default choice, and `Xoshiro128PlusPlus`
-//! suits 32-bit microcontrollers (the `f32` normal sampler then only calls
-//! `next_u32`). Normals are exact (256-layer Ziggurat). All maths goes
+//! suits 32-bit microcontrollers (with it the `f32` normal sampler does
+//! 32-bit arithmetic only: its pairs of normals take one `next_u64`, which
+//! such a generator makes from two `next_u32`). Normals are exact (256-layer Ziggurat). All maths goes
 //! through `libm`, never the platform's library, and the kernel never fuses
 //! multiply-adds, so a seed gives bit-identical results on x86_64, wasm32
 //! and Cortex-M. The `micromath` feature swaps the `f32` exponential and

@@ -163,7 +163,8 @@ impl<F: Float> Sampler<F> for Hrla<F> {
     }
 }
 
-/// Draws in the documented order: per coordinate, `z1` then `z2`.
+/// Draws in the documented order: per coordinate, the pair `(z1, z2)` of
+/// [`Float::standard_normal_pair`].
 #[inline(always)]
 fn ou_step<F: Float, R: Rng + ?Sized, const D: usize>(
     ou: &OuStep<F>,
@@ -173,8 +174,7 @@ fn ou_step<F: Float, R: Rng + ?Sized, const D: usize>(
     rng: &mut R,
 ) {
     for ((xi, yi), &gi) in x.iter_mut().zip(y.iter_mut()).zip(grad) {
-        let z1 = F::standard_normal(rng);
-        let z2 = F::standard_normal(rng);
+        let (z1, z2) = F::standard_normal_pair(rng);
         ou.apply(xi, yi, gi, z1, z2);
     }
 }

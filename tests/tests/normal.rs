@@ -70,6 +70,65 @@ fn kolmogorov_smirnov_f32() {
     ks::<f32>("f32", 0x6b73_0032);
 }
 
+// --- (a') pairs -------------------------------------------------------------
+
+/// `standard_normal_pair` (in f32, two normals from the two halves of one
+/// 64-bit word): 10^6 pairs. Each coordinate passes the KS test of (a), and
+/// the two are uncorrelated, in value and in magnitude: for independent
+/// normals the sample correlations of `(z1, z2)` and of `(z1^2, z2^2)` have
+/// standard error `1/sqrt(n)`, so `sqrt(n) r` is a z-score.
+fn pairs<F: Float>(label: &str, seed: u64) {
+    let n = 1_000_000;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let (mut a, mut b) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    for _ in 0..n {
+        let (z1, z2) = F::standard_normal_pair(&mut rng);
+        a.push(z1.to_f64());
+        b.push(z2.to_f64());
+    }
+    let corr = |u: &[f64], v: &[f64]| {
+        let (mu, mv) = (
+            u.iter().sum::<f64>() / n as f64,
+            v.iter().sum::<f64>() / n as f64,
+        );
+        let (mut suv, mut suu, mut svv) = (0.0, 0.0, 0.0);
+        for (x, y) in u.iter().zip(v) {
+            suv += (x - mu) * (y - mv);
+            suu += (x - mu) * (x - mu);
+            svv += (y - mv) * (y - mv);
+        }
+        suv / (suu * svv).sqrt()
+    };
+    let square = |v: &[f64]| v.iter().map(|x| x * x).collect::<Vec<_>>();
+    let z_value = corr(&a, &b) * (n as f64).sqrt();
+    let z_square = corr(&square(&a), &square(&b)) * (n as f64).sqrt();
+    println!("{label} pairs: correlation z {z_value:.2}, of squares z {z_square:.2}");
+    assert!(
+        z_value.abs() < Z_MAX,
+        "{label}: z1, z2 correlated: z = {z_value}"
+    );
+    assert!(
+        z_square.abs() < Z_MAX,
+        "{label}: |z1|, |z2| correlated: z = {z_square}"
+    );
+    let critical = kolmogorov_critical(0.001);
+    for (which, mut xs) in [("z1", a), ("z2", b)] {
+        let t = ks_statistic(&mut xs, normal_cdf) * (n as f64).sqrt();
+        println!("{label} pairs, {which}: sqrt(n) D = {t:.4}");
+        assert!(t < critical, "{label}: KS rejects {which}: sqrt(n) D = {t}");
+    }
+}
+
+#[test]
+fn pairs_f64() {
+    pairs::<f64>("f64", 0x7061_0064);
+}
+
+#[test]
+fn pairs_f32() {
+    pairs::<f32>("f32", 0x7061_0032);
+}
+
 // --- (b) tail branch and moments ---------------------------------------------
 
 /// A binomial count `k` of `n` trials against success probability `p`:
