@@ -355,6 +355,9 @@ where
     }
 }
 
+/// Without short-circuit, so that the checks vectorise: this runs on every
+/// chain at every step, and a chain is almost always finite.
+#[inline(always)]
 fn all_finite<F: Float, const D: usize>(v: &[F; D]) -> bool {
-    v.iter().all(|x| x.is_finite())
+    v.iter().fold(true, |ok, x| ok & x.is_finite())
 }
