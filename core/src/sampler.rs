@@ -173,8 +173,13 @@ fn ou_step<F: Float, R: Rng + ?Sized, const D: usize>(
     grad: &[F; D],
     rng: &mut R,
 ) {
-    for ((xi, yi), &gi) in x.iter_mut().zip(y.iter_mut()).zip(grad) {
-        let (z1, z2) = F::standard_normal_pair(rng);
+    // All the draws first, then the update: the update's loop then has no
+    // branch and vectorises across coordinates (same stream either way).
+    let mut z = [(F::ZERO, F::ZERO); D];
+    for zi in &mut z {
+        *zi = F::standard_normal_pair(rng);
+    }
+    for (((xi, yi), &gi), &(z1, z2)) in x.iter_mut().zip(y.iter_mut()).zip(grad).zip(&z) {
         ou.apply(xi, yi, gi, z1, z2);
     }
 }
