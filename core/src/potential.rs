@@ -66,28 +66,37 @@ impl<F: Float, const D: usize> Potential<F, D> for Rastrigin {
 
     #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        // Blocks of one 128-bit vector: a constant choice, folded away.
-        match trig::lanes::<F>() {
-            2 => rastrigin::<F, D, 2>(x, grad),
-            _ => rastrigin::<F, D, 4>(x, grad),
+        // Constant choices, folded away: blocks of one 128-bit vector where
+        // the target has them, single coordinates where it has not (padding
+        // would only waste work there); the sum's lanes are the same on
+        // every target, so the value's bits are too.
+        match (trig::lanes::<F>(), trig::VECTORS) {
+            (2, true) => rastrigin::<F, D, 2, 2>(x, grad),
+            (2, false) => rastrigin::<F, D, 1, 2>(x, grad),
+            (_, true) => rastrigin::<F, D, 4, 4>(x, grad),
+            (_, false) => rastrigin::<F, D, 1, 4>(x, grad),
         }
     }
 }
 
-/// Rastrigin's value and gradient, `L` coordinates at a time.
+/// Rastrigin's value and gradient, `B` coordinates at a time (`B` is 1 or
+/// `L`), the value summed in `L` lanes.
 #[inline(always)]
-fn rastrigin<F: Float, const D: usize, const L: usize>(x: &[F; D], grad: &mut [F; D]) -> F {
+fn rastrigin<F: Float, const D: usize, const B: usize, const L: usize>(
+    x: &[F; D],
+    grad: &mut [F; D],
+) -> F {
     let mut lanes = [F::ZERO; L];
     let mut all_small = true;
-    for_each_block::<F, L>(x, grad, |xb, gc| {
+    for_each_block::<F, B>(x, grad, |j0, xb, gb| {
         all_small &= trig::all_small(xb);
         let (s, omc) = trig::block(xb);
-        accumulate(xb, gc, &s, &omc, &mut lanes);
+        accumulate(j0, xb, gb, &s, &omc, &mut lanes);
     });
     if all_small {
         sum_lanes(lanes)
     } else {
-        rastrigin_large::<F, D, L>(x, grad)
+        rastrigin_large::<F, D, B, L>(x, grad)
     }
 }
 
@@ -96,36 +105,39 @@ fn rastrigin<F: Float, const D: usize, const L: usize>(x: &[F; D], grad: &mut [F
 /// the hot path neither code nor stack.
 #[cold]
 #[inline(never)]
-fn rastrigin_large<F: Float, const D: usize, const L: usize>(x: &[F; D], grad: &mut [F; D]) -> F {
+fn rastrigin_large<F: Float, const D: usize, const B: usize, const L: usize>(
+    x: &[F; D],
+    grad: &mut [F; D],
+) -> F {
     let mut lanes = [F::ZERO; L];
-    for_each_block::<F, L>(x, grad, |xb, gc| {
+    for_each_block::<F, B>(x, grad, |j0, xb, gb| {
         let (mut s, mut omc) = trig::block(xb);
         trig::patch_large(xb, &mut s, &mut omc);
-        accumulate(xb, gc, &s, &omc, &mut lanes);
+        accumulate(j0, xb, gb, &s, &omc, &mut lanes);
     });
     sum_lanes(lanes)
 }
 
-/// Calls `f(x_block, grad_block)` on the blocks of `L` coordinates, as fixed
-/// arrays (which the compiler vectorises); a short tail is padded with
-/// zeros and its gradient copied back.
+/// Calls `f(j0, x_block, grad_block)` on the blocks of `B` coordinates
+/// starting at `j0`, as fixed arrays (which the compiler vectorises); a
+/// short tail is padded with zeros and its gradient copied back.
 #[inline(always)]
-fn for_each_block<F: Float, const L: usize>(
+fn for_each_block<F: Float, const B: usize>(
     x: &[F],
     grad: &mut [F],
-    mut f: impl FnMut(&[F; L], &mut [F; L]),
+    mut f: impl FnMut(usize, &[F; B], &mut [F; B]),
 ) {
-    let mut xs = x.chunks_exact(L);
-    let mut gs = grad.chunks_exact_mut(L);
-    for (xc, gc) in (&mut xs).zip(&mut gs) {
-        let mut gb = [F::ZERO; L];
-        f(&core::array::from_fn(|k| xc[k]), &mut gb);
+    let mut xs = x.chunks_exact(B);
+    let mut gs = grad.chunks_exact_mut(B);
+    for (c, (xc, gc)) in (&mut xs).zip(&mut gs).enumerate() {
+        let mut gb = [F::ZERO; B];
+        f(c * B, &core::array::from_fn(|k| xc[k]), &mut gb);
         gc.copy_from_slice(&gb);
     }
     let tail = xs.remainder();
     if !tail.is_empty() {
-        let mut gb = [F::ZERO; L];
-        f(&trig::pad::<F, L>(tail), &mut gb);
+        let mut gb = [F::ZERO; B];
+        f(x.len() - tail.len(), &trig::pad::<F, B>(tail), &mut gb);
         let gc = gs.into_remainder();
         gc.copy_from_slice(&gb[..gc.len()]);
     }
@@ -135,16 +147,17 @@ fn for_each_block<F: Float, const L: usize>(
 /// sum per lane (coordinate `j` into lane `j mod L`), so that the additions
 /// vectorise and do not wait on one another.
 #[inline(always)]
-fn accumulate<F: Float, const L: usize>(
-    x: &[F; L],
-    grad: &mut [F; L],
-    s: &[F; L],
-    omc: &[F; L],
+fn accumulate<F: Float, const B: usize, const L: usize>(
+    j0: usize,
+    x: &[F; B],
+    grad: &mut [F; B],
+    s: &[F; B],
+    omc: &[F; B],
     lanes: &mut [F; L],
 ) {
-    for k in 0..L {
-        // Padding lanes add x^2 + omc = 0 exactly.
-        lanes[k] += x[k] * x[k] + omc[k];
+    for k in 0..B {
+        // Padding adds x^2 + omc = 0 exactly.
+        lanes[(j0 + k) % L] += x[k] * x[k] + omc[k];
         grad[k] = F::TWO * x[k] + tau::<F>() * s[k];
     }
 }
@@ -160,6 +173,47 @@ fn sum_lanes<F: Float, const L: usize>(mut lanes: [F; L]) -> F {
         }
     }
     lanes[0]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Blocks of one coordinate (targets without vectors) and of a vector
+    /// give the same bits, value and gradient, in every dimension: the
+    /// cross-target bit-identity of Rastrigin rests on it.
+    fn same_bits<F: Float, const D: usize, const L: usize>() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..500 {
+            let x: [F; D] = core::array::from_fn(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                F::from_f64((state >> 11) as f64 / (1u64 << 53) as f64 * 12.0 - 6.0)
+            });
+            let (mut g1, mut g_l) = ([F::ZERO; D], [F::ZERO; D]);
+            let u1 = rastrigin::<F, D, 1, L>(&x, &mut g1);
+            let u_l = rastrigin::<F, D, L, L>(&x, &mut g_l);
+            assert_eq!(u1.to_bits_u64(), u_l.to_bits_u64());
+            for (a, b) in g1.iter().zip(&g_l) {
+                assert_eq!(a.to_bits_u64(), b.to_bits_u64());
+            }
+        }
+    }
+
+    #[test]
+    fn block_width_does_not_change_bits() {
+        same_bits::<f64, 1, 2>();
+        same_bits::<f64, 2, 2>();
+        same_bits::<f64, 3, 2>();
+        same_bits::<f64, 10, 2>();
+        same_bits::<f64, 17, 2>();
+        same_bits::<f32, 1, 4>();
+        same_bits::<f32, 2, 4>();
+        same_bits::<f32, 3, 4>();
+        same_bits::<f32, 10, 4>();
+        same_bits::<f32, 17, 4>();
+    }
 }
 
 impl<F: Float, const D: usize> KnownMinimum<F, D> for Rastrigin {

@@ -53,10 +53,13 @@ fn horner<F: Float>(coef: &[f64], z: F) -> F {
 }
 
 /// `sum_k coef[k] z^k` as two Horner halves, `lo(z) + z^m hi(z)` with
-/// `m = len/2`: two independent chains, half the latency.
+/// `m = len/2`: two independent chains, half the latency, for one more
+/// multiplication. Only for the f64 length (6): at f32's 4 the gain is nil
+/// on vector hardware and the extra product costs a soft-float call on a
+/// Cortex-M.
 #[inline(always)]
 fn split_horner<F: Float>(coef: &[f64], z: F) -> F {
-    if coef.len() < 4 {
+    if coef.len() < 6 {
         return horner(coef, z);
     }
     let (lo, hi) = coef.split_at(coef.len() / 2);
@@ -67,12 +70,23 @@ fn split_horner<F: Float>(coef: &[f64], z: F) -> F {
     horner(lo, z) + zm * horner(hi, z)
 }
 
-/// Coordinates per block for `F`: one 128-bit vector (SSE2, NEON, wasm
-/// SIMD128), the unit the compiler vectorises; small, so that padding a
-/// short tail wastes little.
+/// Lanes of one 128-bit vector of `F` (SSE2, NEON, wasm SIMD128), the unit
+/// the compiler vectorises; small, so that padding a short tail wastes
+/// little.
 pub(crate) const fn lanes<F>() -> usize {
     16 / core::mem::size_of::<F>()
 }
+
+/// Whether the target has 128-bit float vectors for blocks of [`lanes`]
+/// coordinates; without them (Cortex-M, RISC-V, plain wasm32) a block is one
+/// coordinate. Results do not depend on it.
+pub(crate) const VECTORS: bool = cfg!(any(
+    target_arch = "x86_64",
+    target_arch = "aarch64",
+    target_feature = "sse2",
+    target_feature = "simd128",
+    all(target_arch = "arm", target_feature = "neon")
+));
 
 /// `(sin(2π x_j), 1 - cos(2π x_j))` for one block of coordinates, on the
 /// polynomial path: right where [`all_small`] holds, to be patched by
