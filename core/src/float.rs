@@ -14,6 +14,8 @@ use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
 use rand_core::Rng;
 
+use crate::trig;
+
 use crate::ziggurat_tables as zig;
 
 mod private {
@@ -59,10 +61,12 @@ pub trait Float:
     const ROUND_MAGIC: Self;
     /// Below this `|x|` the fused `sin(2πx)` takes its polynomial path.
     const TRIG_FAST_LIMIT: Self;
-    /// How many of fdlibm's minimax coefficients of `sin t` and `cos t` on
-    /// `|t| <= π/4` this type's precision needs (the dropped terms are below
-    /// a tenth of an ulp).
-    const TRIG_TERMS: (usize, usize);
+    /// fdlibm's minimax coefficients of `sin t` on `|t| <= π/4`, in this
+    /// type, as many as its precision needs (the dropped terms are below a
+    /// tenth of an ulp); Rastrigin's polynomial.
+    const SIN_COEFFICIENTS: &'static [Self];
+    /// The same for `cos t`.
+    const COS_COEFFICIENTS: &'static [Self];
 
     /// Rounds an `f64` to this type (round to nearest, as `as` does).
     fn from_f64(v: f64) -> Self;
@@ -211,6 +215,11 @@ fn normal32<R: Rng + ?Sized>(rng: &mut R, first: (usize, f32)) -> f32 {
     )
 }
 
+/// The first four coefficients, rounded to f32 once, at compile time.
+const fn narrow4(t: &[f64; 6]) -> [f32; 4] {
+    [t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32]
+}
+
 const fn narrow(t: &[f64; 257]) -> [f32; 257] {
     let mut out = [0.0f32; 257];
     let mut i = 0;
@@ -233,7 +242,8 @@ impl Float for f64 {
     const INFINITY: Self = f64::INFINITY;
     const ROUND_MAGIC: Self = 6755399441055744.0;
     const TRIG_FAST_LIMIT: Self = 562949953421312.0; // 2^49
-    const TRIG_TERMS: (usize, usize) = (6, 6);
+    const SIN_COEFFICIENTS: &'static [Self] = &trig::SIN;
+    const COS_COEFFICIENTS: &'static [Self] = &trig::COS;
 
     #[inline]
     fn from_f64(v: f64) -> Self {
@@ -330,7 +340,8 @@ impl Float for f32 {
     const INFINITY: Self = f32::INFINITY;
     const ROUND_MAGIC: Self = 12582912.0;
     const TRIG_FAST_LIMIT: Self = 1048576.0; // 2^20
-    const TRIG_TERMS: (usize, usize) = (4, 4);
+    const SIN_COEFFICIENTS: &'static [Self] = &narrow4(&trig::SIN);
+    const COS_COEFFICIENTS: &'static [Self] = &narrow4(&trig::COS);
 
     #[inline]
     fn from_f64(v: f64) -> Self {

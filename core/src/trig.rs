@@ -45,11 +45,9 @@ pub(crate) const COS: [f64; 6] = [
 
 /// `sum_k coef[k] z^k` by Horner's rule (`coef` non-empty).
 #[inline(always)]
-fn horner<F: Float>(coef: &[f64], z: F) -> F {
-    let (last, rest) = coef.split_last().expect("non-empty");
-    rest.iter()
-        .rev()
-        .fold(F::from_f64(*last), |acc, &c| acc * z + F::from_f64(c))
+fn horner<F: Float>(coef: &[F], z: F) -> F {
+    let (&last, rest) = coef.split_last().expect("non-empty");
+    rest.iter().rev().fold(last, |acc, &c| acc * z + c)
 }
 
 /// `sum_k coef[k] z^k` as two Horner halves, `lo(z) + z^m hi(z)` with
@@ -58,7 +56,7 @@ fn horner<F: Float>(coef: &[f64], z: F) -> F {
 /// on vector hardware and the extra product costs a soft-float call on a
 /// Cortex-M.
 #[inline(always)]
-fn split_horner<F: Float>(coef: &[f64], z: F) -> F {
+fn split_horner<F: Float>(coef: &[F], z: F) -> F {
     if coef.len() < 6 {
         return horner(coef, z);
     }
@@ -94,7 +92,6 @@ pub(crate) const VECTORS: bool = cfg!(any(
 #[inline(always)]
 pub(crate) fn block<F: Float, const L: usize>(x: &[F; L]) -> ([F; L], [F; L]) {
     let magic = F::ROUND_MAGIC;
-    let (sin_terms, cos_terms) = F::TRIG_TERMS;
     let mut s = [F::ZERO; L];
     let mut omc = [F::ZERO; L];
     for ((&xi, si), oi) in x.iter().zip(s.iter_mut()).zip(omc.iter_mut()) {
@@ -106,8 +103,8 @@ pub(crate) fn block<F: Float, const L: usize>(x: &[F; L]) -> ([F; L], [F; L]) {
         let odd = n - F::TWO * ((F::HALF * n + magic) - magic);
         let t = F::PI * r;
         let z = t * t;
-        let sin_t = t + (t * z) * split_horner(&SIN[..sin_terms], z);
-        let cos_t = F::ONE - (F::HALF * z - (z * z) * split_horner(&COS[..cos_terms], z));
+        let sin_t = t + (t * z) * split_horner(F::SIN_COEFFICIENTS, z);
+        let cos_t = F::ONE - (F::HALF * z - (z * z) * split_horner(F::COS_COEFFICIENTS, z));
         let two_sc = (sin_t + sin_t) * cos_t;
         let (sin, w) = if odd == F::ZERO {
             (two_sc, sin_t)
