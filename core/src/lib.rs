@@ -69,14 +69,15 @@
 //! `Xoshiro256PlusPlus` is the default choice, and `Xoshiro128PlusPlus`
 //! suits 32-bit microcontrollers (with it the `f32` normal sampler does
 //! 32-bit arithmetic only: its pairs of normals take one `next_u64`, which
-//! such a generator makes from two `next_u32`). Normals are exact (256-layer Ziggurat). All maths goes
-//! through `libm`, never the platform's library, and the kernel never fuses
-//! multiply-adds, so a seed gives bit-identical results on x86_64, wasm32
-//! and Cortex-M. The `micromath` feature swaps the `f32` exponential and
-//! logarithm of the normal sampler's rare branches (and the sine and cosine
-//! of [`Levy`]) for micromath's smaller approximations: this changes some
-//! `f32` results and makes the normals slightly inexact; the step
-//! coefficients and Rastrigin's fused sine keep full accuracy.
+//! such a generator makes from two `next_u32`). Normals are exact (256-layer
+//! Ziggurat). All maths goes through `libm`, never the platform's library,
+//! and the kernel never fuses multiply-adds, so a seed gives bit-identical
+//! results on x86_64, wasm32 and Cortex-M. The `micromath` feature swaps
+//! the `f32` exponential and logarithm of the normal sampler's rare
+//! branches (and the sine and cosine of [`Levy`]) for micromath's smaller
+//! approximations: this changes some `f32` results and makes the normals
+//! slightly inexact; the step coefficients and Rastrigin's polynomial sine
+//! keep full accuracy.
 //!
 //! # Memory
 //!
