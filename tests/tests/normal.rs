@@ -12,8 +12,8 @@ use std::time::Instant;
 
 use hrla::Float;
 use hrla_tests::stats::{
-    Summary, kolmogorov_critical, kolmogorov_sf, ks_statistic, normal_cdf, normal_sf, simpson,
-    z_score,
+    Summary, covariance, kolmogorov_critical, kolmogorov_sf, ks_statistic, normal_cdf, normal_sf,
+    simpson, z_score,
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -86,19 +86,8 @@ fn pairs<F: Float>(label: &str, seed: u64) {
         a.push(z1.to_f64());
         b.push(z2.to_f64());
     }
-    let corr = |u: &[f64], v: &[f64]| {
-        let (mu, mv) = (
-            u.iter().sum::<f64>() / n as f64,
-            v.iter().sum::<f64>() / n as f64,
-        );
-        let (mut suv, mut suu, mut svv) = (0.0, 0.0, 0.0);
-        for (x, y) in u.iter().zip(v) {
-            suv += (x - mu) * (y - mv);
-            suu += (x - mu) * (x - mu);
-            svv += (y - mv) * (y - mv);
-        }
-        suv / (suu * svv).sqrt()
-    };
+    let corr =
+        |u: &[f64], v: &[f64]| covariance(u, v) / (Summary::of(u).var * Summary::of(v).var).sqrt();
     let square = |v: &[f64]| v.iter().map(|x| x * x).collect::<Vec<_>>();
     let z_value = corr(&a, &b) * (n as f64).sqrt();
     let z_square = corr(&square(&a), &square(&b)) * (n as f64).sqrt();
