@@ -47,10 +47,11 @@ fn tau<F: Float>() -> F {
 /// bracket formed without cancellation (as `2 sin^2(πx_i)` or
 /// `2 cos^2(πx_i)`), so it is accurate near the minimum even in f32. The sine
 /// and `1 - cos` come from a vectorisable polynomial evaluation, one 128-bit
-/// vector of coordinates at a time, after an exact reduction of `x` modulo
-/// 1/2 (within a few ulps of the exact values; `Float::fast_sin_cos` only for
-/// `|x| >= 2^49`, or `2^20` in f32). The sum runs in one partial sum per
-/// vector lane, added pairwise at the end.
+/// vector of coordinates at a time (256-bit with AVX), after an exact
+/// reduction of `x` modulo 1/2 (within a few ulps of the exact values;
+/// `Float::fast_sin_cos` only for `|x| >= 2^49`, or `2^20` in f32). The sum
+/// runs in one partial sum per 128-bit lane, added pairwise at the end, so
+/// the bits do not depend on the vector width.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Rastrigin;
 
@@ -66,21 +67,26 @@ impl<F: Float, const D: usize> Potential<F, D> for Rastrigin {
 
     #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        // Constant choices, folded away: blocks of one 128-bit vector where
-        // the target has them, single coordinates where it has not (padding
-        // would only waste work there); the sum's lanes are the same on
-        // every target, so the value's bits are too.
-        match (trig::lanes::<F>(), trig::VECTORS) {
-            (2, true) => rastrigin::<F, D, 2, 2>(x, grad),
-            (2, false) => rastrigin::<F, D, 1, 2>(x, grad),
-            (_, true) => rastrigin::<F, D, 4, 4>(x, grad),
-            (_, false) => rastrigin::<F, D, 1, 4>(x, grad),
+        // Constant choices, folded away: blocks of one 256-bit vector where
+        // the target has them (AVX) and the point fills one, else of one
+        // 128-bit vector, single coordinates without vectors (padding would
+        // only waste work there). The sum's lanes are the same on every
+        // target, so the value's bits are too.
+        let l = trig::lanes::<F>();
+        match (l, trig::VECTORS, trig::WIDE && D >= 2 * l) {
+            (2, true, true) => rastrigin::<F, D, 4, 2>(x, grad),
+            (2, true, false) => rastrigin::<F, D, 2, 2>(x, grad),
+            (2, false, _) => rastrigin::<F, D, 1, 2>(x, grad),
+            (_, true, true) => rastrigin::<F, D, 8, 4>(x, grad),
+            (_, true, false) => rastrigin::<F, D, 4, 4>(x, grad),
+            (_, false, _) => rastrigin::<F, D, 1, 4>(x, grad),
         }
     }
 }
 
-/// Rastrigin's value and gradient, `B` coordinates at a time (`B` is 1 or
-/// `L`), the value summed in `L` lanes.
+/// Rastrigin's value and gradient, `B` coordinates at a time (`B` is 1, `L`
+/// or `2L`; a tail shorter than `B` goes by blocks of `min(B, L)`), the
+/// value summed in `L` lanes.
 #[inline(always)]
 fn rastrigin<F: Float, const D: usize, const B: usize, const L: usize>(
     x: &[F; D],
@@ -88,29 +94,47 @@ fn rastrigin<F: Float, const D: usize, const B: usize, const L: usize>(
 ) -> F {
     let mut lanes = [F::ZERO; L];
     let mut all_small = true;
-    for_each_block::<F, B>(x, grad, |j0, xb, gb| {
-        all_small &= trig::all_small(xb);
-        let (s, omc) = trig::block(xb);
-        accumulate(j0, xb, gb, &s, &omc, &mut lanes);
+    // With B = 2L, the tail past the last full block goes by blocks of L;
+    // otherwise the blocks of B cover everything, a short tail padded.
+    let head = if B > L { D / B * B } else { D };
+    for_each_block::<F, B>(&x[..head], &mut grad[..head], 0, |j0, xb, gb| {
+        all_small &= polynomial_block(j0, xb, gb, &mut lanes);
     });
+    if head < D {
+        for_each_block::<F, L>(&x[head..], &mut grad[head..], head, |j0, xb, gb| {
+            all_small &= polynomial_block(j0, xb, gb, &mut lanes);
+        });
+    }
     if all_small {
         sum_lanes(lanes)
     } else {
-        rastrigin_large::<F, D, B, L>(x, grad)
+        rastrigin_large::<F, D, L>(x, grad)
     }
+}
+
+/// One block on the polynomial path, into `grad` and the lanes; `false` if
+/// a coordinate needs the fallback (the caller then starts again).
+#[inline(always)]
+fn polynomial_block<F: Float, const B: usize, const L: usize>(
+    j0: usize,
+    x: &[F; B],
+    grad: &mut [F; B],
+    lanes: &mut [F; L],
+) -> bool {
+    let (s, omc) = trig::block(x);
+    accumulate(j0, x, grad, &s, &omc, lanes);
+    trig::all_small(x)
 }
 
 /// [`rastrigin`] again, with the trigonometry of huge or non-finite
 /// coordinates from [`Float::fast_sin_cos`]: out of line, so that it costs
-/// the hot path neither code nor stack.
+/// the hot path neither code nor stack; by blocks of one coordinate, the
+/// lanes' sums being the same for every block width.
 #[cold]
 #[inline(never)]
-fn rastrigin_large<F: Float, const D: usize, const B: usize, const L: usize>(
-    x: &[F; D],
-    grad: &mut [F; D],
-) -> F {
+fn rastrigin_large<F: Float, const D: usize, const L: usize>(x: &[F; D], grad: &mut [F; D]) -> F {
     let mut lanes = [F::ZERO; L];
-    for_each_block::<F, B>(x, grad, |j0, xb, gb| {
+    for_each_block::<F, 1>(x, grad, 0, |j0, xb, gb| {
         let (mut s, mut omc) = trig::block(xb);
         trig::patch_large(xb, &mut s, &mut omc);
         accumulate(j0, xb, gb, &s, &omc, &mut lanes);
@@ -118,26 +142,33 @@ fn rastrigin_large<F: Float, const D: usize, const B: usize, const L: usize>(
     sum_lanes(lanes)
 }
 
-/// Calls `f(j0, x_block, grad_block)` on the blocks of `B` coordinates
-/// starting at `j0`, as fixed arrays (which the compiler vectorises); a
-/// short tail is padded with zeros and its gradient copied back.
+/// Calls `f(j, x_block, grad_block)` on the blocks of `B` coordinates, `j`
+/// being the index in the whole point of the block's first coordinate
+/// (`x[0]` is coordinate `first`), as fixed arrays (which the compiler
+/// vectorises); a short tail is padded with zeros and its gradient copied
+/// back.
 #[inline(always)]
 fn for_each_block<F: Float, const B: usize>(
     x: &[F],
     grad: &mut [F],
+    first: usize,
     mut f: impl FnMut(usize, &[F; B], &mut [F; B]),
 ) {
     let mut xs = x.chunks_exact(B);
     let mut gs = grad.chunks_exact_mut(B);
     for (c, (xc, gc)) in (&mut xs).zip(&mut gs).enumerate() {
         let mut gb = [F::ZERO; B];
-        f(c * B, &core::array::from_fn(|k| xc[k]), &mut gb);
+        f(first + c * B, &core::array::from_fn(|k| xc[k]), &mut gb);
         gc.copy_from_slice(&gb);
     }
     let tail = xs.remainder();
     if !tail.is_empty() {
         let mut gb = [F::ZERO; B];
-        f(x.len() - tail.len(), &trig::pad::<F, B>(tail), &mut gb);
+        f(
+            first + x.len() - tail.len(),
+            &trig::pad::<F, B>(tail),
+            &mut gb,
+        );
         let gc = gs.into_remainder();
         gc.copy_from_slice(&gb[..gc.len()]);
     }
@@ -179,10 +210,13 @@ fn sum_lanes<F: Float, const L: usize>(mut lanes: [F; L]) -> F {
 mod tests {
     use super::*;
 
-    /// Blocks of one coordinate (targets without vectors) and of a vector
-    /// give the same bits, value and gradient, in every dimension: the
-    /// cross-target bit-identity of Rastrigin rests on it.
-    fn same_bits<F: Float, const D: usize, const L: usize>() {
+    type Evaluation<F, const D: usize> = fn(&[F; D], &mut [F; D]) -> F;
+
+    /// Blocks of one coordinate (targets without vectors), of a 128-bit
+    /// vector and of a 256-bit one (AVX), and the fallback's loop, give the
+    /// same bits, value and gradient, in every dimension: the cross-target
+    /// bit-identity of Rastrigin rests on it.
+    fn same_bits<F: Float, const D: usize, const L: usize, const L2: usize>() {
         let mut state = 0x2545_f491_4f6c_dd1du64;
         for _ in 0..500 {
             let x: [F; D] = core::array::from_fn(|_| {
@@ -191,28 +225,38 @@ mod tests {
                 state ^= state << 17;
                 F::from_f64((state >> 11) as f64 / (1u64 << 53) as f64 * 12.0 - 6.0)
             });
-            let (mut g1, mut g_l) = ([F::ZERO; D], [F::ZERO; D]);
+            let mut g1 = [F::ZERO; D];
             let u1 = rastrigin::<F, D, 1, L>(&x, &mut g1);
-            let u_l = rastrigin::<F, D, L, L>(&x, &mut g_l);
-            assert_eq!(u1.to_bits_u64(), u_l.to_bits_u64());
-            for (a, b) in g1.iter().zip(&g_l) {
-                assert_eq!(a.to_bits_u64(), b.to_bits_u64());
+            let widths: [Evaluation<F, D>; 3] = [
+                rastrigin::<F, D, L, L>,
+                rastrigin::<F, D, L2, L>,
+                rastrigin_large::<F, D, L>,
+            ];
+            for run in widths {
+                let mut g = [F::ZERO; D];
+                assert_eq!(u1.to_bits_u64(), run(&x, &mut g).to_bits_u64());
+                for (a, b) in g1.iter().zip(&g) {
+                    assert_eq!(a.to_bits_u64(), b.to_bits_u64());
+                }
             }
         }
     }
 
     #[test]
     fn block_width_does_not_change_bits() {
-        same_bits::<f64, 1, 2>();
-        same_bits::<f64, 2, 2>();
-        same_bits::<f64, 3, 2>();
-        same_bits::<f64, 10, 2>();
-        same_bits::<f64, 17, 2>();
-        same_bits::<f32, 1, 4>();
-        same_bits::<f32, 2, 4>();
-        same_bits::<f32, 3, 4>();
-        same_bits::<f32, 10, 4>();
-        same_bits::<f32, 17, 4>();
+        same_bits::<f64, 1, 2, 4>();
+        same_bits::<f64, 2, 2, 4>();
+        same_bits::<f64, 3, 2, 4>();
+        same_bits::<f64, 4, 2, 4>();
+        same_bits::<f64, 5, 2, 4>();
+        same_bits::<f64, 10, 2, 4>();
+        same_bits::<f64, 17, 2, 4>();
+        same_bits::<f32, 1, 4, 8>();
+        same_bits::<f32, 2, 4, 8>();
+        same_bits::<f32, 3, 4, 8>();
+        same_bits::<f32, 8, 4, 8>();
+        same_bits::<f32, 10, 4, 8>();
+        same_bits::<f32, 17, 4, 8>();
     }
 }
 

@@ -75,6 +75,10 @@ pub(crate) const fn lanes<F>() -> usize {
     16 / core::mem::size_of::<F>()
 }
 
+/// Whether the target has 256-bit float vectors (AVX): blocks of two
+/// [`lanes`] vectors. Results do not depend on it.
+pub(crate) const WIDE: bool = cfg!(target_feature = "avx");
+
 /// Whether the target has 128-bit float vectors for blocks of [`lanes`]
 /// coordinates; without them (Cortex-M, RISC-V, plain wasm32) a block is one
 /// coordinate. Results do not depend on it.
