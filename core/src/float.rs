@@ -61,6 +61,12 @@ pub trait Float:
     const ROUND_MAGIC: Self;
     /// Below this `|x|` the fused `sin(2πx)` takes its polynomial path.
     const TRIG_FAST_LIMIT: Self;
+    /// The Ziggurat's wedge test decides by bounds of the density, without
+    /// `exp`, only when they clear the point by this much (an absolute
+    /// margin on densities `<= 1`): far above the rounding errors of either
+    /// side, so the decision is always that of `exp`. Infinite (never
+    /// decide without `exp`) for micromath's approximate `f32` exponential.
+    const WEDGE_MARGIN: Self;
     /// fdlibm's minimax coefficients of `sin t` on `|t| <= π/4`, in this
     /// type, as many as its precision needs (the dropped terms are below a
     /// tenth of an ulp); Rastrigin's polynomial.
@@ -173,7 +179,8 @@ fn ziggurat_slow<F: Float, R: Rng + ?Sized>(
             }
         }
         // Wedge between the rectangle and the density.
-        if f_tab[i + 1] + (f_tab[i] - f_tab[i + 1]) * uniform(rng) < (-x * x * F::HALF).fast_exp() {
+        let y = f_tab[i + 1] + (f_tab[i] - f_tab[i + 1]) * uniform(rng);
+        if under_density(x, y, x_tab[i + 1], x_tab[i], f_tab[i + 1], f_tab[i]) {
             return x;
         }
         // Rejected: a fresh draw, with its own fast path.
@@ -182,6 +189,64 @@ fn ziggurat_slow<F: Float, R: Rng + ?Sized>(
         if x.abs() < x_tab[i + 1] {
             return x;
         }
+    }
+}
+
+/// Whether the wedge point `(x, y)` of the layer between the edges `x0 < x1`
+/// (with densities `f0 = f(x0) > f1 = f(x1)`) lies under the density
+/// `f(x) = exp(-x^2/2)`: the test `y < f(x)`, with `exp` only where cheap
+/// bounds of `f` leave it open.
+///
+/// Outside the inflection at `|x| = 1` a layer's curve is convex (`|x| >= 1`:
+/// below its chord, above its tangents at both edges) or concave (`|x| <= 1`:
+/// the reverse). The bounds decide only with [`Float::WEDGE_MARGIN`] to
+/// spare, which exceeds every rounding error of the tables, the bounds and
+/// `exp`, so the answer is always the `exp` comparison's: same stream, same
+/// bits, and `exp` for about 1% of wedge points in f64, 5% in f32, instead
+/// of all (the unit test below counts them).
+#[inline(always)]
+fn under_density<F: Float>(x: F, y: F, x0: F, x1: F, f0: F, f1: F) -> bool {
+    // Only on targets with float vectors (hosts, wasm SIMD): on a Cortex-M3
+    // the bounds saved 0.3% of the instructions for 340 bytes of flash.
+    let verdict = if trig::VECTORS {
+        squeeze(x, y, x0, x1, f0, f1)
+    } else {
+        None
+    };
+    verdict.unwrap_or_else(|| y < (-x * x * F::HALF).fast_exp())
+}
+
+/// The bounds' verdict on `y < f(x)` in [`under_density`], `None` when they
+/// leave it open.
+#[inline(always)]
+fn squeeze<F: Float>(x: F, y: F, x0: F, x1: F, f0: F, f1: F) -> Option<bool> {
+    let a = x.abs();
+    let chord = f0 + (f1 - f0) * ((a - x0) / (x1 - x0));
+    let tangent0 = f0 * (F::ONE - x0 * (a - x0));
+    let tangent1 = f1 * (F::ONE - x1 * (a - x1));
+    let (lower, upper) = if x0 >= F::ONE {
+        let t = if tangent0 > tangent1 {
+            tangent0
+        } else {
+            tangent1
+        };
+        (t, chord)
+    } else if x1 <= F::ONE {
+        let t = if tangent0 < tangent1 {
+            tangent0
+        } else {
+            tangent1
+        };
+        (chord, t)
+    } else {
+        return None;
+    };
+    if y < lower - F::WEDGE_MARGIN {
+        Some(true)
+    } else if y > upper + F::WEDGE_MARGIN {
+        Some(false)
+    } else {
+        None
     }
 }
 
@@ -242,6 +307,7 @@ impl Float for f64 {
     const INFINITY: Self = f64::INFINITY;
     const ROUND_MAGIC: Self = 6755399441055744.0;
     const TRIG_FAST_LIMIT: Self = 562949953421312.0; // 2^49
+    const WEDGE_MARGIN: Self = 9.094947017729282e-13; // 2^-40
     const SIN_COEFFICIENTS: &'static [Self] = &trig::SIN;
     const COS_COEFFICIENTS: &'static [Self] = &trig::COS;
 
@@ -340,6 +406,10 @@ impl Float for f32 {
     const INFINITY: Self = f32::INFINITY;
     const ROUND_MAGIC: Self = 12582912.0;
     const TRIG_FAST_LIMIT: Self = 1048576.0; // 2^20
+    #[cfg(not(feature = "micromath"))]
+    const WEDGE_MARGIN: Self = 6.1035156e-5; // 2^-14
+    #[cfg(feature = "micromath")]
+    const WEDGE_MARGIN: Self = f32::INFINITY;
     const SIN_COEFFICIENTS: &'static [Self] = &narrow4(&trig::SIN);
     const COS_COEFFICIENTS: &'static [Self] = &narrow4(&trig::COS);
 
@@ -437,5 +507,56 @@ impl Float for f32 {
         let bits = rng.next_u64();
         let z1 = normal32(rng, split32(bits as u32));
         (z1, normal32(rng, split32((bits >> 32) as u32)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand_xoshiro::Xoshiro256PlusPlus;
+    use rand_xoshiro::rand_core::SeedableRng;
+
+    /// The wedge squeeze never contradicts the `exp` test, on uniform wedge
+    /// points and on points within a few ulps of the curve (where only a
+    /// margin too small would show), and it settles most uniform points.
+    fn squeeze_agrees<F: Float>(x_tab: &[F; 257], f_tab: &[F; 257], ulp: f64) {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(11);
+        let unit =
+            |rng: &mut Xoshiro256PlusPlus| (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let (mut uniform, mut settled) = (0u32, 0u32);
+        for i in 1..256 {
+            let (x0, x1, f0, f1) = (x_tab[i + 1], x_tab[i], f_tab[i + 1], f_tab[i]);
+            for k in 0..2000 {
+                // A wedge abscissa, either sign.
+                let t = F::from_f64(unit(&mut rng));
+                let x = (x0 + (x1 - x0) * t) * if k % 2 == 0 { F::ONE } else { -F::ONE };
+                if !(x.abs() >= x0 && x.abs() <= x1) {
+                    continue;
+                }
+                let f = (-x * x * F::HALF).fast_exp();
+                let near = f * F::from_f64(1.0 + ulp * (unit(&mut rng) * 16.0 - 8.0));
+                let y_uniform = f0 + (f1 - f0) * F::from_f64(unit(&mut rng));
+                for y in [near, y_uniform] {
+                    if let Some(verdict) = squeeze(x, y, x0, x1, f0, f1) {
+                        assert_eq!(verdict, y < f, "layer {i}, x = {x}, y = {y}");
+                    }
+                }
+                uniform += 1;
+                settled += u32::from(squeeze(x, y_uniform, x0, x1, f0, f1).is_some());
+            }
+        }
+        // Measured: 99.2% in f64, 95.3% in f32; a squeeze that settled
+        // little would only add work.
+        assert!(
+            settled as f64 > 0.9 * uniform as f64,
+            "{settled} of {uniform}"
+        );
+    }
+
+    #[test]
+    fn wedge_squeeze_agrees_with_exp() {
+        squeeze_agrees::<f64>(&zig::X, &zig::F, f64::EPSILON);
+        #[cfg(not(feature = "micromath"))]
+        squeeze_agrees::<f32>(&X32, &F32, f32::EPSILON as f64);
     }
 }
