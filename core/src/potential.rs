@@ -92,38 +92,22 @@ fn rastrigin<F: Float, const D: usize, const B: usize, const L: usize>(
     x: &[F; D],
     grad: &mut [F; D],
 ) -> F {
-    let mut lanes = [F::ZERO; L];
-    let mut all_small = true;
+    let mut sum = Polynomial {
+        lanes: [F::ZERO; L],
+        all_small: true,
+    };
     // With B = 2L, the tail past the last full block goes by blocks of L;
     // otherwise the blocks of B cover everything, a short tail padded.
     let head = if B > L { D / B * B } else { D };
-    for_each_block::<F, B>(&x[..head], &mut grad[..head], 0, |j0, xb, gb| {
-        all_small &= polynomial_block(j0, xb, gb, &mut lanes);
-    });
+    for_each_block::<F, B, _>(&x[..head], &mut grad[..head], 0, &mut sum);
     if head < D {
-        for_each_block::<F, L>(&x[head..], &mut grad[head..], head, |j0, xb, gb| {
-            all_small &= polynomial_block(j0, xb, gb, &mut lanes);
-        });
+        for_each_block::<F, L, _>(&x[head..], &mut grad[head..], head, &mut sum);
     }
-    if all_small {
-        sum_lanes(lanes)
+    if sum.all_small {
+        sum_lanes(sum.lanes)
     } else {
         rastrigin_large::<F, D, L>(x, grad)
     }
-}
-
-/// One block on the polynomial path, into `grad` and the lanes; `false` if
-/// a coordinate needs the fallback (the caller then starts again).
-#[inline(always)]
-fn polynomial_block<F: Float, const B: usize, const L: usize>(
-    j0: usize,
-    x: &[F; B],
-    grad: &mut [F; B],
-    lanes: &mut [F; L],
-) -> bool {
-    let (s, omc) = trig::block(x);
-    accumulate(j0, x, grad, &s, &omc, lanes);
-    trig::all_small(x)
 }
 
 /// [`rastrigin`] again, with the trigonometry of huge or non-finite
@@ -133,38 +117,73 @@ fn polynomial_block<F: Float, const B: usize, const L: usize>(
 #[cold]
 #[inline(never)]
 fn rastrigin_large<F: Float, const D: usize, const L: usize>(x: &[F; D], grad: &mut [F; D]) -> F {
-    let mut lanes = [F::ZERO; L];
-    for_each_block::<F, 1>(x, grad, 0, |j0, xb, gb| {
-        let (mut s, mut omc) = trig::block(xb);
-        trig::patch_large(xb, &mut s, &mut omc);
-        accumulate(j0, xb, gb, &s, &omc, &mut lanes);
-    });
-    sum_lanes(lanes)
+    let mut sum = Fallback {
+        lanes: [F::ZERO; L],
+    };
+    for_each_block::<F, 1, _>(x, grad, 0, &mut sum);
+    sum_lanes(sum.lanes)
 }
 
-/// Calls `f(j, x_block, grad_block)` on the blocks of `B` coordinates, `j`
-/// being the index in the whole point of the block's first coordinate
-/// (`x[0]` is coordinate `first`), as fixed arrays (which the compiler
-/// vectorises); a short tail is padded with zeros and its gradient copied
-/// back.
+/// What to do with each block of [`for_each_block`]: a trait rather than a
+/// closure, so that the block's work is always inlined into the loop (a
+/// closure was sometimes left out of line, one call per block, 15% of a
+/// step in the reproduction tool) and one visitor serves blocks of any width.
+trait Visit<F> {
+    /// Block of `W` coordinates, the first being coordinate `j0`.
+    fn visit<const W: usize>(&mut self, j0: usize, x: &[F; W], grad: &mut [F; W]);
+}
+
+/// The polynomial path: gradients and lanes, and whether every coordinate
+/// was in its range (else the caller starts again with [`Fallback`]).
+struct Polynomial<F, const L: usize> {
+    lanes: [F; L],
+    all_small: bool,
+}
+
+impl<F: Float, const L: usize> Visit<F> for Polynomial<F, L> {
+    #[inline(always)]
+    fn visit<const W: usize>(&mut self, j0: usize, x: &[F; W], grad: &mut [F; W]) {
+        self.all_small &= trig::all_small(x);
+        let (s, omc) = trig::block(x);
+        accumulate(j0, x, grad, &s, &omc, &mut self.lanes);
+    }
+}
+
+/// The polynomial patched by `Float::fast_sin_cos` where out of its range.
+struct Fallback<F, const L: usize> {
+    lanes: [F; L],
+}
+
+impl<F: Float, const L: usize> Visit<F> for Fallback<F, L> {
+    #[inline(always)]
+    fn visit<const W: usize>(&mut self, j0: usize, x: &[F; W], grad: &mut [F; W]) {
+        let (mut s, mut omc) = trig::block(x);
+        trig::patch_large(x, &mut s, &mut omc);
+        accumulate(j0, x, grad, &s, &omc, &mut self.lanes);
+    }
+}
+
+/// Visits the blocks of `B` coordinates, `x[0]` being coordinate `first` of
+/// the point, as fixed arrays (which the compiler vectorises); a short tail
+/// is padded with zeros and its gradient copied back.
 #[inline(always)]
-fn for_each_block<F: Float, const B: usize>(
+fn for_each_block<F: Float, const B: usize, V: Visit<F>>(
     x: &[F],
     grad: &mut [F],
     first: usize,
-    mut f: impl FnMut(usize, &[F; B], &mut [F; B]),
+    v: &mut V,
 ) {
     let mut xs = x.chunks_exact(B);
     let mut gs = grad.chunks_exact_mut(B);
     for (c, (xc, gc)) in (&mut xs).zip(&mut gs).enumerate() {
         let mut gb = [F::ZERO; B];
-        f(first + c * B, &core::array::from_fn(|k| xc[k]), &mut gb);
+        v.visit(first + c * B, &core::array::from_fn(|k| xc[k]), &mut gb);
         gc.copy_from_slice(&gb);
     }
     let tail = xs.remainder();
     if !tail.is_empty() {
         let mut gb = [F::ZERO; B];
-        f(
+        v.visit(
             first + x.len() - tail.len(),
             &trig::pad::<F, B>(tail),
             &mut gb,
