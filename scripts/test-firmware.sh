@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The firmware example (tests/firmware) on an emulated Cortex-M3: builds it
+# The firmware example (examples/firmware/qemu) on an emulated Cortex-M3: builds it
 # for thumbv7m-none-eabi in every variant, runs each under QEMU's
 # lm3s6965evb, asserts that its result lines equal, byte for byte, those of
-# the same computation on the host (tests/embedded), and prints the
+# the same computation on the host (examples/firmware/shared), and prints the
 # footprint table of the README. Installs qemu-system-arm,
 # binutils-arm-none-eabi (Debian) and the rustup target when missing.
 # Called by scripts/test.sh.
@@ -35,7 +35,7 @@ out=${HRLA_FIRMWARE_OUT:-$target_dir/firmware-check}
 mkdir -p "$out"
 
 step "firmware crate: format and lints (its own workspace)"
-(cd tests/firmware && cargo fmt -- --check &&
+(cd examples/firmware/qemu && cargo fmt -- --check &&
   cargo clippy --quiet --release --target-dir "$target_dir" --all-targets --features fmt,micromath -- -D warnings &&
   RUSTDOCFLAGS="-D warnings" cargo doc --quiet --no-deps --target-dir "$target_dir")
 
@@ -62,7 +62,7 @@ for fp in f32 f64; do
     step "firmware $name: build, run under QEMU, compare with the host"
     # From its own directory: cargo reads .cargo/config.toml (target, linker
     # script) from the working directory, not from --manifest-path.
-    (cd tests/firmware && cargo build --quiet --release --target-dir "$target_dir" \
+    (cd examples/firmware/qemu && cargo build --quiet --release --target-dir "$target_dir" \
       --no-default-features --features "$features")
     elf=$out/hrla-firmware-$fp${extra:+-$extra}.elf
     cp "$target_dir/thumbv7m-none-eabi/release/hrla-firmware" "$elf"

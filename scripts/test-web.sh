@@ -26,7 +26,7 @@ cargo run --quiet -p hrla-wasm --example trace -- wasm/tests/trace-cases.txt \
 
 # The firmware example's computation in wasm, without and with micromath, and
 # the host's report of each variant (file names as in test-firmware.sh), for
-# browser-tests/embedded.test.mjs. It also compares with the firmware's output
+# web/tests/embedded.test.mjs. It also compares with the firmware's output
 # under QEMU when $HRLA_FIRMWARE_OUT names it (scripts/test.sh does).
 build_embedded_wasm "$HRLA_WEB_OUT/embedded-node"
 build_embedded_wasm "$HRLA_WEB_OUT/embedded-node-micromath" micromath
@@ -47,6 +47,6 @@ if [ ! -x /usr/bin/chromium ]; then
 fi
 
 # Always: npm ci installs exactly the lock file (one package, a second or two).
-(cd browser-tests && npm ci --no-audit --no-fund)
+(cd web/tests && npm ci --no-audit --no-fund)
 
-node --test browser-tests/*.test.mjs
+node --test web/tests/*.test.mjs

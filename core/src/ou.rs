@@ -10,7 +10,7 @@
 //! omega(u) = (u - 2 tanh(u/2)) / u^3
 //! ```
 //!
-//! the spec's formulas (`../shared/spec/HRLA.md`, section 4) become
+//! the spec's formulas (`docs/SPEC.md`, section 4) become
 //!
 //! ```text
 //! mean_x = x + h phi1(u) y - (beta h + gamma h^2 phi2(u)) g

@@ -1,5 +1,5 @@
 //! Prints the bit patterns of runs of the wrapper, natively, for the
-//! bit-identity test: `browser-tests/same-numbers.test.mjs` runs the same
+//! bit-identity test: `web/tests/same-numbers.test.mjs` runs the same
 //! cases in the wasm build under Node and compares the lines.
 //!
 //! Usage: `cargo run -p hrla-wasm --example trace -- wasm/tests/trace-cases.txt`

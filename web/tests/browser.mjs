@@ -7,7 +7,7 @@ import { dirname, join, resolve } from "node:path";
 import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
 
-export const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), "..");
+export const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), "..", "..");
 /** Where test artefacts (screenshots, traces) go: $HRLA_WEB_OUT or target/web-tests. */
 export const OUT = process.env.HRLA_WEB_OUT ?? join(ROOT, "target", "web-tests");
 

@@ -6,7 +6,7 @@ import assert from "node:assert/strict";
 import { mkdirSync } from "node:fs";
 import { join } from "node:path";
 import { after, before, test } from "node:test";
-import { startServer } from "../scripts/static-server.mjs";
+import { startServer } from "../../scripts/static-server.mjs";
 import { launch, OUT, ROOT } from "./browser.mjs";
 
 let server;

@@ -1,6 +1,6 @@
 //! The computation of the firmware example, shared word for word by the
-//! Cortex-M firmware (`tests/firmware`), the host (`hrla-embedded-host`) and
-//! wasm in Node (`tests/embedded-wasm`), so that their outputs can be
+//! Cortex-M firmware (`examples/firmware/qemu`), the host (`hrla-embedded-host`) and
+//! wasm in Node (`examples/firmware/wasm`), so that their outputs can be
 //! compared byte for byte.
 //!
 //! [`run`] performs Algorithm 1 on 2-D Rastrigin with HRLA, N = 16 chains,

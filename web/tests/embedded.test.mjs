@@ -1,5 +1,5 @@
-// The firmware example's computation (tests/embedded, crate hrla-embedded)
-// compiled to wasm (tests/embedded-wasm) and run in Node prints the same
+// The firmware example's computation (examples/firmware/shared, crate hrla-embedded)
+// compiled to wasm (examples/firmware/wasm) and run in Node prints the same
 // report, byte for byte, as the host (hrla-embedded-host) and as the
 // Cortex-M3 firmware under QEMU: in f32, f64, and both with micromath.
 //

@@ -5,7 +5,7 @@
 //!
 //! `scripts/test-web.sh` builds it for `wasm32-unknown-unknown` (with and
 //! without the `micromath` feature), binds it with
-//! `wasm-bindgen --target nodejs`, and `browser-tests/embedded.test.mjs`
+//! `wasm-bindgen --target nodejs`, and `web/tests/embedded.test.mjs`
 //! compares its reports, byte for byte, with the host's and the firmware's.
 
 #![deny(missing_docs)]

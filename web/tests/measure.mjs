@@ -2,9 +2,9 @@
 // chain-steps per second, as the page's own meters show them, for 256 chains
 // at several steps per frame. A measurement for the README, not a test.
 //
-//   node browser-tests/measure.mjs        (after scripts/serve.sh or test-web.sh built web/pkg)
+//   node web/tests/measure.mjs        (after scripts/serve.sh or test-web.sh built web/pkg)
 import { join } from "node:path";
-import { startServer } from "../scripts/static-server.mjs";
+import { startServer } from "../../scripts/static-server.mjs";
 import { launch, ROOT } from "./browser.mjs";
 
 const server = await startServer(join(ROOT, "web"), 0);
