@@ -1,4 +1,6 @@
 //! Shared helpers of the host-side tests.
 pub mod dd;
+pub mod hostile;
+pub mod prop;
 pub mod reference;
 pub mod stats;
