@@ -1,5 +1,10 @@
 //! `AnySampler` and `AnySchedule` are pure delegation: the same numbers, bit
 //! for bit, as the sampler or schedule they wrap.
+//!
+//! The wrappers exist so that a caller can pick a sampler or schedule at
+//! run time; that choice must give exactly the run the concrete type gives,
+//! so a wrong or missing forward (a swapped arm, a default method left in
+//! place) is caught here rather than as a slightly different result.
 
 use hrla::{
     AnySampler, AnySchedule, Constant, Geometric, Hrla, HrlaParams, Linear, Ola, OlaParams,

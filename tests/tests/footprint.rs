@@ -1,4 +1,9 @@
-//! The memory footprint quoted in the crate docs.
+//! The memory footprint quoted in the crate docs (`core/src/lib.rs`) and
+//! the README.
+//!
+//! The optimiser is a fixed-size value meant for a microcontroller's stack
+//! or a static; users size their memory by those figures, so a change of
+//! layout must fail here until the docs say the new size.
 
 use hrla::{Constant, Hrla, Optimizer, Rastrigin};
 use std::mem::size_of;

@@ -1,5 +1,10 @@
 //! The invariant law of the chains.
 //!
+//! The optimiser rests on chains at inverse temperature `a` sampling
+//! `exp(-a U)`: this checks that end to end, and that the discretisation's
+//! bias at a finite step `h` is the one the exact linear theory predicts
+//! rather than an error of the kernel.
+//!
 //! (a) Quadratic potential `U = k x^2 / 2` in one dimension: every sampler's
 //! step is a linear Gaussian map `s' = M s + N(0, C)` of the state
 //! `s = (x, y)`, so the discrete chain's stationary covariance is the exact

@@ -2,6 +2,10 @@
 //! empirical law of `(x', y')` over 10^6 draws has the closed-form mean and
 //! covariance that `moments()` reports, for HRLA, ULA and OLA in f32 and f64.
 //!
+//! `moments.rs` checks the closed-form moments themselves; this checks that
+//! `step` really draws from them (the noise factor and the normals that
+//! feed it), which no closed-form test can see.
+//!
 //! Every comparison is a z-score against the estimator's standard error,
 //! and every test requires `|z| < 5`. With 5 statistics per HRLA or ULA
 //! case and 2 per OLA case (whose velocity is checked exactly instead), 18
@@ -44,6 +48,17 @@ struct Case {
     x: f64,
     y: f64,
     g: f64,
+}
+
+impl Case {
+    /// The state `(x, y, g)` in `F`.
+    fn state<F: Float>(&self) -> (F, F, F) {
+        (
+            F::from_f64(self.x),
+            F::from_f64(self.y),
+            F::from_f64(self.g),
+        )
+    }
 }
 
 const CASES: [Case; 3] = [
@@ -162,11 +177,14 @@ fn one_step_zs<F: Float, S: Sampler<F>>(
 /// Runs every case for HRLA, ULA and OLA in the float type `F`.
 fn check_all<F: Float>(label: &str, seed0: u64) {
     let start = Instant::now();
-    let mut worst: f64 = 0.0;
-    let mut failures = Vec::new();
+    let mut tally = Tally {
+        label,
+        worst: 0.0,
+        failures: Vec::new(),
+    };
     for (i, c) in CASES.iter().enumerate() {
         let f = F::from_f64;
-        let state = (f(c.x), f(c.y), f(c.g));
+        let (x, y, g) = c.state();
         let seed = seed0 + 10 * i as u64;
 
         let hrla = Hrla::new(HrlaParams {
@@ -177,9 +195,7 @@ fn check_all<F: Float>(label: &str, seed0: u64) {
             h: f(c.h),
         })
         .unwrap();
-        let m = hrla.moments(state.0, state.1, state.2);
-        let zs = one_step_zs(&hrla, m, state, true, seed);
-        report(label, "HRLA", c, &m, &zs, &mut worst, &mut failures);
+        tally.check("HRLA", &hrla, hrla.moments(x, y, g), c, true, seed);
 
         let ula = Ula::new(UlaParams {
             a: f(c.a),
@@ -188,9 +204,7 @@ fn check_all<F: Float>(label: &str, seed0: u64) {
             h: f(c.h),
         })
         .unwrap();
-        let m = ula.moments(state.0, state.1, state.2);
-        let zs = one_step_zs(&ula, m, state, true, seed + 1);
-        report(label, "ULA", c, &m, &zs, &mut worst, &mut failures);
+        tally.check("ULA", &ula, ula.moments(x, y, g), c, true, seed + 1);
 
         // A single OLA step is Gaussian for any (alpha, h), stable or not.
         let ola = Ola::new(OlaParams {
@@ -199,10 +213,11 @@ fn check_all<F: Float>(label: &str, seed0: u64) {
             h: f(c.h),
         })
         .unwrap();
-        let m = ola.moments(state.0, state.1, state.2);
-        let zs = one_step_zs(&ola, m, state, false, seed + 2);
-        report(label, "OLA", c, &m, &zs, &mut worst, &mut failures);
+        tally.check("OLA", &ola, ola.moments(x, y, g), c, false, seed + 2);
     }
+    let Tally {
+        worst, failures, ..
+    } = tally;
     println!(
         "{label}: worst |z| = {worst:.2} over all cases, {:.2?}",
         start.elapsed()
@@ -210,30 +225,45 @@ fn check_all<F: Float>(label: &str, seed0: u64) {
     assert!(failures.is_empty(), "|z| >= {Z_MAX}: {failures:#?}");
 }
 
-fn report<F: Float>(
-    label: &str,
-    sampler: &str,
-    c: &Case,
-    m: &StepMoments<F>,
-    zs: &Zs,
-    worst: &mut f64,
-    failures: &mut Vec<String>,
-) {
-    println!(
-        "{label} {sampler:4} {:10} var_x={:.4e} var_y={:.4e} cov={:.4e} | z: mean_x {:+.2} mean_y {:+.2} var_x {:+.2} var_y {:+.2} cov {:+.2}",
-        c.name,
-        m.var_x.to_f64(),
-        m.var_y.to_f64(),
-        m.cov_xy.to_f64(),
-        zs.mean_x,
-        zs.mean_y,
-        zs.var_x,
-        zs.var_y,
-        zs.cov
-    );
-    *worst = worst.max(zs.max_abs());
-    if zs.max_abs() >= Z_MAX {
-        failures.push(format!("{label} {sampler} {}: {zs:?}", c.name));
+/// The worst |z| and the failures over the cases of one float type: every
+/// case is printed, so that a near miss shows before it becomes a failure.
+struct Tally<'a> {
+    label: &'a str,
+    worst: f64,
+    failures: Vec<String>,
+}
+
+impl Tally<'_> {
+    /// One case of one sampler: its z-scores (see `one_step_zs`), printed
+    /// and counted.
+    fn check<F: Float, S: Sampler<F>>(
+        &mut self,
+        sampler_name: &str,
+        sampler: &S,
+        m: StepMoments<F>,
+        c: &Case,
+        velocity: bool,
+        seed: u64,
+    ) {
+        let zs = one_step_zs(sampler, m, c.state(), velocity, seed);
+        let label = self.label;
+        println!(
+            "{label} {sampler_name:4} {:10} var_x={:.4e} var_y={:.4e} cov={:.4e} | z: mean_x {:+.2} mean_y {:+.2} var_x {:+.2} var_y {:+.2} cov {:+.2}",
+            c.name,
+            m.var_x.to_f64(),
+            m.var_y.to_f64(),
+            m.cov_xy.to_f64(),
+            zs.mean_x,
+            zs.mean_y,
+            zs.var_x,
+            zs.var_y,
+            zs.cov
+        );
+        self.worst = self.worst.max(zs.max_abs());
+        if zs.max_abs() >= Z_MAX {
+            self.failures
+                .push(format!("{label} {sampler_name} {}: {zs:?}", c.name));
+        }
     }
 }
 

@@ -1,0 +1,388 @@
+//! Hostile parameters for the samplers: `Hrla::new`, `Ula::new`, `Ola::new`
+//! and `set_inverse_temperature` with values from `hrla_tests::hostile`.
+//!
+//! A sampler is built from parameters a caller may compute at run time (an
+//! annealing schedule, a user's input), so a bad value must come back as a
+//! typed error naming it, never as a panic or a sampler that later produces
+//! NaN. The contract checked:
+//!
+//! - every constructor returns a typed error or a valid sampler, never
+//!   panics; where one bad parameter determines the error, it is exactly
+//!   `NotPositive` with that parameter's name and value;
+//! - a valid sampler gives finite means and finite, non-negative variances
+//!   (and a positive semi-definite covariance) for finite states of moderate
+//!   size (|x|, |y|, |g| <= 1: far out, `x + c g` may overflow legitimately),
+//!   refuses an invalid temperature without changing, and runs;
+//! - `exact_errors` writes out the errors of every constructor of the crate
+//!   (samplers, schedules, starts, quadratic) that one parameter determines.
+//!
+//! Every proptest runs a few hundred cases from a fixed seed.
+
+use std::fmt::Debug;
+
+use hrla::{
+    Constant, Error, Float, Gaussian, Geometric, Hrla, HrlaParams, Linear, Ola, OlaParams,
+    Optimizer, Point, Quadratic, Rastrigin, Sampler, Status, StepMoments, Ula, UlaParams,
+};
+use hrla_tests::hostile::{
+    SEED, check_outcome, mostly_sane32, mostly_sane64, no_panic, same_error, valid, wild32, wild64,
+};
+use hrla_tests::prop::config;
+use proptest::prelude::*;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+
+/// A valid sampler: finite means, finite non-negative variances and a
+/// positive semi-definite covariance from moderate finite states.
+fn check_moments<F: Float>(
+    moments: impl Fn(F, F, F) -> StepMoments<F>,
+) -> Result<(), TestCaseError> {
+    let vals = [-1.0, -0.5, 0.0, 0.25, 1.0].map(F::from_f64);
+    // Positive semi-definiteness is checked when both variances are normal
+    // numbers of F: below that, an entry may round to 0 while the others do
+    // not. (For f32 ULA at h = 8e-19, var_x = (2/3) sy2 h^3 = 4e-55 rounds to
+    // 0 beside cov_xy = 7e-37 and var_y = 2e-18, correctly rounded each.)
+    let tiny = if F::from_f64(1e-300) == F::ZERO {
+        f64::from(f32::MIN_POSITIVE)
+    } else {
+        f64::MIN_POSITIVE
+    };
+    for &x in &vals {
+        for &y in &vals {
+            for &g in &vals {
+                let m = moments(x, y, g);
+                prop_assert!(m.mean_x.is_finite() && m.mean_y.is_finite(), "{:?}", m);
+                prop_assert!(m.var_x.is_finite() && m.var_x >= F::ZERO, "{:?}", m);
+                prop_assert!(m.var_y.is_finite() && m.var_y >= F::ZERO, "{:?}", m);
+                prop_assert!(m.cov_xy.is_finite(), "{:?}", m);
+                let (vx, vy, c) = (m.var_x.to_f64(), m.var_y.to_f64(), m.cov_xy.to_f64());
+                prop_assert!(
+                    vx < tiny || vy < tiny || c.abs() <= vx.sqrt() * vy.sqrt() * (1.0 + 1e-5),
+                    "covariance not PSD: {:?}",
+                    m
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `set_inverse_temperature(a)`: an invalid `a` is `NotPositive { "a" }`
+/// and a refused one leaves the sampler unchanged.
+fn check_set_temperature<F: Float, S: Sampler<F> + Clone + PartialEq + Debug>(
+    sampler: &S,
+    a: F,
+) -> Result<(), TestCaseError> {
+    let mut s = sampler.clone();
+    let got = no_panic("set_inverse_temperature", || s.set_inverse_temperature(a))?;
+    check_outcome(&got, &[], &[("a", a.to_f64(), valid(a))], true)?;
+    match got {
+        Ok(()) => prop_assert_eq!(s.inverse_temperature().to_bits_u64(), a.to_bits_u64()),
+        Err(_) => prop_assert_eq!(&s, sampler),
+    }
+    Ok(())
+}
+
+/// A short run of a valid sampler on 2-D Rastrigin cannot fail (constant
+/// temperature, finite start) and keeps a finite best.
+fn check_runs<F: Float, S: Sampler<F> + Clone + Debug>(sampler: &S) -> Result<(), TestCaseError> {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+    let mut start = Point::new([F::from_f64(0.5), F::from_f64(-0.25)]).unwrap();
+    let mut opt: Optimizer<F, Rastrigin, S, Constant<F>, 2, 3> =
+        Optimizer::new(Rastrigin, sampler.clone(), 3, &mut start, &mut rng).unwrap();
+    let report = no_panic("run", || opt.run(20, &mut rng))?;
+    let report = report.map_err(|e| TestCaseError::fail(format!("run failed: {e:?}")))?;
+    prop_assert!(report.best.value.is_finite());
+    // U(0.5, -0.25) = (0.25 + 2) + (0.0625 + 1) = 3.3125: the best never exceeds the start.
+    prop_assert!(report.best.value <= F::from_f64(3.3125 + 1e-6));
+    prop_assert!(report.iterations <= 20);
+    prop_assert_eq!(
+        report.status == Status::AllDiverged,
+        report.diverged_chains == 3
+    );
+    if report.status == Status::Running {
+        prop_assert_eq!(report.iterations, 20);
+    }
+    let after = no_panic("step", || opt.step(&mut rng))?;
+    prop_assert!(after.is_ok());
+    prop_assert!(opt.best().value.is_finite());
+    Ok(())
+}
+
+/// Constructs a sampler with `new` and checks the outcome against the
+/// parameters `early` (see `check_outcome`): the sampler, if accepted.
+fn construct<S: Debug>(
+    what: &str,
+    new: impl FnOnce() -> Result<S, Error>,
+    early: &[(&'static str, f64, bool)],
+) -> Result<Option<S>, TestCaseError> {
+    let got = no_panic(what, new)?;
+    check_outcome(&got, early, &[], true)?;
+    Ok(got.ok())
+}
+
+/// What every accepted sampler promises: sound moments, a temperature
+/// change that is applied or refused cleanly, and a run.
+fn check_accepted<F: Float, S: Sampler<F> + Clone + PartialEq + Debug>(
+    sampler: &S,
+    moments: impl Fn(F, F, F) -> StepMoments<F>,
+    a2: F,
+) -> Result<(), TestCaseError> {
+    check_moments(moments)?;
+    check_set_temperature(sampler, a2)?;
+    check_runs(sampler)
+}
+
+fn check_hrla<F: Float>(p: HrlaParams<F>, a2: F) -> Result<(), TestCaseError> {
+    let early = [
+        ("a", p.a.to_f64(), valid(p.a)),
+        ("beta", p.beta.to_f64(), valid(p.beta)),
+        ("b", p.b.to_f64(), valid(p.b)),
+        ("alpha", p.alpha.to_f64(), valid(p.alpha)),
+        ("h", p.h.to_f64(), valid(p.h)),
+    ];
+    if let Some(s) = construct("Hrla::new", || Hrla::new(p), &early)? {
+        prop_assert_eq!(s.params(), p);
+        prop_assert_eq!(s.inverse_temperature().to_bits_u64(), p.a.to_bits_u64());
+        check_accepted(&s, |x, y, g| s.moments(x, y, g), a2)?;
+    }
+    Ok(())
+}
+
+fn check_ula<F: Float>(p: UlaParams<F>, a2: F) -> Result<(), TestCaseError> {
+    let early = [
+        ("a", p.a.to_f64(), valid(p.a)),
+        ("b", p.b.to_f64(), valid(p.b)),
+        ("alpha", p.alpha.to_f64(), valid(p.alpha)),
+        ("h", p.h.to_f64(), valid(p.h)),
+    ];
+    if let Some(s) = construct("Ula::new", || Ula::new(p), &early)? {
+        prop_assert_eq!(s.params(), p);
+        check_accepted(&s, |x, y, g| s.moments(x, y, g), a2)?;
+    }
+    Ok(())
+}
+
+fn check_ola<F: Float>(p: OlaParams<F>, a2: F) -> Result<(), TestCaseError> {
+    let early = [
+        ("a", p.a.to_f64(), valid(p.a)),
+        ("alpha", p.alpha.to_f64(), valid(p.alpha)),
+        ("h", p.h.to_f64(), valid(p.h)),
+    ];
+    if let Some(s) = construct("Ola::new", || Ola::new(p), &early)? {
+        prop_assert_eq!(s.params(), p);
+        check_accepted(&s, |x, y, g| s.moments(x, y, g), a2)?;
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(300, SEED))]
+
+    /// One wild parameter, the others the paper's: a bad one is named
+    /// exactly, e.g. `h = NaN` gives `NotPositive { name: "h", value: NaN }`.
+    #[test]
+    fn hrla_one_bad_parameter(which in 0..5usize, v in wild64(), a2 in wild64()) {
+        let mut p = HrlaParams { a: 4.0, b: 10.0, alpha: 1.0, beta: 1.0, h: 0.01 };
+        let name = ["a", "b", "alpha", "beta", "h"][which];
+        *[&mut p.a, &mut p.b, &mut p.alpha, &mut p.beta, &mut p.h][which] = v;
+        let got = Hrla::new(p);
+        if valid(v) {
+            prop_assert!(got.is_ok() || got == Err(Error::DegenerateCoefficients), "{:?}", got);
+        } else {
+            let e = got.unwrap_err();
+            prop_assert!(same_error(&e, &Error::NotPositive { name, value: v }), "{:?}", e);
+        }
+        check_hrla(p, a2)?;
+    }
+
+    #[test]
+    fn hrla_all_wild_f64(
+        a in mostly_sane64(), b in mostly_sane64(), alpha in mostly_sane64(),
+        beta in mostly_sane64(), h in mostly_sane64(), a2 in wild64(),
+    ) {
+        check_hrla(HrlaParams { a, b, alpha, beta, h }, a2)?;
+    }
+
+    #[test]
+    fn hrla_all_wild_f32(
+        a in mostly_sane32(), b in mostly_sane32(), alpha in mostly_sane32(),
+        beta in mostly_sane32(), h in mostly_sane32(), a2 in wild32(),
+    ) {
+        check_hrla(HrlaParams { a, b, alpha, beta, h }, a2)?;
+    }
+
+    #[test]
+    fn ula_all_wild(
+        a in mostly_sane64(), b in mostly_sane64(), alpha in mostly_sane64(),
+        h in mostly_sane64(), a2 in wild64(),
+        a32 in mostly_sane32(), b32 in mostly_sane32(), alpha32 in mostly_sane32(),
+        h32 in mostly_sane32(), a232 in wild32(),
+    ) {
+        check_ula(UlaParams { a, b, alpha, h }, a2)?;
+        check_ula(UlaParams { a: a32, b: b32, alpha: alpha32, h: h32 }, a232)?;
+    }
+
+    #[test]
+    fn ola_all_wild(
+        a in mostly_sane64(), alpha in mostly_sane64(), h in mostly_sane64(), a2 in wild64(),
+        a32 in mostly_sane32(), alpha32 in mostly_sane32(), h32 in mostly_sane32(),
+        a232 in wild32(),
+    ) {
+        check_ola(OlaParams { a, alpha, h }, a2)?;
+        check_ola(OlaParams { a: a32, alpha: alpha32, h: h32 }, a232)?;
+    }
+}
+
+/// Errors fully determined by one parameter, written out.
+#[test]
+fn exact_errors() {
+    let paper = HrlaParams {
+        a: 4.0,
+        b: 10.0,
+        alpha: 1.0,
+        beta: 1.0,
+        h: 0.01,
+    };
+    let e = Hrla::new(HrlaParams {
+        h: f64::NAN,
+        ..paper
+    })
+    .unwrap_err();
+    assert!(matches!(e, Error::NotPositive { name: "h", value } if value.is_nan()));
+    assert_eq!(
+        Hrla::new(HrlaParams { h: 0.0, ..paper }),
+        Err(Error::NotPositive {
+            name: "h",
+            value: 0.0
+        })
+    );
+    assert_eq!(
+        Hrla::new(HrlaParams { a: -1.0, ..paper }),
+        Err(Error::NotPositive {
+            name: "a",
+            value: -1.0
+        })
+    );
+    assert_eq!(
+        Hrla::new(HrlaParams {
+            b: f64::INFINITY,
+            ..paper
+        }),
+        Err(Error::NotPositive {
+            name: "b",
+            value: f64::INFINITY
+        })
+    );
+    // beta = 0 is ULA, not HRLA.
+    assert_eq!(
+        Hrla::new(HrlaParams { beta: 0.0, ..paper }),
+        Err(Error::NotPositive {
+            name: "beta",
+            value: 0.0
+        })
+    );
+    assert_eq!(
+        Hrla::new(HrlaParams {
+            alpha: -f64::MAX,
+            ..paper
+        }),
+        Err(Error::NotPositive {
+            name: "alpha",
+            value: -f64::MAX
+        })
+    );
+    // h^2 overflows.
+    assert_eq!(
+        Hrla::new(HrlaParams { h: 1e300, ..paper }),
+        Err(Error::DegenerateCoefficients)
+    );
+    // sx2 = beta / a overflows.
+    assert_eq!(
+        Hrla::new(HrlaParams { a: 5e-324, ..paper }),
+        Err(Error::DegenerateCoefficients)
+    );
+    // ULA has no sx2: the same tiny a is fine.
+    assert!(Ula::new(UlaParams::paper(5e-324, 0.01)).is_ok());
+    assert_eq!(
+        Ula::new(UlaParams::paper(4.0, -0.0)),
+        Err(Error::NotPositive {
+            name: "h",
+            value: -0.0
+        })
+    );
+    assert_eq!(
+        Ola::new(OlaParams::paper(f32::INFINITY, 0.01f32)),
+        Err(Error::NotPositive {
+            name: "a",
+            value: f64::INFINITY
+        })
+    );
+    // OLA's noise sqrt(2 alpha h / a) overflows for a subnormal a.
+    assert_eq!(
+        Ola::new(OlaParams::paper(1e-45f32, 1.0)),
+        Err(Error::DegenerateCoefficients)
+    );
+    assert_eq!(
+        Constant::new(0.0f64),
+        Err(Error::NotPositive {
+            name: "a",
+            value: 0.0
+        })
+    );
+    assert_eq!(
+        Linear::new(1.0, 2.0f64, 0),
+        Err(Error::Zero { name: "steps" })
+    );
+    assert_eq!(
+        Geometric::new(1.0, -2.0f64, 5),
+        Err(Error::NotPositive {
+            name: "a_high",
+            value: -2.0
+        })
+    );
+    assert_eq!(
+        Linear::new(f64::NEG_INFINITY, 2.0f64, 5),
+        Err(Error::NotPositive {
+            name: "a_low",
+            value: f64::NEG_INFINITY
+        })
+    );
+    assert_eq!(
+        Gaussian::new([0.0, f64::INFINITY], 1.0),
+        Err(Error::NotFinite {
+            name: "mean",
+            value: f64::INFINITY
+        })
+    );
+    assert_eq!(
+        Gaussian::new([0.0f32; 2], -1.0),
+        Err(Error::Negative {
+            name: "std_dev",
+            value: -1.0
+        })
+    );
+    // std_dev = 0 is allowed (documented): every chain at the mean.
+    assert!(Gaussian::new([0.0; 2], 0.0f64).is_ok());
+    assert_eq!(
+        Point::new([1.0, f64::NEG_INFINITY, f64::NAN]),
+        Err(Error::NotFinite {
+            name: "initial point",
+            value: f64::NEG_INFINITY
+        })
+    );
+    assert_eq!(
+        Quadratic::new(0.0, [1.0f64; 2]),
+        Err(Error::NotPositive {
+            name: "stiffness",
+            value: 0.0
+        })
+    );
+    assert_eq!(
+        Quadratic::new(1.0, [1.0f64, -f64::INFINITY]),
+        Err(Error::NotFinite {
+            name: "centre",
+            value: -f64::INFINITY
+        })
+    );
+}
