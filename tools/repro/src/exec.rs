@@ -6,7 +6,8 @@ use std::time::{Duration, Instant};
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 
-use crate::engine::{RunSpec, run_once};
+use crate::config::RunSpec;
+use crate::engine::run_once;
 use crate::error::ReproError;
 use crate::protocol::Plan;
 use crate::seed::run_rng;

@@ -7,8 +7,10 @@
 //!
 //! - [`protocol`]: the protocols' defaults and overrides, expanded into a
 //!   [`Plan`](protocol::Plan) of configurations.
-//! - [`engine`]: one run of one configuration, the kernel's optimisers
-//!   driven step by step.
+//! - [`config`]: one configuration of a protocol ([`RunSpec`](config::RunSpec))
+//!   and its validation.
+//! - [`engine`]: the run loop: one run of one configuration, the kernel's
+//!   optimisers driven step by step.
 //! - [`stats`]: the paper's running best (over the stride, without iterate
 //!   0) and empirical probability (not running), streamed; the summary
 //!   statistics and their conventions.
@@ -18,6 +20,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod config;
 pub mod engine;
 pub mod error;
 pub mod exec;

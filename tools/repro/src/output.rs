@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use crate::engine::{RunSpec, Temperature};
+use crate::config::{RunSpec, Temperature};
 use crate::error::ReproError;
 use crate::exec::{CheckpointResult, ConfigResult, ProtocolResult};
 use crate::stats::grid_points;

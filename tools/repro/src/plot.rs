@@ -11,7 +11,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use crate::engine::RunSpec;
+use crate::config::{RunSpec, Temperature};
 use crate::error::ReproError;
 use crate::exec::ProtocolResult;
 use crate::protocol::SeriesKey;
@@ -32,8 +32,8 @@ const COLOURS: [RGBColor; 8] = [
 fn series_label(key: SeriesKey, s: &RunSpec) -> String {
     match (key, s.temperature) {
         (SeriesKey::Sampler, _) => s.sampler.name().to_string(),
-        (SeriesKey::Temperature, crate::engine::Temperature::Constant(a)) => format!("a = {a}"),
-        (SeriesKey::Temperature, crate::engine::Temperature::Linear { high, .. }) => {
+        (SeriesKey::Temperature, Temperature::Constant(a)) => format!("a = {a}"),
+        (SeriesKey::Temperature, Temperature::Linear { high, .. }) => {
             format!("a_high = {high}")
         }
     }

@@ -1,7 +1,7 @@
 //! The protocols of spec section 7 as plans: their default parameters, the
 //! command-line overrides, and the grid of configurations they expand to.
 
-use crate::engine::{RunSpec, SamplerKind, StartSpec, Temperature};
+use crate::config::{RunSpec, SamplerKind, StartSpec, Temperature};
 use crate::error::ReproError;
 
 /// The experimental protocols of the paper (spec section 7).
