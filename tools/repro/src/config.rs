@@ -65,6 +65,15 @@ impl Temperature {
         }
     }
 
+    /// The symbol of [`label_value`](Temperature::label_value): `a` or
+    /// `a_high`.
+    pub fn label_name(self) -> &'static str {
+        match self {
+            Temperature::Constant(_) => "a",
+            Temperature::Linear { .. } => "a_high",
+        }
+    }
+
     /// The kernel's schedule over `steps` iterations.
     pub fn schedule(self, steps: u64) -> Result<AnySchedule<f64>, hrla::Error> {
         Ok(match self {
@@ -143,6 +152,17 @@ impl RunSpec {
         self.chains as u64 * self.steps
     }
 
+    /// The kernel's schedule over the run and its sampler at iterate 0.
+    pub fn kernel_setup(&self) -> Result<(AnySchedule<f64>, AnySampler<f64>), hrla::Error> {
+        let schedule = self.temperature.schedule(self.steps)?;
+        let sampler = AnySampler::paper(
+            self.sampler.kernel(),
+            schedule.inverse_temperature(0),
+            self.h,
+        )?;
+        Ok((schedule, sampler))
+    }
+
     /// Checks every parameter once, before any run starts, so that workers
     /// never meet an error the user could have been told about up front.
     pub fn validate(&self) -> Result<(), ReproError> {
@@ -179,14 +199,9 @@ impl RunSpec {
         {
             return bad("the start variance must be finite and >= 0");
         }
-        let schedule = self.temperature.schedule(self.steps)?;
+        self.kernel_setup()?;
         // Every a_k of a linear schedule lies between its ends, and the
         // coefficients are monotone in a, so checking both ends suffices.
-        AnySampler::paper(
-            self.sampler.kernel(),
-            schedule.inverse_temperature(0),
-            self.h,
-        )?;
         AnySampler::paper(
             self.sampler.kernel(),
             self.temperature.label_value(),

@@ -2,7 +2,7 @@
 //! driven step by step, with the best chain value handed to a [`Tracker`].
 
 use hrla::rand_core::Rng;
-use hrla::{AnySampler, AnySchedule, Gaussian, Optimizer, Point, Rastrigin, Schedule, Start};
+use hrla::{AnySampler, AnySchedule, Gaussian, Optimizer, Point, Rastrigin, Start};
 
 use crate::config::{RunSpec, StartSpec};
 use crate::error::ReproError;
@@ -54,12 +54,7 @@ pub struct Swarm<const D: usize> {
 impl<const D: usize> Swarm<D> {
     /// Draws the initial points of `spec.chains` chains, chunk after chunk.
     pub fn new<R: Rng + ?Sized>(spec: &RunSpec, rng: &mut R) -> Result<Self, hrla::Error> {
-        let schedule = spec.temperature.schedule(spec.steps)?;
-        let sampler = AnySampler::paper(
-            spec.sampler.kernel(),
-            schedule.inverse_temperature(0),
-            spec.h,
-        )?;
+        let (schedule, sampler) = spec.kernel_setup()?;
         let mut start = AnyStart::<D>::new(spec.start)?;
         let mut parts = Vec::with_capacity(spec.chains.div_ceil(CHUNK));
         let mut left = spec.chains;
@@ -223,10 +218,7 @@ mod tests {
             let mut rng_a = run_rng(11, 0);
             let mut swarm = Swarm::<10>::new(&s, &mut rng_a).unwrap();
             let mut rng_b = run_rng(11, 0);
-            let schedule = s.temperature.schedule(s.steps).unwrap();
-            let sampler =
-                AnySampler::paper(s.sampler.kernel(), schedule.inverse_temperature(0), s.h)
-                    .unwrap();
+            let (schedule, sampler) = s.kernel_setup().unwrap();
             let mut start = AnyStart::<10>::new(s.start).unwrap();
             let mut whole: Box<
                 Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, 10, N>,

@@ -170,7 +170,7 @@ fn report(r: &ProtocolResult, files: &[PathBuf]) {
         "Wall time {:.2} s for {} chain-steps ({:.3e} per second, {} threads).",
         r.wall.as_secs_f64(),
         r.chain_steps,
-        r.chain_steps as f64 / r.wall.as_secs_f64().max(1e-9),
+        r.chain_steps_per_second(),
         r.threads
     );
     for f in files {
