@@ -1,4 +1,5 @@
-//! The error type of the tool.
+//! [`ReproError`], the one error type of the library: why a protocol could
+//! not be planned, run or written.
 
 use std::path::PathBuf;
 

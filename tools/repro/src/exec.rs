@@ -1,5 +1,7 @@
 //! Runs a plan: every (configuration, run) pair in parallel, with the
-//! per-iterate statistics folded into per-configuration counters.
+//! per-iterate statistics folded into per-configuration counters, into a
+//! [`ProtocolResult`] (with its [`ConfigResult`]s and
+//! [`CheckpointResult`]s), which the writers read.
 
 use std::time::{Duration, Instant};
 

@@ -17,6 +17,7 @@
 //! - [`seed`]: one random stream per run index, from one base seed.
 //! - [`exec`]: every run of a plan in parallel (rayon).
 //! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures.
+//! - [`error`]: the error type they all return.
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 

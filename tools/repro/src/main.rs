@@ -1,5 +1,9 @@
 //! `repro`: runs the paper's experimental protocols with the hrla kernel
 //! and writes their tables and figures. See `repro --help`.
+//!
+//! This file owns the command line (subcommands and global options), the
+//! progress bar and what is printed on stdout; planning, running and
+//! writing are the library's.
 
 use std::path::PathBuf;
 use std::time::Duration;

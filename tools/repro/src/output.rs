@@ -1,5 +1,6 @@
-//! Writes a protocol's results: summary CSV and Markdown, probability
-//! curves CSV, the figure, and the run's metadata (wall time, chain-steps).
+//! Writes a protocol's results into its directory: the formats of the
+//! summary CSV and Markdown, the probability curves CSV and the run's
+//! metadata (wall time, chain-steps); the figure is drawn by [`crate::plot`].
 
 use std::fmt::{Display, Write as _};
 use std::fs;

@@ -1,7 +1,9 @@
-//! `repro all --quick` into a temporary directory: every protocol's outputs
-//! exist and are well formed (CSV columns and row counts, numbers parse,
-//! probabilities in [0, 1], SVG is XML with one captioned panel per
-//! tolerance or listed pair, metadata with the right chain-step count).
+//! End-to-end tests of the `repro` binary, each into a temporary directory.
+//! `repro all --quick`: every protocol's outputs exist and are well formed
+//! (CSV columns and row counts, numbers parse, probabilities in [0, 1], SVG
+//! is XML with one captioned panel per tolerance or listed pair, metadata
+//! with the right chain-step count). A bad option fails before anything is
+//! written, and the thread count does not change a byte of the outputs.
 
 use std::collections::HashSet;
 use std::fs;
