@@ -1,4 +1,5 @@
-//! The error type of the tool.
+//! [`ReproError`], the one error type of the library: why a protocol could
+//! not be planned, run or written.
 
 use std::path::PathBuf;
 
@@ -10,7 +11,7 @@ pub enum ReproError {
     #[error("the hrla kernel refused the parameters: {0}")]
     Kernel(#[from] hrla::Error),
     /// The dimension is not one of those compiled in.
-    #[error("dimension {0} is not compiled in; supported: {dims:?}", dims = crate::engine::DIMENSIONS)]
+    #[error("dimension {0} is not compiled in; supported: {dims:?}", dims = crate::config::DIMENSIONS)]
     Dimension(usize),
     /// A command-line combination that does not make sense for the protocol.
     #[error("{0}")]

@@ -1,16 +1,19 @@
 //! Runs a plan: every (configuration, run) pair in parallel, with the
-//! per-iterate statistics folded into per-configuration counters.
+//! per-iterate statistics folded into per-configuration counters, into a
+//! [`ProtocolResult`] (with its [`ConfigResult`]s and
+//! [`CheckpointResult`]s), which the writers read.
 
 use std::time::{Duration, Instant};
 
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 
-use crate::engine::{RunSpec, run_once};
+use crate::config::RunSpec;
+use crate::engine::run_once;
 use crate::error::ReproError;
 use crate::protocol::Plan;
 use crate::seed::run_rng;
-use crate::stats::Summary;
+use crate::stats::{Summary, grid_points};
 
 /// The running best of every run at one checkpoint.
 #[derive(Clone, Debug, PartialEq)]
@@ -51,6 +54,24 @@ pub struct ProtocolResult {
     pub chain_steps: u64,
     /// Worker threads.
     pub threads: usize,
+}
+
+impl ConfigResult {
+    /// The curve at tolerance `spec.eps[e]`: `(k, runs within eps at k)` at
+    /// every grid iterate (nothing without a grid).
+    pub fn curve(&self, e: usize) -> impl Iterator<Item = (u64, u32)> + '_ {
+        let every = self.spec.curve_every.unwrap_or(1);
+        let points = grid_points(self.spec.steps, self.spec.curve_every);
+        (0..points).map(move |j| (j as u64 * every, self.counts[e * points + j]))
+    }
+}
+
+impl ProtocolResult {
+    /// Chain-steps per second of wall time (a run too short for the clock
+    /// counts as 1 ns rather than dividing by 0).
+    pub fn chain_steps_per_second(&self) -> f64 {
+        self.chain_steps as f64 / self.wall.as_secs_f64().max(1e-9)
+    }
 }
 
 /// What a worker accumulates: memory is `O(configurations x points x

@@ -7,17 +7,21 @@
 //!
 //! - [`protocol`]: the protocols' defaults and overrides, expanded into a
 //!   [`Plan`](protocol::Plan) of configurations.
-//! - [`engine`]: one run of one configuration, the kernel's optimisers
-//!   driven step by step.
+//! - [`config`]: one configuration of a protocol ([`RunSpec`](config::RunSpec))
+//!   and its validation.
+//! - [`engine`]: the run loop: one run of one configuration, the kernel's
+//!   optimisers driven step by step.
 //! - [`stats`]: the paper's running best (over the stride, without iterate
 //!   0) and empirical probability (not running), streamed; the summary
 //!   statistics and their conventions.
 //! - [`seed`]: one random stream per run index, from one base seed.
 //! - [`exec`]: every run of a plan in parallel (rayon).
 //! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures.
+//! - [`error`]: the error type they all return.
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod config;
 pub mod engine;
 pub mod error;
 pub mod exec;

@@ -1,5 +1,9 @@
 //! `repro`: runs the paper's experimental protocols with the hrla kernel
 //! and writes their tables and figures. See `repro --help`.
+//!
+//! This file owns the command line (subcommands and global options), the
+//! progress bar and what is printed on stdout; planning, running and
+//! writing are the library's.
 
 use std::path::PathBuf;
 use std::time::Duration;
@@ -170,7 +174,7 @@ fn report(r: &ProtocolResult, files: &[PathBuf]) {
         "Wall time {:.2} s for {} chain-steps ({:.3e} per second, {} threads).",
         r.wall.as_secs_f64(),
         r.chain_steps,
-        r.chain_steps as f64 / r.wall.as_secs_f64().max(1e-9),
+        r.chain_steps_per_second(),
         r.threads
     );
     for f in files {

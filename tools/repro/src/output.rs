@@ -1,14 +1,15 @@
-//! Writes a protocol's results: summary CSV and Markdown, probability
-//! curves CSV, the figure, and the run's metadata (wall time, chain-steps).
+//! Writes a protocol's results into its directory: the formats of the
+//! summary CSV and Markdown, the probability curves CSV and the run's
+//! metadata (wall time, chain-steps); the figure is drawn by [`crate::plot`].
 
-use std::fmt::Write as _;
+use std::fmt::{Display, Write as _};
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use crate::engine::{RunSpec, Temperature};
+use crate::config::{RunSpec, Temperature};
 use crate::error::ReproError;
 use crate::exec::{CheckpointResult, ConfigResult, ProtocolResult};
-use crate::stats::grid_points;
+use crate::protocol::ProtocolId;
 
 /// Columns of `summary.csv`.
 pub const SUMMARY_COLUMNS: [&str; 21] = [
@@ -72,6 +73,8 @@ fn table_rows(r: &ProtocolResult) -> Vec<(&ConfigResult, &CheckpointResult)> {
         .collect()
 }
 
+/// The CSV columns `schedule`, `a` (or `a_high`) and `a_low` (empty at
+/// constant `a`).
 fn schedule_fields(t: Temperature) -> (&'static str, f64, String) {
     match t {
         Temperature::Constant(a) => ("constant", a, String::new()),
@@ -88,6 +91,31 @@ fn csv_field(s: &str) -> String {
     }
 }
 
+/// The columns `protocol,sampler,d,h,N,K` that open a row of either CSV
+/// file.
+fn config_columns(id: ProtocolId, s: &RunSpec) -> String {
+    format!(
+        "{},{},{},{},{},{}",
+        id.name(),
+        s.sampler.name(),
+        s.d,
+        s.h,
+        s.chains,
+        s.steps
+    )
+}
+
+/// Appends `fields`, each as its `Display` writes it, as one CSV line.
+fn push_row(out: &mut String, fields: &[&dyn Display]) {
+    for (i, field) in fields.iter().enumerate() {
+        if i > 0 {
+            out.push(',');
+        }
+        let _ = write!(out, "{field}");
+    }
+    out.push('\n');
+}
+
 /// `summary.csv`: one row per configuration and checkpoint `k` (usually
 /// just `K`), the running best at `k` over the M runs (sample SD, and the
 /// population SD for comparison with numpy-made tables; SE = SD / sqrt(M)).
@@ -98,30 +126,26 @@ pub fn summary_csv(r: &ProtocolResult) -> String {
         let s = &c.spec;
         let (schedule, a, a_low) = schedule_fields(s.temperature);
         let m = &p.summary;
-        let _ = writeln!(
-            out,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            r.plan.id.name(),
-            s.sampler.name(),
-            s.d,
-            s.h,
-            s.chains,
-            s.steps,
-            p.k,
-            schedule,
-            a,
-            a_low,
-            csv_field(&s.start.label()),
-            s.stride,
-            m.n,
-            m.mean,
-            m.median,
-            m.sd,
-            m.sd_population,
-            m.se,
-            m.min,
-            m.max,
-            c.diverged
+        push_row(
+            &mut out,
+            &[
+                &config_columns(r.plan.id, s),
+                &p.k,
+                &schedule,
+                &a,
+                &a_low,
+                &csv_field(&s.start.label()),
+                &s.stride,
+                &m.n,
+                &m.mean,
+                &m.median,
+                &m.sd,
+                &m.sd_population,
+                &m.se,
+                &m.min,
+                &m.max,
+                &c.diverged,
+            ],
         );
     }
     out
@@ -135,30 +159,25 @@ pub fn curves_csv(r: &ProtocolResult) -> String {
     let m = r.plan.runs;
     for c in &r.configs {
         let s = &c.spec;
-        let Some(every) = s.curve_every else { continue };
-        let points = grid_points(s.steps, s.curve_every);
+        let config = config_columns(r.plan.id, s);
         let (schedule, a, _) = schedule_fields(s.temperature);
         let start = csv_field(&s.start.label());
         for (e, eps) in s.eps.iter().enumerate() {
-            for j in 0..points {
-                let hits = c.counts[e * points + j];
-                let _ = writeln!(
-                    out,
-                    "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                    r.plan.id.name(),
-                    s.sampler.name(),
-                    s.d,
-                    s.h,
-                    s.chains,
-                    s.steps,
-                    schedule,
-                    a,
-                    start,
-                    eps,
-                    j as u64 * every,
-                    hits,
-                    m,
-                    f64::from(hits) / m as f64
+            for (k, hits) in c.curve(e) {
+                let probability = f64::from(hits) / m as f64;
+                push_row(
+                    &mut out,
+                    &[
+                        &config,
+                        &schedule,
+                        &a,
+                        &start,
+                        eps,
+                        &k,
+                        &hits,
+                        &m,
+                        &probability,
+                    ],
                 );
             }
         }
@@ -169,9 +188,8 @@ pub fn curves_csv(r: &ProtocolResult) -> String {
 /// The descriptive columns of a configuration at checkpoint `k`, as shown
 /// in Markdown.
 fn describe(s: &RunSpec, k: u64) -> [(&'static str, String); 10] {
-    let (schedule, a, _) = schedule_fields(s.temperature);
-    let a_name = if schedule == "linear" { "a_high" } else { "a" };
-    let schedule = match s.temperature {
+    let t = s.temperature;
+    let schedule = match t {
         Temperature::Constant(_) => "constant".to_string(),
         Temperature::Linear { low, .. } => format!("linear from {low}"),
     };
@@ -185,7 +203,7 @@ fn describe(s: &RunSpec, k: u64) -> [(&'static str, String); 10] {
         ("start", s.start.label()),
         ("stride", s.stride.to_string()),
         ("schedule", schedule),
-        (a_name, a.to_string()),
+        (t.label_name(), t.label_value().to_string()),
     ]
 }
 
@@ -253,7 +271,7 @@ pub fn meta(r: &ProtocolResult, notes: &[(&str, String)]) -> String {
         r.chain_steps,
         r.wall.as_secs_f64(),
         r.threads,
-        r.chain_steps as f64 / r.wall.as_secs_f64().max(1e-9),
+        r.chain_steps_per_second(),
     );
     for (key, value) in notes {
         let _ = writeln!(out, "{key}: {value}");
@@ -261,11 +279,16 @@ pub fn meta(r: &ProtocolResult, notes: &[(&str, String)]) -> String {
     out
 }
 
-fn write(path: PathBuf, text: &str) -> Result<PathBuf, ReproError> {
-    fs::write(&path, text).map_err(|source| ReproError::Io {
-        path: path.clone(),
+/// The error of a failed write or directory creation at `path`.
+fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> ReproError + '_ {
+    move |source| ReproError::Io {
+        path: path.to_path_buf(),
         source,
-    })?;
+    }
+}
+
+fn write(path: PathBuf, text: &str) -> Result<PathBuf, ReproError> {
+    fs::write(&path, text).map_err(io_error(&path))?;
     Ok(path)
 }
 
@@ -278,10 +301,7 @@ pub fn write_all(
     notes: &[(&str, String)],
 ) -> Result<Vec<PathBuf>, ReproError> {
     let dir = dir.join(r.plan.id.name().to_lowercase());
-    fs::create_dir_all(&dir).map_err(|source| ReproError::Io {
-        path: dir.clone(),
-        source,
-    })?;
+    fs::create_dir_all(&dir).map_err(io_error(&dir))?;
     let mut files = vec![
         write(dir.join("summary.csv"), &summary_csv(r))?,
         write(dir.join("summary.md"), &summary_markdown(r))?,

@@ -11,11 +11,10 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use crate::engine::RunSpec;
+use crate::config::RunSpec;
 use crate::error::ReproError;
 use crate::exec::ProtocolResult;
 use crate::protocol::SeriesKey;
-use crate::stats::grid_points;
 
 const PANEL: (u32, u32) = (480, 340);
 const COLOURS: [RGBColor; 8] = [
@@ -30,12 +29,10 @@ const COLOURS: [RGBColor; 8] = [
 ];
 
 fn series_label(key: SeriesKey, s: &RunSpec) -> String {
-    match (key, s.temperature) {
-        (SeriesKey::Sampler, _) => s.sampler.name().to_string(),
-        (SeriesKey::Temperature, crate::engine::Temperature::Constant(a)) => format!("a = {a}"),
-        (SeriesKey::Temperature, crate::engine::Temperature::Linear { high, .. }) => {
-            format!("a_high = {high}")
-        }
+    let t = s.temperature;
+    match key {
+        SeriesKey::Sampler => s.sampler.name().to_string(),
+        SeriesKey::Temperature => format!("{} = {}", t.label_name(), t.label_value()),
     }
 }
 
@@ -94,15 +91,8 @@ fn draw(r: &ProtocolResult, path: &Path) -> Result<(), Box<dyn std::error::Error
             let Some(e) = s.eps.iter().position(|&x| x == panel.eps) else {
                 continue;
             };
-            let every = s.curve_every.unwrap_or(1);
-            let points = grid_points(s.steps, s.curve_every);
             let colour = COLOURS[i % COLOURS.len()];
-            let data = (0..points).map(|j| {
-                (
-                    (j as u64 * every) as f64,
-                    f64::from(c.counts[e * points + j]) / m,
-                )
-            });
+            let data = c.curve(e).map(|(k, hits)| (k as f64, f64::from(hits) / m));
             chart
                 .draw_series(LineSeries::new(data, colour.stroke_width(2)))?
                 .label(series_label(r.plan.series, s))

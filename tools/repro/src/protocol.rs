@@ -1,7 +1,7 @@
 //! The protocols of spec section 7 as plans: their default parameters, the
 //! command-line overrides, and the grid of configurations they expand to.
 
-use crate::engine::{RunSpec, SamplerKind, StartSpec, Temperature};
+use crate::config::{RunSpec, SamplerKind, StartSpec, Temperature};
 use crate::error::ReproError;
 
 /// The experimental protocols of the paper (spec section 7).
@@ -221,42 +221,52 @@ impl Plan {
     }
 }
 
-/// The paper's defaults. `--quick` divides every K (and checkpoint) by 50
-/// and uses M = 4.
-struct Defaults {
+/// A protocol's parameters: the paper's defaults, scaled down by `--quick`,
+/// then replaced by whatever the command line gives.
+struct Params {
     samplers: Vec<SamplerKind>,
     d: Vec<usize>,
     h: Vec<f64>,
     nk: Vec<(usize, u64)>,
     runs: usize,
+    /// `a`, or `a_high` for annealing protocols.
     temps: Vec<f64>,
+    a_low: f64,
     starts: Vec<StartSpec>,
     stride: u64,
     /// Empty: just K.
     checkpoints: Vec<u64>,
     eps: Vec<f64>,
     panels: Vec<(f64, f64)>,
+    /// `None`: K / 500.
+    curve_every: Option<u64>,
 }
 
+/// The paper's start, N(3·1, 10 I).
+const PAPER_CENTRE: f64 = 3.0;
+const PAPER_VARIANCE: f64 = 10.0;
 const PAPER_START: StartSpec = StartSpec::Gaussian {
-    centre: 3.0,
-    variance: 10.0,
+    centre: PAPER_CENTRE,
+    variance: PAPER_VARIANCE,
 };
 const A_LOW: f64 = 0.1;
 
-fn defaults(id: ProtocolId) -> Defaults {
-    let mut d = Defaults {
+/// The paper's parameters of protocol `id`.
+fn defaults(id: ProtocolId) -> Params {
+    let mut d = Params {
         samplers: vec![SamplerKind::Hrla],
         d: vec![10],
         h: vec![0.01],
         nk: vec![(10, 14_000)],
         runs: 100,
         temps: vec![1.0, 2.0, 3.0, 4.0],
+        a_low: A_LOW,
         starts: vec![PAPER_START],
         stride: 1,
         checkpoints: vec![],
         eps: vec![],
         panels: vec![],
+        curve_every: None,
     };
     let one_to_six = vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
     match id {
@@ -307,20 +317,96 @@ fn defaults(id: ProtocolId) -> Defaults {
     d
 }
 
-/// The plan of protocol `id`: its defaults (scaled down by `quick`), then
-/// the overrides.
-pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproError> {
-    let mut d = defaults(id);
-    if quick {
-        d.runs = 4;
-        for (_, k) in &mut d.nk {
-            *k = (*k / 50).max(1);
+/// `--quick`'s K (and checkpoint) for the paper's `k`.
+fn quick_steps(k: u64) -> u64 {
+    (k / 50).max(1)
+}
+
+impl Params {
+    /// The smoke-test size: M = 4 and every K and checkpoint divided by 50.
+    fn quick(mut self) -> Self {
+        self.runs = 4;
+        for (_, k) in &mut self.nk {
+            *k = quick_steps(*k);
         }
-        for k in &mut d.checkpoints {
-            *k = (*k / 50).max(1);
+        for k in &mut self.checkpoints {
+            *k = quick_steps(*k);
         }
-        d.checkpoints.dedup();
+        self.checkpoints.dedup();
+        self
     }
+
+    /// These parameters with every option given in `o` in place of its
+    /// own; a panel's tolerance is added to the tolerances if missing.
+    fn overridden(self, o: &Overrides) -> Self {
+        let panels = o.panels.clone().unwrap_or(self.panels);
+        let mut eps = o.eps.clone().unwrap_or(self.eps);
+        for &(_, e) in &panels {
+            if !eps.contains(&e) {
+                eps.push(e);
+            }
+        }
+        Params {
+            samplers: o.sampler.clone().unwrap_or(self.samplers),
+            d: o.d.clone().unwrap_or(self.d),
+            h: o.h.clone().unwrap_or(self.h),
+            nk: chain_lengths(o, self.nk),
+            runs: o.m.unwrap_or(self.runs),
+            temps: o
+                .a
+                .clone()
+                .or_else(|| o.a_high.clone())
+                .unwrap_or(self.temps),
+            a_low: o.a_low.unwrap_or(self.a_low),
+            starts: starts(o, self.starts),
+            stride: o.stride.unwrap_or(self.stride),
+            checkpoints: o.checkpoints.clone().unwrap_or(self.checkpoints),
+            eps,
+            panels,
+            curve_every: o.curve_every.or(self.curve_every),
+        }
+    }
+}
+
+/// The (N, K) pairs: `--nk` as given, or `--n` crossed with `--k` (each
+/// defaulting to the values of `defaults`), each pair once.
+fn chain_lengths(o: &Overrides, defaults: Vec<(usize, u64)>) -> Vec<(usize, u64)> {
+    if let Some(nk) = &o.nk {
+        return nk.clone();
+    }
+    if o.n.is_none() && o.k.is_none() {
+        return defaults;
+    }
+    let (default_ns, default_ks): (Vec<usize>, Vec<u64>) = defaults.into_iter().unzip();
+    let ns = o.n.clone().unwrap_or(default_ns);
+    let ks = o.k.clone().unwrap_or(default_ks);
+    let mut pairs = Vec::new();
+    for n in ns {
+        for &k in &ks {
+            if !pairs.contains(&(n, k)) {
+                pairs.push((n, k));
+            }
+        }
+    }
+    pairs
+}
+
+/// The starts: `--start-point`, or a Gaussian from `--start-centre` and
+/// `--start-var` (each defaulting to the paper's), or `defaults`.
+fn starts(o: &Overrides, defaults: Vec<StartSpec>) -> Vec<StartSpec> {
+    match (o.start_point, o.start_centre, o.start_var) {
+        (Some(v), _, _) => vec![StartSpec::Point(v)],
+        (None, None, None) => defaults,
+        (None, c, v) => vec![StartSpec::Gaussian {
+            centre: c.unwrap_or(PAPER_CENTRE),
+            variance: v.unwrap_or(PAPER_VARIANCE),
+        }],
+    }
+}
+
+/// Refuses options that protocol `id` does not take, so that they are not
+/// silently ignored.
+fn check_options(id: ProtocolId, o: &Overrides) -> Result<(), ReproError> {
     let usage = |s: String| Err(ReproError::Usage(s));
     if id.anneals() && o.a.is_some() {
         return usage(format!("{} anneals: give --a-high, not --a", id.name()));
@@ -334,138 +420,126 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
     if o.panels.is_some() && !matches!(id, ProtocolId::E2 | ProtocolId::E4) {
         return usage("--panels applies to E2 (a:eps) and E4 (d:eps)".into());
     }
-    let samplers = o.sampler.clone().unwrap_or(d.samplers);
-    let dims = o.d.clone().unwrap_or(d.d);
-    let hs = o.h.clone().unwrap_or(d.h);
-    let nk = match (&o.nk, &o.n, &o.k) {
-        (Some(nk), _, _) => nk.clone(),
-        (None, None, None) => d.nk,
-        (None, n, k) => {
-            let ns = n
-                .clone()
-                .unwrap_or_else(|| d.nk.iter().map(|p| p.0).collect());
-            let ks = k
-                .clone()
-                .unwrap_or_else(|| d.nk.iter().map(|p| p.1).collect());
-            let mut out = Vec::new();
-            for &n in &ns {
-                for &k in &ks {
-                    if !out.contains(&(n, k)) {
-                        out.push((n, k));
-                    }
-                }
-            }
-            out
-        }
-    };
-    let runs = o.m.unwrap_or(d.runs);
-    if runs == 0 {
-        return usage("M must be at least 1".into());
-    }
-    let temps = o.a.clone().or_else(|| o.a_high.clone()).unwrap_or(d.temps);
-    let a_low = o.a_low.unwrap_or(A_LOW);
-    let starts = match (o.start_point, o.start_centre, o.start_var) {
-        (Some(v), _, _) => vec![StartSpec::Point(v)],
-        (None, None, None) => d.starts,
-        (None, c, v) => vec![StartSpec::Gaussian {
-            centre: c.unwrap_or(3.0),
-            variance: v.unwrap_or(10.0),
-        }],
-    };
-    let stride = o.stride.unwrap_or(d.stride);
-    let checkpoints = o.checkpoints.clone().unwrap_or(d.checkpoints);
-    let panel_pairs = o.panels.clone().unwrap_or(d.panels);
-    let mut eps = o.eps.clone().unwrap_or(d.eps);
-    for &(_, e) in &panel_pairs {
-        if !eps.contains(&e) {
-            eps.push(e);
-        }
-    }
-    let figure = !id.is_table();
-    let panels: Vec<Panel> = match id {
-        ProtocolId::E2 => panel_pairs
+    Ok(())
+}
+
+/// The figure's panels: E2's (a, eps) and E4's (d, eps) pairs, one per
+/// tolerance for the other figures, none for tables.
+fn figure_panels(id: ProtocolId, p: &Params) -> Vec<Panel> {
+    let panel = |title: String, eps: f64, filter: PanelFilter| Panel { title, eps, filter };
+    match id {
+        ProtocolId::E2 => p
+            .panels
             .iter()
-            .map(|&(a, e)| Panel {
-                title: format!("a = {a}, eps = {e}"),
-                eps: e,
-                filter: PanelFilter::A(a),
-            })
+            .map(|&(a, e)| panel(format!("a = {a}, eps = {e}"), e, PanelFilter::A(a)))
             .collect(),
-        ProtocolId::E4 => panel_pairs
+        ProtocolId::E4 => p
+            .panels
             .iter()
-            .map(|&(dim, e)| Panel {
-                title: format!("d = {dim}, eps = {e}"),
-                eps: e,
-                filter: PanelFilter::D(dim as usize),
-            })
+            .map(|&(d, e)| panel(format!("d = {d}, eps = {e}"), e, PanelFilter::D(d as usize)))
             .collect(),
-        _ if figure => eps
+        _ if !id.is_table() => p
+            .eps
             .iter()
-            .map(|&e| Panel {
-                title: format!("eps = {e}"),
-                eps: e,
-                filter: PanelFilter::All,
-            })
+            .map(|&e| panel(format!("eps = {e}"), e, PanelFilter::All))
             .collect(),
         _ => vec![],
+    }
+}
+
+/// Every spec of `specs` once per value of an axis, the axis varying
+/// fastest, so that expanding the outermost axis first gives table order.
+fn expand<T: Copy>(specs: Vec<RunSpec>, axis: &[T], set: impl Fn(&mut RunSpec, T)) -> Vec<RunSpec> {
+    let mut out = Vec::with_capacity(specs.len() * axis.len());
+    for spec in &specs {
+        for &value in axis {
+            let mut s = spec.clone();
+            set(&mut s, value);
+            out.push(s);
+        }
+    }
+    out
+}
+
+/// The grid `sampler x d x h x (N, K) x start x a` of protocol `id`, in
+/// that order (the last varying fastest), each configuration validated.
+fn grid(id: ProtocolId, p: &Params) -> Result<Vec<RunSpec>, ReproError> {
+    let figure = !id.is_table();
+    let temperature = |t| {
+        if id.anneals() {
+            Temperature::Linear {
+                low: p.a_low,
+                high: t,
+            }
+        } else {
+            Temperature::Constant(t)
+        }
     };
+    // The placeholders are overwritten by the axes: every spec of the grid
+    // has been through each `expand`.
+    let template = RunSpec {
+        sampler: SamplerKind::Hrla,
+        d: 0,
+        h: 0.0,
+        chains: 0,
+        steps: 0,
+        temperature: Temperature::Constant(0.0),
+        start: PAPER_START,
+        stride: p.stride,
+        checkpoints: vec![],
+        eps: if figure { p.eps.clone() } else { vec![] },
+        curve_every: None,
+    };
+    let mut specs = vec![template];
+    specs = expand(specs, &p.samplers, |s, v| s.sampler = v);
+    specs = expand(specs, &p.d, |s, v| s.d = v);
+    specs = expand(specs, &p.h, |s, v| s.h = v);
+    specs = expand(specs, &p.nk, |s, (n, k)| {
+        s.chains = n;
+        s.steps = k;
+        s.checkpoints = if p.checkpoints.is_empty() {
+            vec![k]
+        } else {
+            p.checkpoints.clone()
+        };
+        s.curve_every = figure.then(|| p.curve_every.unwrap_or_else(|| (k / 500).max(1)));
+    });
+    specs = expand(specs, &p.starts, |s, v| s.start = v);
+    specs = expand(specs, &p.temps, |s, t| s.temperature = temperature(t));
+    for spec in &specs {
+        spec.validate()?;
+    }
+    Ok(specs)
+}
+
+/// The plan of protocol `id`: its defaults (scaled down by `quick`), then
+/// the overrides.
+pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproError> {
+    let mut params = defaults(id);
+    if quick {
+        params = params.quick();
+    }
+    check_options(id, o)?;
+    let params = params.overridden(o);
+    if params.runs == 0 {
+        return Err(ReproError::Usage("M must be at least 1".into()));
+    }
+    let configs = grid(id, &params)?;
+    if configs.is_empty() {
+        return Err(ReproError::Usage("the parameter grid is empty".into()));
+    }
+    let mut panels = figure_panels(id, &params);
+    // A listed pair whose a or d was overridden away would draw an empty
+    // panel.
+    panels.retain(|p| configs.iter().any(|c| p.filter.accepts(c)));
     let series = if id == ProtocolId::E2 {
         SeriesKey::Sampler
     } else {
         SeriesKey::Temperature
     };
-    let mut configs = Vec::new();
-    for &sampler in &samplers {
-        for &dim in &dims {
-            for &h in &hs {
-                for &(n, k) in &nk {
-                    for &start in &starts {
-                        for &t in &temps {
-                            let temperature = if id.anneals() {
-                                Temperature::Linear {
-                                    low: a_low,
-                                    high: t,
-                                }
-                            } else {
-                                Temperature::Constant(t)
-                            };
-                            let curve_every =
-                                figure.then(|| o.curve_every.unwrap_or_else(|| (k / 500).max(1)));
-                            let spec = RunSpec {
-                                sampler,
-                                d: dim,
-                                h,
-                                chains: n,
-                                steps: k,
-                                temperature,
-                                start,
-                                stride,
-                                checkpoints: if checkpoints.is_empty() {
-                                    vec![k]
-                                } else {
-                                    checkpoints.clone()
-                                },
-                                eps: if figure { eps.clone() } else { vec![] },
-                                curve_every,
-                            };
-                            spec.validate()?;
-                            configs.push(spec);
-                        }
-                    }
-                }
-            }
-        }
-    }
-    if configs.is_empty() {
-        return usage("the parameter grid is empty".into());
-    }
-    // A listed pair whose a or d was overridden away would draw an empty
-    // panel.
-    let mut panels = panels;
-    panels.retain(|p| configs.iter().any(|c| p.filter.accepts(c)));
     Ok(Plan {
         id,
-        runs,
+        runs: params.runs,
         configs,
         panels,
         series,
@@ -535,5 +609,27 @@ mod tests {
             plan(ProtocolId::E1, &bad_d, false),
             Err(ReproError::Dimension(3))
         ));
+    }
+
+    #[test]
+    fn the_grid_varies_the_last_axis_fastest_and_crosses_n_with_k_once() {
+        let o = Overrides {
+            n: Some(vec![5, 5, 7]),
+            k: Some(vec![20, 40]),
+            ..Overrides::default()
+        };
+        let e2 = plan(ProtocolId::E2, &o, true).unwrap();
+        let order: Vec<(SamplerKind, usize, u64, f64)> = e2
+            .configs
+            .iter()
+            .map(|c| (c.sampler, c.chains, c.steps, c.temperature.label_value()))
+            .collect();
+        // (5, 20), (5, 40), (7, 20), (7, 40): the repeated 5 counts once.
+        assert_eq!(order.len(), 3 * 4 * 4);
+        assert_eq!(order[0], (SamplerKind::Ola, 5, 20, 2.0));
+        assert_eq!(order[1], (SamplerKind::Ola, 5, 20, 3.0));
+        assert_eq!(order[4], (SamplerKind::Ola, 5, 40, 2.0));
+        assert_eq!(order[8], (SamplerKind::Ola, 7, 20, 2.0));
+        assert_eq!(order[16], (SamplerKind::Ula, 5, 20, 2.0));
     }
 }

@@ -1,12 +1,14 @@
-//! `repro all --quick` into a temporary directory: every protocol's outputs
-//! exist and are well formed (CSV columns and row counts, numbers parse,
-//! probabilities in [0, 1], SVG is XML with one captioned panel per
-//! tolerance or listed pair, metadata with the right chain-step count).
+//! End-to-end tests of the `repro` binary, each into a temporary directory.
+//! `repro all --quick`: every protocol's outputs exist and are well formed
+//! (CSV columns and row counts, numbers parse, probabilities in [0, 1], SVG
+//! is XML with one captioned panel per tolerance or listed pair, metadata
+//! with the right chain-step count). A bad option fails before anything is
+//! written, and the thread count does not change a byte of the outputs.
 
 use std::collections::HashSet;
 use std::fs;
 use std::path::Path;
-use std::process::Command;
+use std::process::{Command, Output};
 
 use hrla_repro::output::{CURVE_COLUMNS, SUMMARY_COLUMNS};
 use hrla_repro::protocol::{Overrides, ProtocolId, plan};
@@ -47,6 +49,25 @@ fn read_csv(path: &Path, columns: &[&str]) -> Vec<Vec<String>> {
         .collect()
 }
 
+/// Runs the binary with `args` and `--out dir`; stdout and stderr are
+/// captured, and stderr is shown when a run that should succeed fails.
+fn repro(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_repro"))
+        .args(args)
+        .arg("--out")
+        .arg(dir)
+        .output()
+        .unwrap()
+}
+
+fn assert_success(out: &Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 fn num(row: &[String], columns: &[&str], name: &str) -> f64 {
     let i = columns.iter().position(|c| *c == name).unwrap();
     row[i]
@@ -57,12 +78,7 @@ fn num(row: &[String], columns: &[&str], name: &str) -> f64 {
 #[test]
 fn quick_all_writes_well_formed_outputs() {
     let dir = tempfile::tempdir().unwrap();
-    let status = Command::new(env!("CARGO_BIN_EXE_repro"))
-        .args(["all", "--quick", "--quiet", "--out"])
-        .arg(dir.path())
-        .status()
-        .unwrap();
-    assert!(status.success());
+    assert_success(&repro(&["all", "--quick", "--quiet"], dir.path()));
     for id in ProtocolId::ALL {
         let p = plan(id, &Overrides::default(), true).unwrap();
         let sub = dir.path().join(id.name().to_lowercase());
@@ -149,11 +165,7 @@ fn quick_all_writes_well_formed_outputs() {
 #[test]
 fn bad_options_fail_before_running() {
     let dir = tempfile::tempdir().unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_repro"))
-        .args(["e5", "--quick", "--quiet", "--a", "3", "--out"])
-        .arg(dir.path())
-        .output()
-        .unwrap();
+    let out = repro(&["e5", "--quick", "--quiet", "--a", "3"], dir.path());
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--a-high"));
     assert!(!dir.path().join("e5").exists());
@@ -165,12 +177,8 @@ fn bad_options_fail_before_running() {
 fn outputs_do_not_depend_on_the_thread_count() {
     let run = |threads: &str| {
         let dir = tempfile::tempdir().unwrap();
-        let status = Command::new(env!("CARGO_BIN_EXE_repro"))
-            .args(["e2", "--quick", "--quiet", "--threads", threads, "--out"])
-            .arg(dir.path())
-            .status()
-            .unwrap();
-        assert!(status.success());
+        let args = ["e2", "--quick", "--quiet", "--threads", threads];
+        assert_success(&repro(&args, dir.path()));
         let read = |f: &str| fs::read_to_string(dir.path().join("e2").join(f)).unwrap();
         (read("summary.csv"), read("curves.csv"), read("e2.svg"))
     };

@@ -1,0 +1,212 @@
+//! What one configuration of a protocol is: the sampler, dimension, step
+//! size, chains, steps, temperature and start of a run ([`RunSpec`]), what
+//! it records, and the checks that it is one the kernel accepts.
+
+use hrla::{AnySampler, AnySchedule, Constant, Linear, Schedule};
+
+use crate::error::ReproError;
+use crate::stats::grid_points;
+
+/// The dimensions compiled into the tool (the kernel's dimension is a const
+/// generic, so each is its own instantiation in the engine).
+pub const DIMENSIONS: [usize; 7] = [1, 2, 5, 10, 20, 50, 100];
+
+/// The three samplers of the paper.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum SamplerKind {
+    /// High-resolution Langevin, exact OU step (the paper's method).
+    Hrla,
+    /// Underdamped Langevin, exact OU step.
+    Ula,
+    /// Overdamped Langevin, Euler–Maruyama.
+    Ola,
+}
+
+impl SamplerKind {
+    /// The kernel's name for the same sampler.
+    pub fn kernel(self) -> hrla::SamplerKind {
+        match self {
+            SamplerKind::Hrla => hrla::SamplerKind::Hrla,
+            SamplerKind::Ula => hrla::SamplerKind::Ula,
+            SamplerKind::Ola => hrla::SamplerKind::Ola,
+        }
+    }
+
+    /// The name used in tables and legends.
+    pub fn name(self) -> &'static str {
+        match self {
+            SamplerKind::Hrla => "HRLA",
+            SamplerKind::Ula => "ULA",
+            SamplerKind::Ola => "OLA",
+        }
+    }
+}
+
+/// The inverse temperature along a run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Temperature {
+    /// A constant `a`.
+    Constant(f64),
+    /// The paper's linear annealing from `low` to `high` over the `K` steps.
+    Linear {
+        /// `a_low` (0.1 in the paper).
+        low: f64,
+        /// `a_high`.
+        high: f64,
+    },
+}
+
+impl Temperature {
+    /// `a`, or `a_high` when annealing: the value that labels a curve.
+    pub fn label_value(self) -> f64 {
+        match self {
+            Temperature::Constant(a) => a,
+            Temperature::Linear { high, .. } => high,
+        }
+    }
+
+    /// The symbol of [`label_value`](Temperature::label_value): `a` or
+    /// `a_high`.
+    pub fn label_name(self) -> &'static str {
+        match self {
+            Temperature::Constant(_) => "a",
+            Temperature::Linear { .. } => "a_high",
+        }
+    }
+
+    /// The kernel's schedule over `steps` iterations.
+    pub fn schedule(self, steps: u64) -> Result<AnySchedule<f64>, hrla::Error> {
+        Ok(match self {
+            Temperature::Constant(a) => AnySchedule::Constant(Constant::new(a)?),
+            Temperature::Linear { low, high } => {
+                AnySchedule::Linear(Linear::new(low, high, steps)?)
+            }
+        })
+    }
+}
+
+/// The initial positions (velocities start at 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StartSpec {
+    /// `x_0 ~ N(centre · 1, variance · I)`, independently per chain.
+    Gaussian {
+        /// Every coordinate of the mean.
+        centre: f64,
+        /// The variance of each coordinate.
+        variance: f64,
+    },
+    /// Every chain at `value · 1`.
+    Point(f64),
+}
+
+impl StartSpec {
+    /// Short label: `N(3,10I)` or `(1,...,1)`.
+    pub fn label(self) -> String {
+        match self {
+            StartSpec::Gaussian { centre, variance } => format!("N({centre}·1, {variance} I)"),
+            StartSpec::Point(v) => format!("({v}, ..., {v})"),
+        }
+    }
+}
+
+/// Everything that defines one configuration of a protocol. The potential
+/// is the paper's Rastrigin (`U* = 0`), the sampler parameters the paper's
+/// (`alpha = beta = 1`, `b = 10`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunSpec {
+    /// The sampler.
+    pub sampler: SamplerKind,
+    /// The dimension `d` (one of [`DIMENSIONS`]).
+    pub d: usize,
+    /// The step size `h`.
+    pub h: f64,
+    /// The number of chains `N`.
+    pub chains: usize,
+    /// The number of steps `K`.
+    pub steps: u64,
+    /// Constant `a` or linear annealing.
+    pub temperature: Temperature,
+    /// The initial distribution.
+    pub start: StartSpec,
+    /// The stride `s` of the running best.
+    pub stride: u64,
+    /// The iterates at which the running best is reported, increasing,
+    /// each in `1..=K` (usually just `K`).
+    pub checkpoints: Vec<u64>,
+    /// The tolerances of the empirical probability curves.
+    pub eps: Vec<f64>,
+    /// The curve grid: the probability is recorded at `k = 0, r, 2r, ...`
+    /// (`None`: no curves).
+    pub curve_every: Option<u64>,
+}
+
+impl RunSpec {
+    /// Length of the per-configuration count buffer: one counter per
+    /// tolerance and grid iterate.
+    pub fn count_len(&self) -> usize {
+        self.eps.len() * grid_points(self.steps, self.curve_every)
+    }
+
+    /// `N K`: the chain-steps of one run.
+    pub fn chain_steps(&self) -> u64 {
+        self.chains as u64 * self.steps
+    }
+
+    /// The kernel's schedule over the run and its sampler at iterate 0.
+    pub fn kernel_setup(&self) -> Result<(AnySchedule<f64>, AnySampler<f64>), hrla::Error> {
+        let schedule = self.temperature.schedule(self.steps)?;
+        let sampler = AnySampler::paper(
+            self.sampler.kernel(),
+            schedule.inverse_temperature(0),
+            self.h,
+        )?;
+        Ok((schedule, sampler))
+    }
+
+    /// Checks every parameter once, before any run starts, so that workers
+    /// never meet an error the user could have been told about up front.
+    pub fn validate(&self) -> Result<(), ReproError> {
+        if !DIMENSIONS.contains(&self.d) {
+            return Err(ReproError::Dimension(self.d));
+        }
+        let bad = |what: &str| Err(ReproError::Usage(what.to_string()));
+        if self.chains == 0 {
+            return bad("N must be at least 1");
+        }
+        if self.steps == 0 {
+            return bad("K must be at least 1");
+        }
+        if self.stride == 0 || self.curve_every == Some(0) {
+            return bad("the stride and the curve grid step must be at least 1");
+        }
+        if self.checkpoints.is_empty()
+            || !self.checkpoints.windows(2).all(|w| w[0] < w[1])
+            || !self
+                .checkpoints
+                .iter()
+                .all(|&c| (1..=self.steps).contains(&c))
+        {
+            return Err(ReproError::Usage(format!(
+                "checkpoints {:?} must increase within 1..=K = {}",
+                self.checkpoints, self.steps
+            )));
+        }
+        if self.eps.iter().any(|e| !e.is_finite()) {
+            return bad("tolerances must be finite");
+        }
+        if let StartSpec::Gaussian { variance, .. } = self.start
+            && !(variance.is_finite() && variance >= 0.0)
+        {
+            return bad("the start variance must be finite and >= 0");
+        }
+        self.kernel_setup()?;
+        // Every a_k of a linear schedule lies between its ends, and the
+        // coefficients are monotone in a, so checking both ends suffices.
+        AnySampler::paper(
+            self.sampler.kernel(),
+            self.temperature.label_value(),
+            self.h,
+        )?;
+        Ok(())
+    }
+}
