@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use hrla::{AnySampler, Float, Optimizer, Rastrigin, SamplerKind, Schedule};
-use hrla_bench::{Bare, constant, optimizer, paper, rng, slow_linear};
+use hrla_bench::{Bare, constant, optimizer, paper_kernel, rng, slow_linear};
 
 /// Chains per optimiser: larger swarms are split so that each optimiser
 /// (which holds its chains inline) stays small on the stack.
@@ -68,7 +68,7 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
                     })
                 },
             );
-            let sampler = paper::<F>(method);
+            let sampler = paper_kernel::<F>(method);
             let mut bare = Bare::<F, D>::new(chains, &mut r);
             g.bench_function(
                 BenchmarkId::new(format!("{}/no-value", method.name()), chains),

@@ -3,15 +3,20 @@
 
 use hrla::rand_core::Rng;
 use hrla::{
-    AnySampler, Constant, Float, Gaussian, Linear, Optimizer, Potential, Rastrigin, Sampler,
-    SamplerKind, Schedule,
+    AnyKernel, AnySampler, Float, Gaussian, Kernel, Linear, Optimizer, Potential, Rastrigin,
+    Sampler, SamplerKind, Schedule,
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
-/// One of the three samplers at the paper's setting (a = 4, h = 0.01).
+/// One of the three samplers at the paper's setting (h = 0.01).
 pub fn paper<F: Float>(kind: SamplerKind) -> AnySampler<F> {
-    AnySampler::paper(kind, F::from_f64(4.0), F::from_f64(0.01)).expect("valid")
+    AnySampler::paper(kind, F::from_f64(0.01)).expect("valid")
+}
+
+/// Its step at the paper's `a = 4`.
+pub fn paper_kernel<F: Float>(kind: SamplerKind) -> AnyKernel<F> {
+    paper(kind).at(constant()).expect("valid")
 }
 
 /// The generator every benchmark uses.
@@ -28,13 +33,12 @@ pub fn optimizer<F: Float, C: Schedule<F>, const D: usize, const N: usize>(
     rng: &mut Xoshiro256PlusPlus,
 ) -> Optimizer<F, Rastrigin, AnySampler<F>, C, D, N> {
     let mut start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10f64.sqrt())).expect("valid");
-    Optimizer::with_schedule(Rastrigin, paper(method), schedule, chains, &mut start, rng)
-        .expect("valid")
+    Optimizer::new(Rastrigin, paper(method), schedule, chains, &mut start, rng).expect("valid")
 }
 
-/// The constant schedule of the paper's setting.
-pub fn constant<F: Float>() -> Constant<F> {
-    Constant::new(F::from_f64(4.0)).expect("valid")
+/// The constant schedule of the paper's setting, `a = 4`.
+pub fn constant<F: Float>() -> F {
+    F::from_f64(4.0)
 }
 
 /// A linear annealing from 4 to 4.4 over 10^9 steps: `a_k` changes at
@@ -81,9 +85,9 @@ impl<F: Float, const D: usize> Bare<F, D> {
     /// One step of every chain and a gradient evaluation, without `U`: the
     /// sampler alone, as a pure sampling loop would run it.
     #[inline]
-    pub fn step<S: Sampler<F>>(&mut self, sampler: &S, rng: &mut Xoshiro256PlusPlus) {
+    pub fn step<K: Kernel<F>>(&mut self, kernel: &K, rng: &mut Xoshiro256PlusPlus) {
         for ((x, y), g) in self.x.iter_mut().zip(&mut self.y).zip(&mut self.g) {
-            sampler.step(x, y, g, rng);
+            kernel.step(x, y, g, rng);
             Potential::<F, D>::gradient(&Rastrigin, x, g);
         }
     }

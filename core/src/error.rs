@@ -2,6 +2,8 @@
 
 use core::fmt;
 
+use crate::float::Float;
+
 /// Why a constructor or a step refused its input.
 ///
 /// Every fallible function of the crate returns this; nothing in the public
@@ -49,6 +51,13 @@ pub enum Error {
         /// The largest count allowed.
         max: usize,
     },
+    /// A name that is not one of those known, such as a sampler's.
+    Unknown {
+        /// What was named (`sampler`, ...).
+        what: &'static str,
+        /// The names known, each after a space.
+        expected: &'static str,
+    },
     /// The potential or its gradient is not finite at an initial point.
     NonFiniteStart {
         /// The chain whose initial point was bad.
@@ -74,6 +83,9 @@ impl fmt::Display for Error {
             Error::Count { name, value, max } => {
                 write!(f, "`{name}` must be between 1 and {max}, got {value}")
             }
+            Error::Unknown { what, expected } => {
+                write!(f, "unknown {what}; expected one of:{expected}")
+            }
             Error::NonFiniteStart { chain } => write!(
                 f,
                 "the potential or its gradient is not finite at the initial point of chain {chain}"
@@ -85,7 +97,7 @@ impl fmt::Display for Error {
 impl core::error::Error for Error {}
 
 /// `Ok(v)` when `v` is finite and strictly positive.
-pub(crate) fn positive<F: crate::Float>(name: &'static str, v: F) -> Result<F, Error> {
+pub(crate) fn positive<F: Float>(name: &'static str, v: F) -> Result<F, Error> {
     if v.is_finite() && v > F::ZERO {
         Ok(v)
     } else {
@@ -97,7 +109,7 @@ pub(crate) fn positive<F: crate::Float>(name: &'static str, v: F) -> Result<F, E
 }
 
 /// `Ok(v)` when `v` is finite.
-pub(crate) fn finite<F: crate::Float>(name: &'static str, v: F) -> Result<F, Error> {
+pub(crate) fn finite<F: Float>(name: &'static str, v: F) -> Result<F, Error> {
     if v.is_finite() {
         Ok(v)
     } else {

@@ -27,23 +27,25 @@
 //! ```
 //!
 //! The coefficients are evaluated without cancellation for every `u` from
-//! 1e-8 to 50 in f32 and f64 (see [`Hrla`] and the spec). ULA and OLA, the
-//! paper's baselines, share the [`Sampler`] trait, and a [`Schedule`] can
-//! raise `a` along the run (annealing).
+//! 1e-8 to 50 in f32 and f64 (see [`Hrla`] and the spec, `docs/SPEC.md` in
+//! the repository). ULA and OLA, the paper's baselines, share the
+//! [`Sampler`] trait, and a [`Schedule`] gives `a` at every step, raising
+//! it along the run for annealing.
 //!
 //! # Example
 //!
 //! Minimise 10-D Rastrigin with the paper's parameters:
 //!
 //! ```
-//! use hrla::{Gaussian, Hrla, HrlaParams, Optimizer, Rastrigin};
+//! use hrla::{Gaussian, Hrla, Optimizer, Rastrigin};
 //! use rand_xoshiro::{Xoshiro256PlusPlus, rand_core::SeedableRng};
 //!
 //! let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
-//! let sampler = Hrla::new(HrlaParams::paper(4.0, 0.01))?;
+//! // The paper's setting (b = 10, alpha = beta = 1) at h = 0.01, at a = 4.
+//! let sampler = Hrla::paper(0.01)?;
 //! let mut start = Gaussian::new([3.0; 10], 10f64.sqrt())?;
 //! let mut opt: Optimizer<f64, _, _, _, 10, 10> =
-//!     Optimizer::new(Rastrigin, sampler, 10, &mut start, &mut rng)?;
+//!     Optimizer::new(Rastrigin, sampler, 4.0, 10, &mut start, &mut rng)?;
 //! let report = opt.run(14_000, &mut rng)?;
 //! assert!(report.best.value < 2.0);
 //! # Ok::<(), hrla::Error>(())
@@ -52,14 +54,16 @@
 //! # Inventory
 //!
 //! - Potentials: the [`Potential`] trait, and [`Rastrigin`] (the paper's
-//!   form), [`Quadratic`], [`DoubleWell`], [`StyblinskiTang`] and [`Levy`],
-//!   each with its [`KnownMinimum`].
+//!   form), [`Quadratic`], [`DoubleWell`], [`StyblinskiTang`], [`Levy`] and
+//!   [`Ackley`], each with its [`KnownMinimum`].
 //! - Samplers: [`Hrla`], [`Ula`], [`Ola`] (and [`AnySampler`] to pick one
-//!   at run time), with [`StepMoments`] giving the
-//!   exact one-step mean and covariance and [`NoiseFactor`] its Cholesky
-//!   factor.
-//! - Schedules: [`Constant`], [`Linear`], [`Geometric`], [`FnSchedule`],
-//!   [`AnySchedule`].
+//!   at run time, by [`SamplerKind`]); each gives its [`Kernel`] at an
+//!   inverse temperature ([`OuKernel`], [`OlaKernel`]), with
+//!   [`StepMoments`] the exact one-step mean and covariance and
+//!   [`NoiseFactor`] its Cholesky factor.
+//! - Schedules: a plain float (constant `a`), [`Constant`], [`Linear`],
+//!   [`Geometric`], [`FnSchedule`], [`AnySchedule`].
+//! - Randomness: [`StandardNormal`], exact normals for both float types.
 //! - Starts: [`Gaussian`], [`Point`], [`FromFn`].
 //! - Algorithm 1: [`Optimizer`], with [`Chain`], [`Best`], [`Report`].
 //!
@@ -88,33 +92,29 @@
 //!
 //! | optimiser | bytes |
 //! |---|---|
-//! | `Optimizer<f32, Rastrigin, Hrla<f32>, Constant<f32>, 2, 16>` | 1 056 |
-//! | `Optimizer<f64, Rastrigin, Hrla<f64>, Constant<f64>, 10, 10>` | 3 840 |
+//! | `Optimizer<f32, Rastrigin, Hrla<f32>, f32, 2, 16>` | 1 112 |
+//! | `Optimizer<f64, Rastrigin, Hrla<f64>, f64, 10, 10>` | 3 952 |
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
 mod error;
 mod float;
+mod lanes;
+mod normal;
 mod optimizer;
-mod ou;
 mod potential;
 mod sampler;
 mod schedule;
 mod start;
-mod trig;
 mod ziggurat_tables;
 
 pub use error::Error;
 pub use float::Float;
+pub use normal::StandardNormal;
 pub use optimizer::{Best, Chain, Optimizer, Report, Status};
-pub use ou::{NoiseFactor, StepMoments};
-pub use potential::{
-    DoubleWell, KnownMinimum, Levy, Potential, Quadratic, Rastrigin, StyblinskiTang,
-};
-pub use sampler::{
-    AnySampler, Hrla, HrlaParams, Ola, OlaParams, Sampler, SamplerKind, Ula, UlaParams,
-};
+pub use potential::*;
+pub use sampler::*;
 pub use schedule::{AnySchedule, Constant, FnSchedule, Geometric, Linear, Schedule};
 pub use start::{FromFn, Gaussian, Point, Start};
 

@@ -6,8 +6,8 @@ use rand_core::Rng;
 use crate::error::{Error, finite};
 use crate::float::Float;
 use crate::potential::Potential;
-use crate::sampler::Sampler;
-use crate::schedule::{Constant, Schedule};
+use crate::sampler::{Kernel, Sampler};
+use crate::schedule::Schedule;
 use crate::start::Start;
 
 /// A point with its potential and the iteration at which it was visited.
@@ -93,7 +93,9 @@ pub struct Report<F, const D: usize> {
 
 /// Algorithm 1 of the paper with running best: `n <= N` independent chains
 /// of a [`Sampler`] on a [`Potential`], at inverse temperatures given by a
-/// [`Schedule`], holding everything inline (no allocation).
+/// [`Schedule`] (a plain `f32` or `f64` for a constant `a`), holding
+/// everything inline (no allocation). The schedule is the one home of `a`:
+/// before every step the optimiser takes the sampler's kernel at `a_k`.
 ///
 /// Iterate `k` of a chain is its state after `k` steps; the step from `k`
 /// to `k + 1` runs at `a_k`. The running best (per chain and global) is the
@@ -108,9 +110,10 @@ pub struct Report<F, const D: usize> {
 /// [`step`]: Optimizer::step
 /// [`run`]: Optimizer::run
 #[derive(Clone, Debug)]
-pub struct Optimizer<F, P, S, C, const D: usize, const N: usize> {
+pub struct Optimizer<F: Float, P, S: Sampler<F>, C, const D: usize, const N: usize> {
     potential: P,
     sampler: S,
+    kernel: S::Kernel,
     schedule: C,
     chains: Vec<Chain<F, D>, N>,
     best: Best<F, D>,
@@ -121,26 +124,6 @@ pub struct Optimizer<F, P, S, C, const D: usize, const N: usize> {
     diverged: usize,
 }
 
-impl<F, P, S, const D: usize, const N: usize> Optimizer<F, P, S, Constant<F>, D, N>
-where
-    F: Float,
-    P: Potential<F, D>,
-    S: Sampler<F>,
-{
-    /// An optimiser at the sampler's own, constant, inverse temperature; see
-    /// [`Optimizer::with_schedule`].
-    pub fn new<St: Start<F, D>, R: Rng + ?Sized>(
-        potential: P,
-        sampler: S,
-        chains: usize,
-        start: &mut St,
-        rng: &mut R,
-    ) -> Result<Self, Error> {
-        let schedule = Constant::new(sampler.inverse_temperature())?;
-        Self::with_schedule(potential, sampler, schedule, chains, start, rng)
-    }
-}
-
 impl<F, P, S, C, const D: usize, const N: usize> Optimizer<F, P, S, C, D, N>
 where
     F: Float,
@@ -149,12 +132,13 @@ where
     C: Schedule<F>,
 {
     /// Draws `chains` initial points (`1 <= chains <= N`) from `start`, with
-    /// zero velocities, and evaluates the potential there.
+    /// zero velocities, and evaluates the potential there; the first step
+    /// runs at the schedule's `a_0`.
     ///
-    /// Errors: [`Error::Count`] for a bad number of chains,
-    /// [`Error::NonFiniteStart`] if `U` or `∇U` is not finite at an initial
-    /// point.
-    pub fn with_schedule<St: Start<F, D>, R: Rng + ?Sized>(
+    /// Errors: [`Error::Count`] for a bad number of chains, the sampler's
+    /// error if it refuses `a_0`, [`Error::NonFiniteStart`] if `U` or `∇U`
+    /// is not finite at an initial point.
+    pub fn new<St: Start<F, D>, R: Rng + ?Sized>(
         potential: P,
         sampler: S,
         schedule: C,
@@ -170,6 +154,7 @@ where
                 max: N,
             });
         }
+        let kernel = sampler.at(schedule.inverse_temperature(0))?;
         let mut list = Vec::new();
         let mut best: Option<Best<F, D>> = None;
         for c in 0..chains {
@@ -201,6 +186,7 @@ where
         Ok(Self {
             potential,
             sampler,
+            kernel,
             schedule,
             chains: list,
             // Cannot be None: chains >= 1.
@@ -241,13 +227,13 @@ where
     /// unchanged.
     pub fn step<R: Rng + ?Sized>(&mut self, rng: &mut R) -> Result<Status, Error> {
         let a = self.schedule.inverse_temperature(self.iteration);
-        if a != self.sampler.inverse_temperature() {
-            self.sampler.set_inverse_temperature(a)?;
+        if a != self.kernel.inverse_temperature() {
+            self.kernel = self.sampler.at(a)?;
         }
         let k = self.iteration + 1;
         let record = k % self.stride == 0;
         for chain in self.chains.iter_mut().filter(|c| !c.diverged) {
-            self.sampler
+            self.kernel
                 .step(&mut chain.x, &mut chain.y, &chain.grad, rng);
             let value = self.potential.value_and_gradient(&chain.x, &mut chain.grad);
             self.gradient_evaluations += 1;
@@ -344,9 +330,15 @@ where
         &self.potential
     }
 
-    /// The sampler, at the temperature of the last step.
+    /// The sampler.
     pub fn sampler(&self) -> &S {
         &self.sampler
+    }
+
+    /// The sampler's kernel at the inverse temperature of the last step
+    /// (`a_0` before the first).
+    pub fn kernel(&self) -> &S::Kernel {
+        &self.kernel
     }
 
     /// The schedule.

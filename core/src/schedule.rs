@@ -6,8 +6,7 @@ use crate::float::Float;
 /// The inverse temperature `a_k` used by the step from iterate `k` to `k + 1`.
 ///
 /// The optimiser passes each value to
-/// [`Sampler::set_inverse_temperature`](crate::Sampler::set_inverse_temperature),
-/// which rejects a non-finite or non-positive one with an error; the built-in
+/// [`Sampler::at`](crate::Sampler::at), which rejects a non-finite or non-positive one with an error; the built-in
 /// schedules validate their parameters so that they never produce one.
 pub trait Schedule<F: Float> {
     /// `a_k`.
@@ -55,7 +54,16 @@ impl<F: Float> Schedule<F> for Constant<F> {
     }
 }
 
-/// The paper's linear annealing (spec section 6, sign corrected):
+/// A plain `f32` or `f64` is a constant schedule: `a_k = a` for every `k`
+/// (the sampler refuses it when it is not finite and > 0).
+impl<F: Float> Schedule<F> for F {
+    #[inline]
+    fn inverse_temperature(&self, _k: u64) -> F {
+        *self
+    }
+}
+
+/// The paper's linear annealing (`docs/SPEC.md` section 6, sign corrected):
 /// `a_k = a_low + (a_high - a_low) k / K` for `k < K`, then `a_high`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Linear<F> {

@@ -1,18 +1,23 @@
 //! Hostile parameters for the samplers: `Hrla::new`, `Ula::new`, `Ola::new`
-//! and `set_inverse_temperature` with values from `hrla_tests::hostile`.
+//! and the kernel at an inverse temperature, `Sampler::at`, with values
+//! from `hrla_tests::hostile`.
 //!
-//! A sampler is built from parameters a caller may compute at run time (an
-//! annealing schedule, a user's input), so a bad value must come back as a
-//! typed error naming it, never as a panic or a sampler that later produces
-//! NaN. The contract checked:
+//! A sampler is built from parameters a caller may compute at run time (a
+//! user's input), and its kernel from an annealing schedule's `a`, so a bad
+//! value must come back as a typed error naming it, never as a panic or a
+//! kernel that later produces NaN. The contract checked:
 //!
-//! - every constructor returns a typed error or a valid sampler, never
-//!   panics; where one bad parameter determines the error, it is exactly
-//!   `NotPositive` with that parameter's name and value;
-//! - a valid sampler gives finite means and finite, non-negative variances
+//! - every constructor and `at` returns a typed error or a valid sampler or
+//!   kernel, never panics; where one bad parameter determines the error, it
+//!   is exactly `NotPositive` with that parameter's name and value; the
+//!   parameters `b`, `alpha`, `beta`, `h` are checked by `new`, and `a`
+//!   only by `at`, so a bad `a` is reported only once the others are fine;
+//! - a valid kernel gives finite means and finite, non-negative variances
 //!   (and a positive semi-definite covariance) for finite states of moderate
 //!   size (|x|, |y|, |g| <= 1: far out, `x + c g` may overflow legitimately),
-//!   refuses an invalid temperature without changing, and runs;
+//!   is at exactly the `a` asked for, and runs; `at` leaves the sampler
+//!   unchanged, so the kernel at an `a` is the same whatever was asked
+//!   before;
 //! - `exact_errors` writes out the errors of every constructor of the crate
 //!   (samplers, schedules, starts, quadratic) that one parameter determines.
 //!
@@ -21,8 +26,8 @@
 use std::fmt::Debug;
 
 use hrla::{
-    Constant, Error, Float, Gaussian, Geometric, Hrla, HrlaParams, Linear, Ola, OlaParams,
-    Optimizer, Point, Quadratic, Rastrigin, Sampler, Status, StepMoments, Ula, UlaParams,
+    Constant, Error, Float, Gaussian, Geometric, Hrla, HrlaParams, Kernel, Linear, Ola, OlaParams,
+    Optimizer, Point, Quadratic, Rastrigin, Sampler, Status, Ula, UlaParams,
 };
 use hrla_tests::hostile::{
     SEED, check_outcome, mostly_sane32, mostly_sane64, no_panic, same_error, valid, wild32, wild64,
@@ -32,11 +37,9 @@ use proptest::prelude::*;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
-/// A valid sampler: finite means, finite non-negative variances and a
+/// A valid kernel: finite means, finite non-negative variances and a
 /// positive semi-definite covariance from moderate finite states.
-fn check_moments<F: Float>(
-    moments: impl Fn(F, F, F) -> StepMoments<F>,
-) -> Result<(), TestCaseError> {
+fn check_moments<F: Float>(kernel: &impl Kernel<F>) -> Result<(), TestCaseError> {
     let vals = [-1.0, -0.5, 0.0, 0.25, 1.0].map(F::from_f64);
     // Positive semi-definiteness is checked when both variances are normal
     // numbers of F: below that, an entry may round to 0 while the others do
@@ -50,7 +53,7 @@ fn check_moments<F: Float>(
     for &x in &vals {
         for &y in &vals {
             for &g in &vals {
-                let m = moments(x, y, g);
+                let m = kernel.moments(x, y, g);
                 prop_assert!(m.mean_x.is_finite() && m.mean_y.is_finite(), "{:?}", m);
                 prop_assert!(m.var_x.is_finite() && m.var_x >= F::ZERO, "{:?}", m);
                 prop_assert!(m.var_y.is_finite() && m.var_y >= F::ZERO, "{:?}", m);
@@ -67,29 +70,57 @@ fn check_moments<F: Float>(
     Ok(())
 }
 
-/// `set_inverse_temperature(a)`: an invalid `a` is `NotPositive { "a" }`
-/// and a refused one leaves the sampler unchanged.
-fn check_set_temperature<F: Float, S: Sampler<F> + Clone + PartialEq + Debug>(
+/// `sampler.at(a)`: an invalid `a` is `NotPositive { "a" }` (or the
+/// coefficients' `DegenerateCoefficients`), an accepted one gives a kernel
+/// at exactly `a`; the kernel, if any.
+fn kernel_at<F: Float, S: Sampler<F> + Debug>(
     sampler: &S,
     a: F,
-) -> Result<(), TestCaseError> {
-    let mut s = sampler.clone();
-    let got = no_panic("set_inverse_temperature", || s.set_inverse_temperature(a))?;
-    check_outcome(&got, &[], &[("a", a.to_f64(), valid(a))], true)?;
-    match got {
-        Ok(()) => prop_assert_eq!(s.inverse_temperature().to_bits_u64(), a.to_bits_u64()),
-        Err(_) => prop_assert_eq!(&s, sampler),
+) -> Result<Option<S::Kernel>, TestCaseError>
+where
+    S::Kernel: Debug,
+{
+    let got = no_panic("at", || sampler.at(a))?;
+    check_outcome(&got, &[("a", a.to_f64(), valid(a))], &[], true)?;
+    if let Ok(k) = &got {
+        prop_assert_eq!(k.inverse_temperature().to_bits_u64(), a.to_bits_u64());
     }
+    Ok(got.ok())
+}
+
+/// The kernel at a second temperature `a2` is checked as the first, and
+/// asking for it changes nothing: the sampler is as it was, and its kernel
+/// at `a` is still `kernel` (it depends on nothing but the parameters and
+/// `a`).
+fn check_other_temperature<F: Float, S: Sampler<F> + Clone + PartialEq + Debug>(
+    sampler: &S,
+    kernel: &S::Kernel,
+    a: F,
+    a2: F,
+) -> Result<(), TestCaseError>
+where
+    S::Kernel: PartialEq + Debug,
+{
+    let before = sampler.clone();
+    if let Some(k2) = kernel_at(sampler, a2)? {
+        check_moments(&k2)?;
+    }
+    prop_assert_eq!(sampler, &before);
+    let again = sampler.at(a);
+    prop_assert_eq!(again.as_ref(), Ok(kernel));
     Ok(())
 }
 
-/// A short run of a valid sampler on 2-D Rastrigin cannot fail (constant
-/// temperature, finite start) and keeps a finite best.
-fn check_runs<F: Float, S: Sampler<F> + Clone + Debug>(sampler: &S) -> Result<(), TestCaseError> {
+/// A short run of a valid sampler on 2-D Rastrigin at an accepted constant
+/// temperature `a` cannot fail (finite start) and keeps a finite best.
+fn check_runs<F: Float, S: Sampler<F> + Clone + Debug>(
+    sampler: &S,
+    a: F,
+) -> Result<(), TestCaseError> {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
     let mut start = Point::new([F::from_f64(0.5), F::from_f64(-0.25)]).unwrap();
-    let mut opt: Optimizer<F, Rastrigin, S, Constant<F>, 2, 3> =
-        Optimizer::new(Rastrigin, sampler.clone(), 3, &mut start, &mut rng).unwrap();
+    let mut opt: Optimizer<F, Rastrigin, S, F, 2, 3> =
+        Optimizer::new(Rastrigin, sampler.clone(), a, 3, &mut start, &mut rng).unwrap();
     let report = no_panic("run", || opt.run(20, &mut rng))?;
     let report = report.map_err(|e| TestCaseError::fail(format!("run failed: {e:?}")))?;
     prop_assert!(report.best.value.is_finite());
@@ -121,21 +152,27 @@ fn construct<S: Debug>(
     Ok(got.ok())
 }
 
-/// What every accepted sampler promises: sound moments, a temperature
-/// change that is applied or refused cleanly, and a run.
+/// What every accepted sampler promises at a temperature `a`: a kernel
+/// refused cleanly or accepted with sound moments; then another
+/// temperature `a2` that changes nothing, and a run.
 fn check_accepted<F: Float, S: Sampler<F> + Clone + PartialEq + Debug>(
     sampler: &S,
-    moments: impl Fn(F, F, F) -> StepMoments<F>,
+    a: F,
     a2: F,
-) -> Result<(), TestCaseError> {
-    check_moments(moments)?;
-    check_set_temperature(sampler, a2)?;
-    check_runs(sampler)
+) -> Result<(), TestCaseError>
+where
+    S::Kernel: PartialEq + Debug,
+{
+    let Some(kernel) = kernel_at(sampler, a)? else {
+        return Ok(());
+    };
+    check_moments(&kernel)?;
+    check_other_temperature(sampler, &kernel, a, a2)?;
+    check_runs(sampler, a)
 }
 
-fn check_hrla<F: Float>(p: HrlaParams<F>, a2: F) -> Result<(), TestCaseError> {
+fn check_hrla<F: Float>(p: HrlaParams<F>, a: F, a2: F) -> Result<(), TestCaseError> {
     let early = [
-        ("a", p.a.to_f64(), valid(p.a)),
         ("beta", p.beta.to_f64(), valid(p.beta)),
         ("b", p.b.to_f64(), valid(p.b)),
         ("alpha", p.alpha.to_f64(), valid(p.alpha)),
@@ -143,35 +180,32 @@ fn check_hrla<F: Float>(p: HrlaParams<F>, a2: F) -> Result<(), TestCaseError> {
     ];
     if let Some(s) = construct("Hrla::new", || Hrla::new(p), &early)? {
         prop_assert_eq!(s.params(), p);
-        prop_assert_eq!(s.inverse_temperature().to_bits_u64(), p.a.to_bits_u64());
-        check_accepted(&s, |x, y, g| s.moments(x, y, g), a2)?;
+        check_accepted(&s, a, a2)?;
     }
     Ok(())
 }
 
-fn check_ula<F: Float>(p: UlaParams<F>, a2: F) -> Result<(), TestCaseError> {
+fn check_ula<F: Float>(p: UlaParams<F>, a: F, a2: F) -> Result<(), TestCaseError> {
     let early = [
-        ("a", p.a.to_f64(), valid(p.a)),
         ("b", p.b.to_f64(), valid(p.b)),
         ("alpha", p.alpha.to_f64(), valid(p.alpha)),
         ("h", p.h.to_f64(), valid(p.h)),
     ];
     if let Some(s) = construct("Ula::new", || Ula::new(p), &early)? {
         prop_assert_eq!(s.params(), p);
-        check_accepted(&s, |x, y, g| s.moments(x, y, g), a2)?;
+        check_accepted(&s, a, a2)?;
     }
     Ok(())
 }
 
-fn check_ola<F: Float>(p: OlaParams<F>, a2: F) -> Result<(), TestCaseError> {
+fn check_ola<F: Float>(p: OlaParams<F>, a: F, a2: F) -> Result<(), TestCaseError> {
     let early = [
-        ("a", p.a.to_f64(), valid(p.a)),
         ("alpha", p.alpha.to_f64(), valid(p.alpha)),
         ("h", p.h.to_f64(), valid(p.h)),
     ];
     if let Some(s) = construct("Ola::new", || Ola::new(p), &early)? {
         prop_assert_eq!(s.params(), p);
-        check_accepted(&s, |x, y, g| s.moments(x, y, g), a2)?;
+        check_accepted(&s, a, a2)?;
     }
     Ok(())
 }
@@ -179,21 +213,27 @@ fn check_ola<F: Float>(p: OlaParams<F>, a2: F) -> Result<(), TestCaseError> {
 proptest! {
     #![proptest_config(config(300, SEED))]
 
-    /// One wild parameter, the others the paper's: a bad one is named
-    /// exactly, e.g. `h = NaN` gives `NotPositive { name: "h", value: NaN }`.
+    /// One wild parameter, the others the paper's (`a = 4`): a bad one is
+    /// named exactly, e.g. `h = NaN` gives `NotPositive { name: "h", value:
+    /// NaN }` from `new`, and `a = NaN` the same for "a" from `at`.
     #[test]
     fn hrla_one_bad_parameter(which in 0..5usize, v in wild64(), a2 in wild64()) {
-        let mut p = HrlaParams { a: 4.0, b: 10.0, alpha: 1.0, beta: 1.0, h: 0.01 };
+        let mut p = HrlaParams { b: 10.0, alpha: 1.0, beta: 1.0, h: 0.01 };
+        let mut a = 4.0;
         let name = ["a", "b", "alpha", "beta", "h"][which];
-        *[&mut p.a, &mut p.b, &mut p.alpha, &mut p.beta, &mut p.h][which] = v;
-        let got = Hrla::new(p);
+        *[&mut a, &mut p.b, &mut p.alpha, &mut p.beta, &mut p.h][which] = v;
+        let sampler = Hrla::new(p);
+        if name == "a" {
+            prop_assert!(sampler.is_ok());
+        }
+        let got = sampler.and_then(|s| s.at(a));
         if valid(v) {
             prop_assert!(got.is_ok() || got == Err(Error::DegenerateCoefficients), "{:?}", got);
         } else {
             let e = got.unwrap_err();
             prop_assert!(same_error(&e, &Error::NotPositive { name, value: v }), "{:?}", e);
         }
-        check_hrla(p, a2)?;
+        check_hrla(p, a, a2)?;
     }
 
     #[test]
@@ -201,7 +241,7 @@ proptest! {
         a in mostly_sane64(), b in mostly_sane64(), alpha in mostly_sane64(),
         beta in mostly_sane64(), h in mostly_sane64(), a2 in wild64(),
     ) {
-        check_hrla(HrlaParams { a, b, alpha, beta, h }, a2)?;
+        check_hrla(HrlaParams { b, alpha, beta, h }, a, a2)?;
     }
 
     #[test]
@@ -209,7 +249,7 @@ proptest! {
         a in mostly_sane32(), b in mostly_sane32(), alpha in mostly_sane32(),
         beta in mostly_sane32(), h in mostly_sane32(), a2 in wild32(),
     ) {
-        check_hrla(HrlaParams { a, b, alpha, beta, h }, a2)?;
+        check_hrla(HrlaParams { b, alpha, beta, h }, a, a2)?;
     }
 
     #[test]
@@ -219,8 +259,8 @@ proptest! {
         a32 in mostly_sane32(), b32 in mostly_sane32(), alpha32 in mostly_sane32(),
         h32 in mostly_sane32(), a232 in wild32(),
     ) {
-        check_ula(UlaParams { a, b, alpha, h }, a2)?;
-        check_ula(UlaParams { a: a32, b: b32, alpha: alpha32, h: h32 }, a232)?;
+        check_ula(UlaParams { b, alpha, h }, a, a2)?;
+        check_ula(UlaParams { b: b32, alpha: alpha32, h: h32 }, a32, a232)?;
     }
 
     #[test]
@@ -229,8 +269,8 @@ proptest! {
         a32 in mostly_sane32(), alpha32 in mostly_sane32(), h32 in mostly_sane32(),
         a232 in wild32(),
     ) {
-        check_ola(OlaParams { a, alpha, h }, a2)?;
-        check_ola(OlaParams { a: a32, alpha: alpha32, h: h32 }, a232)?;
+        check_ola(OlaParams { alpha, h }, a, a2)?;
+        check_ola(OlaParams { alpha: alpha32, h: h32 }, a32, a232)?;
     }
 }
 
@@ -238,12 +278,12 @@ proptest! {
 #[test]
 fn exact_errors() {
     let paper = HrlaParams {
-        a: 4.0,
         b: 10.0,
         alpha: 1.0,
         beta: 1.0,
         h: 0.01,
     };
+    assert_eq!(paper, HrlaParams::paper(0.01));
     let e = Hrla::new(HrlaParams {
         h: f64::NAN,
         ..paper
@@ -258,7 +298,7 @@ fn exact_errors() {
         })
     );
     assert_eq!(
-        Hrla::new(HrlaParams { a: -1.0, ..paper }),
+        Hrla::new(paper).unwrap().at(-1.0),
         Err(Error::NotPositive {
             name: "a",
             value: -1.0
@@ -299,20 +339,31 @@ fn exact_errors() {
     );
     // sx2 = beta / a overflows.
     assert_eq!(
-        Hrla::new(HrlaParams { a: 5e-324, ..paper }),
+        Hrla::new(paper).unwrap().at(5e-324),
         Err(Error::DegenerateCoefficients)
     );
-    // ULA has no sx2: the same tiny a is fine.
-    assert!(Ula::new(UlaParams::paper(5e-324, 0.01)).is_ok());
+    // The parameters are checked by `new`, before any `a`: a bad h with a
+    // bad a is the error of h.
     assert_eq!(
-        Ula::new(UlaParams::paper(4.0, -0.0)),
+        Hrla::new(HrlaParams { h: -1.0, ..paper }).and_then(|s| s.at(-1.0)),
+        Err(Error::NotPositive {
+            name: "h",
+            value: -1.0
+        })
+    );
+    // ULA has no sx2: the same tiny a is fine.
+    assert!(Ula::new(UlaParams::paper(0.01)).unwrap().at(5e-324).is_ok());
+    assert_eq!(
+        Ula::new(UlaParams::paper(-0.0)),
         Err(Error::NotPositive {
             name: "h",
             value: -0.0
         })
     );
     assert_eq!(
-        Ola::new(OlaParams::paper(f32::INFINITY, 0.01f32)),
+        Ola::new(OlaParams::paper(0.01f32))
+            .unwrap()
+            .at(f32::INFINITY),
         Err(Error::NotPositive {
             name: "a",
             value: f64::INFINITY
@@ -320,8 +371,12 @@ fn exact_errors() {
     );
     // OLA's noise sqrt(2 alpha h / a) overflows for a subnormal a.
     assert_eq!(
-        Ola::new(OlaParams::paper(1e-45f32, 1.0)),
+        Ola::new(OlaParams::paper(1.0f32)).unwrap().at(1e-45),
         Err(Error::DegenerateCoefficients)
+    );
+    assert_eq!(
+        Ola::paper(f32::NAN).map(|_| ()).unwrap_err().to_string(),
+        "`h` must be finite and > 0, got NaN"
     );
     assert_eq!(
         Constant::new(0.0f64),

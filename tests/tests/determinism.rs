@@ -15,8 +15,8 @@
 //! the seed reproduces it exactly, on the same machine and on every other.
 
 use hrla::{
-    Chain, Float, Gaussian, Hrla, HrlaParams, Linear, Ola, OlaParams, Optimizer, Rastrigin, Report,
-    Sampler, Schedule, Status, Ula, UlaParams,
+    Chain, Constant, Float, Gaussian, Hrla, Kernel, Linear, Ola, Optimizer, Rastrigin, Report,
+    Sampler, Schedule, Status, Ula,
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::{Rng, SeedableRng};
@@ -59,7 +59,7 @@ fn state_bits<F: Float, S: Sampler<F>, C: Schedule<F>>(opt: &Opt<F, S, C>) -> Ve
         chain_bits(c, &mut out);
     }
     report_bits(&opt.report(), &mut out);
-    out.push(opt.sampler().inverse_temperature().to_bits_u64());
+    out.push(opt.kernel().inverse_temperature().to_bits_u64());
     out
 }
 
@@ -70,7 +70,7 @@ fn build<F: Float, S: Sampler<F>, C: Schedule<F>>(
     rng: &mut Xoshiro256PlusPlus,
 ) -> Opt<F, S, C> {
     let mut start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10f64.sqrt())).unwrap();
-    Optimizer::with_schedule(Rastrigin, sampler, schedule, N, &mut start, rng).unwrap()
+    Optimizer::new(Rastrigin, sampler, schedule, N, &mut start, rng).unwrap()
 }
 
 /// The whole trajectory (the state after every step), as bits.
@@ -110,10 +110,10 @@ fn check_seed_determinism<F: Float, S: Sampler<F> + Clone, C: Schedule<F> + Clon
 
 fn samplers_and_schedules<F: Float>() {
     let f = F::from_f64;
-    let hrla = Hrla::new(HrlaParams::paper(f(4.0), f(0.01))).unwrap();
-    let ula = Ula::new(UlaParams::paper(f(4.0), f(0.01))).unwrap();
-    let ola = Ola::new(OlaParams::paper(f(4.0), f(0.01))).unwrap();
-    let constant = hrla::Constant::new(f(4.0)).unwrap();
+    let hrla = Hrla::paper(f(0.01)).unwrap();
+    let ula = Ula::paper(f(0.01)).unwrap();
+    let ola = Ola::paper(f(0.01)).unwrap();
+    let constant = Constant::new(f(4.0)).unwrap();
     let linear = Linear::new(f(0.1), f(4.0), STEPS).unwrap();
     check_seed_determinism::<F, _, _>(hrla, constant);
     check_seed_determinism::<F, _, _>(hrla, linear);
@@ -133,20 +133,27 @@ fn same_seed_same_bits_f32() {
     samplers_and_schedules::<f32>();
 }
 
-/// `Optimizer::new` (constant temperature) is `with_schedule` at the
-/// sampler's `a`: same bits.
-#[test]
-fn new_equals_with_constant_schedule() {
-    let sampler = Hrla::new(HrlaParams::paper(4.0f64, 0.01)).unwrap();
+/// A plain float as the schedule (constant temperature) is `Constant` at
+/// that `a`: same bits, for every sampler, in f64 and f32.
+fn check_plain_float_is_constant<F: Float, S: Sampler<F> + Clone>(sampler: S) {
+    let a = F::from_f64(4.0);
     let mut rng_a = Xoshiro256PlusPlus::seed_from_u64(3);
     let mut rng_b = rng_a.clone();
-    let mut start = Gaussian::new([3.0; D], 10f64.sqrt()).unwrap();
-    let mut a: Opt<f64, _, _> =
-        Optimizer::new(Rastrigin, sampler, N, &mut start, &mut rng_a).unwrap();
-    let mut b = build(sampler, hrla::Constant::new(4.0).unwrap(), &mut rng_b);
-    a.run(STEPS, &mut rng_a).unwrap();
-    b.run(STEPS, &mut rng_b).unwrap();
-    assert_eq!(state_bits(&a), state_bits(&b));
+    let mut plain = build(sampler.clone(), a, &mut rng_a);
+    let mut constant = build(sampler, Constant::new(a).unwrap(), &mut rng_b);
+    assert_eq!(state_bits(&plain), state_bits(&constant));
+    plain.run(STEPS, &mut rng_a).unwrap();
+    constant.run(STEPS, &mut rng_b).unwrap();
+    assert_eq!(state_bits(&plain), state_bits(&constant));
+    assert_eq!(rng_a.next_u64(), rng_b.next_u64());
+}
+
+#[test]
+fn plain_float_schedule_equals_constant() {
+    check_plain_float_is_constant::<f64, _>(Hrla::paper(0.01).unwrap());
+    check_plain_float_is_constant::<f32, _>(Hrla::paper(0.01).unwrap());
+    check_plain_float_is_constant::<f64, _>(Ula::paper(0.01).unwrap());
+    check_plain_float_is_constant::<f32, _>(Ola::paper(0.01).unwrap());
 }
 
 /// `run(K)`, K calls of `step`, and a mix of both reach the same state,
@@ -195,16 +202,10 @@ fn check_step_vs_run<F: Float, S: Sampler<F> + Clone, C: Schedule<F> + Clone>(
 fn step_and_run_agree() {
     let linear64 = Linear::new(0.1f64, 4.0, STEPS).unwrap();
     let linear32 = Linear::new(0.1f32, 4.0, STEPS).unwrap();
-    check_step_vs_run(
-        Hrla::new(HrlaParams::paper(4.0f64, 0.01)).unwrap(),
-        linear64,
-    );
-    check_step_vs_run(
-        Hrla::new(HrlaParams::paper(4.0f32, 0.01)).unwrap(),
-        linear32,
-    );
-    check_step_vs_run(Ula::new(UlaParams::paper(4.0f64, 0.01)).unwrap(), linear64);
-    check_step_vs_run(Ola::new(OlaParams::paper(4.0f32, 0.01)).unwrap(), linear32);
+    check_step_vs_run(Hrla::paper(0.01f64).unwrap(), linear64);
+    check_step_vs_run(Hrla::paper(0.01f32).unwrap(), linear32);
+    check_step_vs_run(Ula::paper(0.01f64).unwrap(), linear64);
+    check_step_vs_run(Ola::paper(0.01f32).unwrap(), linear32);
 }
 
 /// A clone of the optimiser and of the RNG, taken mid-run, continues
@@ -235,17 +236,14 @@ fn check_clone_mid_run<F: Float, S: Sampler<F> + Clone, C: Schedule<F> + Clone>(
 #[test]
 fn clone_mid_run_continues_identically() {
     check_clone_mid_run(
-        Hrla::new(HrlaParams::paper(4.0f64, 0.01)).unwrap(),
+        Hrla::paper(0.01f64).unwrap(),
         Linear::new(0.1f64, 4.0, STEPS).unwrap(),
     );
     check_clone_mid_run(
-        Hrla::new(HrlaParams::paper(4.0f32, 0.01)).unwrap(),
-        hrla::Constant::new(4.0f32).unwrap(),
+        Hrla::paper(0.01f32).unwrap(),
+        Constant::new(4.0f32).unwrap(),
     );
-    check_clone_mid_run(
-        Ola::new(OlaParams::paper(2.0f64, 0.01)).unwrap(),
-        hrla::Constant::new(2.0f64).unwrap(),
-    );
+    check_clone_mid_run(Ola::paper(0.01f64).unwrap(), Constant::new(2.0f64).unwrap());
 }
 
 // Golden values.
@@ -269,10 +267,10 @@ const GOLDEN_STEPS: u64 = 100;
 fn golden_run<F: Float>() -> (Report<F, 2>, [F; 2]) {
     let f = F::from_f64;
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(GOLDEN_SEED);
-    let sampler = Hrla::new(HrlaParams::paper(f(4.0), f(0.01))).unwrap();
+    let sampler = Hrla::paper(f(0.01)).unwrap();
     let mut start = Gaussian::new([f(3.0); 2], f(10f64.sqrt())).unwrap();
-    let mut opt: Optimizer<F, Rastrigin, Hrla<F>, _, 2, 4> =
-        Optimizer::new(Rastrigin, sampler, 4, &mut start, &mut rng).unwrap();
+    let mut opt: Optimizer<F, Rastrigin, Hrla<F>, F, 2, 4> =
+        Optimizer::new(Rastrigin, sampler, f(4.0), 4, &mut start, &mut rng).unwrap();
     for _ in 0..GOLDEN_STEPS {
         opt.step(&mut rng).unwrap();
     }

@@ -8,9 +8,7 @@
 //! logarithms instead of the ratio, `(k r) r` instead of `k |r|^2`). These
 //! tests hold it to that for the parameters where the direct order fails.
 
-use hrla::{
-    Float, Geometric, Hrla, HrlaParams, Linear, Optimizer, Point, Potential, Quadratic, Schedule,
-};
+use hrla::{Float, Geometric, Hrla, Linear, Optimizer, Point, Potential, Quadratic, Schedule};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
@@ -107,11 +105,9 @@ fn built_in_schedules_stay_in_range() {
 struct Flat;
 
 impl Potential<f64, 2> for Flat {
-    fn value(&self, _: &[f64; 2]) -> f64 {
-        0.0
-    }
-    fn gradient(&self, _: &[f64; 2], g: &mut [f64; 2]) {
+    fn value_and_gradient(&self, _: &[f64; 2], g: &mut [f64; 2]) -> f64 {
         *g = [0.0; 2];
+        0.0
     }
 }
 
@@ -120,12 +116,12 @@ impl Potential<f64, 2> for Flat {
 /// `NotPositive { name: "a", value: inf }`.
 #[test]
 fn huge_but_valid_linear_schedule_runs() {
-    let sampler = Hrla::new(HrlaParams::paper(1.0f64, 0.01)).unwrap();
+    let sampler = Hrla::paper(0.01f64).unwrap();
     let schedule = Linear::new(1.0, 1e308, 10).unwrap();
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(0);
     let mut start = Point::new([0.5f64, 0.5]).unwrap();
     let mut opt: Optimizer<f64, Flat, Hrla<f64>, Linear<f64>, 2, 2> =
-        Optimizer::with_schedule(Flat, sampler, schedule, 2, &mut start, &mut rng).unwrap();
+        Optimizer::new(Flat, sampler, schedule, 2, &mut start, &mut rng).unwrap();
     let got = opt.run(20, &mut rng);
     assert!(got.is_ok(), "{got:?} at k = {}", opt.iteration());
 }

@@ -18,8 +18,8 @@
 use std::time::Instant;
 
 use hrla::{
-    DoubleWell, Float, Hrla, HrlaParams, Ola, OlaParams, Potential, Quadratic, Sampler,
-    StepMoments, Ula, UlaParams,
+    DoubleWell, Float, Hrla, HrlaParams, Kernel, Ola, OlaKernel, OlaParams, OuKernel, Potential,
+    Quadratic, Sampler, Ula, UlaParams,
 };
 use hrla_tests::stats::{
     Mat2, Summary, chi_square, chi2_critical, chi2_sf, congruence, covariance, discrete_lyapunov,
@@ -63,12 +63,12 @@ impl LinearChain {
     /// columns of M are the means from the unit states `(1, 0)` (with
     /// `g = k`) and `(0, 1)` (with `g = 0`). The covariance C does not
     /// depend on the state.
-    fn from_moments<F: Float>(moments: impl Fn(F, F, F) -> StepMoments<F>, velocity: bool) -> Self {
+    fn from_moments<F: Float>(kernel: &impl Kernel<F>, velocity: bool) -> Self {
         let f = F::from_f64;
-        let origin = moments(F::ZERO, F::ZERO, F::ZERO);
+        let origin = kernel.moments(F::ZERO, F::ZERO, F::ZERO);
         assert_eq!((origin.mean_x, origin.mean_y), (F::ZERO, F::ZERO));
-        let ex = moments(F::ONE, F::ZERO, f(K));
-        let ey = moments(F::ZERO, F::ONE, F::ZERO);
+        let ex = kernel.moments(F::ONE, F::ZERO, f(K));
+        let ey = kernel.moments(F::ZERO, F::ONE, F::ZERO);
         let m = [
             [ex.mean_x.to_f64(), ey.mean_x.to_f64()],
             [ex.mean_y.to_f64(), ey.mean_y.to_f64()],
@@ -116,53 +116,50 @@ impl LinearChain {
     }
 }
 
-fn hrla<F: Float>(h: f64) -> Hrla<F> {
+/// HRLA's step at `a = A`.
+fn hrla<F: Float>(h: f64) -> OuKernel<F> {
     let f = F::from_f64;
     Hrla::new(HrlaParams {
-        a: f(A),
         b: f(B),
         alpha: f(ALPHA),
         beta: f(BETA),
         h: f(h),
     })
     .unwrap()
+    .at(f(A))
+    .unwrap()
 }
 
-fn ula<F: Float>(h: f64) -> Ula<F> {
+/// ULA's step at `a = A`.
+fn ula<F: Float>(h: f64) -> OuKernel<F> {
     let f = F::from_f64;
     Ula::new(UlaParams {
-        a: f(A),
         b: f(B),
         alpha: f(ALPHA),
         h: f(h),
     })
     .unwrap()
+    .at(f(A))
+    .unwrap()
 }
 
-fn ola<F: Float>(h: f64) -> Ola<F> {
+/// OLA's step at `a = A`.
+fn ola<F: Float>(h: f64) -> OlaKernel<F> {
     let f = F::from_f64;
     Ola::new(OlaParams {
-        a: f(A),
         alpha: f(ALPHA),
         h: f(h),
     })
+    .unwrap()
+    .at(f(A))
     .unwrap()
 }
 
 fn linear_chain<F: Float>(kind: Kind, h: f64) -> LinearChain {
     match kind {
-        Kind::Hrla => {
-            let s = hrla::<F>(h);
-            LinearChain::from_moments(|x, y, g| s.moments(x, y, g), true)
-        }
-        Kind::Ula => {
-            let s = ula::<F>(h);
-            LinearChain::from_moments(|x, y, g| s.moments(x, y, g), true)
-        }
-        Kind::Ola => {
-            let s = ola::<F>(h);
-            LinearChain::from_moments(|x, y, g| s.moments(x, y, g), false)
-        }
+        Kind::Hrla => LinearChain::from_moments(&hrla::<F>(h), true),
+        Kind::Ula => LinearChain::from_moments(&ula::<F>(h), true),
+        Kind::Ola => LinearChain::from_moments(&ola::<F>(h), false),
     }
 }
 
@@ -236,8 +233,8 @@ fn quadratic_discretisation_bias_is_first_order() {
 /// `D`-dimensional separable quadratic, whose steps draw independent
 /// normals per coordinate) for `steps` steps from `(0, 0)` and returns
 /// their final `(x, y)`.
-fn run_quadratic<F: Float, S: Sampler<F>, const D: usize>(
-    sampler: &S,
+fn run_quadratic<F: Float, K: Kernel<F>, const D: usize>(
+    kernel: &K,
     groups: usize,
     steps: usize,
     seed: u64,
@@ -252,7 +249,7 @@ fn run_quadratic<F: Float, S: Sampler<F>, const D: usize>(
         let mut g = [F::ZERO; D];
         for _ in 0..steps {
             potential.value_and_gradient(&x, &mut g);
-            sampler.step(&mut x, &mut y, &g, &mut rng);
+            kernel.step(&mut x, &mut y, &g, &mut rng);
         }
         xs.extend(x.iter().map(|v| v.to_f64()));
         ys.extend(y.iter().map(|v| v.to_f64()));
@@ -408,7 +405,7 @@ struct DwRun {
     crossed: f64,
 }
 
-fn run_double_well<S: Sampler<f64>>(sampler: &S, groups: usize, steps: usize, seed: u64) -> DwRun {
+fn run_double_well<K: Kernel<f64>>(kernel: &K, groups: usize, steps: usize, seed: u64) -> DwRun {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let mut xs = Vec::with_capacity(groups * DW_DIM);
     let (mut crossings, mut crossed) = (0u64, 0u64);
@@ -420,7 +417,7 @@ fn run_double_well<S: Sampler<f64>>(sampler: &S, groups: usize, steps: usize, se
         let mut count = [0u32; DW_DIM];
         for _ in 0..steps {
             DoubleWell.value_and_gradient(&x, &mut g);
-            sampler.step(&mut x, &mut y, &g, &mut rng);
+            kernel.step(&mut x, &mut y, &g, &mut rng);
             for ((&xi, p), c) in x.iter().zip(&mut positive).zip(&mut count) {
                 if (*p && xi < -0.5) || (!*p && xi > 0.5) {
                     *p = !*p;
@@ -527,10 +524,10 @@ fn double_well_chi_square(xs: &[f64], a: f64) -> f64 {
 /// chi-square, λ = 1; 0.0015 at λ = 0.7): the bias is below the test's
 /// resolution, and the test checks the sampler against the exact Gibbs
 /// law.
-fn check_double_well<S: Sampler<f64>>(label: &str, sampler: &S, h: f64, t: f64, seed: u64) {
+fn check_double_well<K: Kernel<f64>>(label: &str, kernel: &K, h: f64, t: f64, seed: u64) {
     let start = Instant::now();
     let steps = (t / h).round() as usize;
-    let run = run_double_well(sampler, DW_GROUPS, steps, seed);
+    let run = run_double_well(kernel, DW_GROUPS, steps, seed);
     let n = run.xs.len();
     let chi2 = double_well_chi_square(&run.xs, A_DW);
     let df = BINS - 1;
@@ -558,12 +555,13 @@ fn check_double_well<S: Sampler<f64>>(label: &str, sampler: &S, h: f64, t: f64, 
 #[test]
 fn double_well_hrla() {
     let hrla = Hrla::new(HrlaParams {
-        a: A_DW,
         b: 10.0,
         alpha: 1.0,
         beta: 1.0,
         h: 0.0025,
     })
+    .unwrap()
+    .at(A_DW)
     .unwrap();
     check_double_well("HRLA", &hrla, 0.0025, T_OVERDAMPED, 0x6477_0001);
 }
@@ -572,10 +570,11 @@ fn double_well_hrla() {
 #[test]
 fn double_well_ola() {
     let ola = Ola::new(OlaParams {
-        a: A_DW,
         alpha: 1.0,
         h: 0.0025,
     })
+    .unwrap()
+    .at(A_DW)
     .unwrap();
     check_double_well("OLA", &ola, 0.0025, T_OVERDAMPED, 0x6477_0002);
 }
@@ -591,11 +590,12 @@ fn double_well_ola() {
 #[test]
 fn double_well_ula() {
     let ula = Ula::new(UlaParams {
-        a: A_DW,
         b: 1.0,
         alpha: 4.0,
         h: 0.005,
     })
+    .unwrap()
+    .at(A_DW)
     .unwrap();
     check_double_well("ULA", &ula, 0.005, T_ULA, 0x6477_0003);
 }
@@ -610,25 +610,25 @@ fn double_well_bias_calibration() {
     let df = (BINS - 1) as f64;
     for h in [0.04, 0.02, 0.01, 0.005] {
         let hrla = Hrla::new(HrlaParams {
-            a: A_DW,
             b: 10.0,
             alpha: 1.0,
             beta: 1.0,
             h,
         })
+        .unwrap()
+        .at(A_DW)
         .unwrap();
-        let ola = Ola::new(OlaParams {
-            a: A_DW,
-            alpha: 1.0,
-            h,
-        })
-        .unwrap();
+        let ola = Ola::new(OlaParams { alpha: 1.0, h })
+            .unwrap()
+            .at(A_DW)
+            .unwrap();
         let ula = Ula::new(UlaParams {
-            a: A_DW,
             b: 1.0,
             alpha: 4.0,
             h,
         })
+        .unwrap()
+        .at(A_DW)
         .unwrap();
         let groups = 10 * DW_GROUPS;
         let lambda = |run: DwRun| double_well_chi_square(&run.xs, A_DW) - df;

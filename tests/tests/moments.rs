@@ -8,9 +8,14 @@
 //! every chain without any visible failure, so the coefficients are
 //! checked against a computation that shares no formula with the kernel.
 
-use hrla::{Float, Hrla, HrlaParams, NoiseFactor, Sampler, StepMoments, Ula, UlaParams};
+use hrla::{
+    Float, FnSchedule, Hrla, HrlaParams, Kernel, NoiseFactor, Optimizer, OuKernel, Point,
+    Rastrigin, Sampler, Schedule, Ula, UlaParams,
+};
 use hrla_tests::dd::Dd;
 use hrla_tests::reference::{Reference, ou_step};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
 
 /// `alpha h` values: from deep in the cancellation regime to the ends of
 /// the stable range.
@@ -26,7 +31,7 @@ const PARAMS: [(f64, f64, f64, f64); 4] = [
 ];
 
 /// The kernel's coefficients and factor, read through the public API.
-struct Kernel {
+struct Coefficients {
     c_xy: f64,
     c_xg: f64,
     e: f64,
@@ -37,13 +42,14 @@ struct Kernel {
     factor: [f64; 3],
 }
 
-fn read<F: Float>(moments: impl Fn(F, F, F) -> StepMoments<F>, factor: NoiseFactor<F>) -> Kernel {
+fn read<F: Float>(kernel: &OuKernel<F>) -> Coefficients {
     let (z, o) = (F::ZERO, F::ONE);
     // The mean is linear in (x, y, g): unit vectors isolate each coefficient
     // without the rounding of a sum.
-    let dy = moments(z, o, z);
-    let dg = moments(z, z, o);
-    Kernel {
+    let dy = kernel.moments(z, o, z);
+    let dg = kernel.moments(z, z, o);
+    let factor: NoiseFactor<F> = kernel.noise_factor();
+    Coefficients {
         c_xy: dy.mean_x.to_f64(),
         c_xg: -dg.mean_x.to_f64(),
         e: dy.mean_y.to_f64(),
@@ -56,7 +62,7 @@ fn read<F: Float>(moments: impl Fn(F, F, F) -> StepMoments<F>, factor: NoiseFact
 }
 
 /// Relative error of every coefficient, named, against the reference.
-fn errors(k: &Kernel, r: &Reference) -> Vec<(&'static str, f64)> {
+fn errors(k: &Coefficients, r: &Reference) -> Vec<(&'static str, f64)> {
     let rel = |got: f64, want: Dd| {
         let want_hi = want.to_f64();
         if want_hi == 0.0 {
@@ -82,55 +88,77 @@ fn errors(k: &Kernel, r: &Reference) -> Vec<(&'static str, f64)> {
 /// Every (sampler, parameters, u) case, with the kernel read at float `F`
 /// (parameters rounded to `F` first; the reference takes the rounded values,
 /// so it is exact for what the kernel was given). Also returns `u`.
-fn cases<F: Float>() -> Vec<(String, f64, Kernel, Reference)> {
+fn cases<F: Float>() -> Vec<(String, f64, Coefficients, Reference)> {
     let mut out = Vec::new();
     for &(a, b, alpha, beta) in &PARAMS {
         for &u in &U {
             let r = |v: f64| F::from_f64(v);
             let (af, bf, alf, bef, hf) = (r(a), r(b), r(alpha), r(beta), r(u / alpha));
             let w = |v: F| v.to_f64();
-            let hrla = Hrla::new(HrlaParams {
-                a: af,
+            let params = HrlaParams {
                 b: bf,
                 alpha: alf,
                 beta: bef,
                 h: hf,
-            })
-            .unwrap();
+            };
+            let hrla = Hrla::new(params).unwrap().at(af).unwrap();
             out.push((
                 format!("HRLA a={a} b={b} alpha={alpha} beta={beta} u={u:e}"),
                 u,
-                read(|x, y, g| hrla.moments(x, y, g), hrla.noise_factor()),
+                read(&hrla),
                 ou_step(w(af), w(bf), w(alf), w(bef), w(hf)),
             ));
             let ula = Ula::new(UlaParams {
-                a: af,
                 b: bf,
                 alpha: alf,
                 h: hf,
             })
+            .unwrap()
+            .at(af)
             .unwrap();
             out.push((
                 format!("ULA a={a} b={b} alpha={alpha} u={u:e}"),
                 u,
-                read(|x, y, g| ula.moments(x, y, g), ula.noise_factor()),
+                read(&ula),
                 ou_step(w(af), w(bf), w(alf), 0.0, w(hf)),
             ));
-            // Annealed: built at a = 0.1, then moved to a by the schedule
-            // path; it must be the very same sampler, bit for bit.
-            let mut annealed = Hrla::new(HrlaParams {
-                a: r(0.1),
-                b: bf,
-                alpha: alf,
-                beta: bef,
-                h: hf,
-            })
-            .unwrap();
-            annealed.set_inverse_temperature(af).unwrap();
-            assert_eq!(annealed, hrla, "set_inverse_temperature differs from new");
+            check_annealed(params, r(0.1), af, &hrla);
         }
     }
     out
+}
+
+/// Annealed: the kernel at `a` depends on nothing but the parameters and
+/// `a`. A sampler that already gave its kernel at `a_hot`, and an optimiser
+/// whose schedule moved it from `a_hot` to `a`, give the very kernel of a
+/// fresh sampler at `a`, bit for bit.
+fn check_annealed<F: Float>(params: HrlaParams<F>, a_hot: F, a: F, fresh: &OuKernel<F>) {
+    let sampler = Hrla::new(params).unwrap();
+    let hot = sampler.at(a_hot).unwrap();
+    assert_eq!(hot.inverse_temperature(), a_hot);
+    let annealed = sampler.at(a).unwrap();
+    assert_eq!(&annealed, fresh, "the kernel at a depends on the path");
+    assert_eq!(
+        sampler,
+        Hrla::new(params).unwrap(),
+        "`at` changed the sampler"
+    );
+    // The schedule path: a_0 = a_hot, then a.
+    let schedule = FnSchedule(move |k: u64| if k == 0 { a_hot } else { a });
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+    let mut start = Point::new([F::from_f64(0.25)]).unwrap();
+    let mut opt: Optimizer<F, Rastrigin, Hrla<F>, _, 1, 1> =
+        Optimizer::new(Rastrigin, sampler, schedule, 1, &mut start, &mut rng).unwrap();
+    assert_eq!(opt.kernel(), &hot);
+    for k in 0..3u64 {
+        opt.step(&mut rng).unwrap();
+        let want = if k == 0 { &hot } else { fresh };
+        assert_eq!(opt.kernel(), want, "kernel after step {k}");
+        assert_eq!(
+            opt.kernel().inverse_temperature(),
+            schedule.inverse_temperature(k)
+        );
+    }
 }
 
 /// The error bound, in units of `unit` (half an ulp at 1, i.e. `2^-53` or
@@ -227,7 +255,7 @@ fn naive_f32_formula_fails_the_tolerance_the_kernel_meets() {
             "u={u}: naive Schur unexpectedly accurate ({err_schur:e})"
         );
         // The kernel on the same input passes.
-        let ula = Ula::new(UlaParams { a, b, alpha, h }).unwrap();
+        let ula = Ula::new(UlaParams { b, alpha, h }).unwrap().at(a).unwrap();
         let m = ula.moments(0.0, 0.0, 0.0);
         let err = ((Dd::new(m.var_x as f64) - r.var_x) / r.var_x)
             .to_f64()

@@ -24,7 +24,7 @@
 
 use std::time::Instant;
 
-use hrla::{Float, Hrla, HrlaParams, Ola, OlaParams, Sampler, StepMoments, Ula, UlaParams};
+use hrla::{Float, Hrla, HrlaParams, Kernel, Ola, OlaParams, Sampler, StepMoments, Ula, UlaParams};
 use hrla_tests::stats::{Summary, covariance, se_covariance, z_score};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -118,12 +118,12 @@ impl Zs {
     }
 }
 
-/// Draws 10^6 one-step moves of `sampler` from `(x, y, g)` and returns the
+/// Draws 10^6 one-step moves of `kernel` from `(x, y, g)` and returns the
 /// z-scores of the empirical moments against `m`. For a sampler without a
 /// velocity (`velocity = false`) it instead asserts that `y` is returned
 /// bit for bit and that `m` says so.
-fn one_step_zs<F: Float, S: Sampler<F>>(
-    sampler: &S,
+fn one_step_zs<F: Float, K: Kernel<F>>(
+    kernel: &K,
     m: StepMoments<F>,
     (x, y, g): (F, F, F),
     velocity: bool,
@@ -137,7 +137,7 @@ fn one_step_zs<F: Float, S: Sampler<F>>(
     for _ in 0..STEPS {
         let mut xv = [x; D];
         let mut yv = [y; D];
-        sampler.step(&mut xv, &mut yv, &grad, &mut rng);
+        kernel.step(&mut xv, &mut yv, &grad, &mut rng);
         xs.extend(xv.iter().map(|v| v.to_f64()));
         ys.extend(yv.iter().map(|v| v.to_f64()));
     }
@@ -188,30 +188,33 @@ fn check_all<F: Float>(label: &str, seed0: u64) {
         let seed = seed0 + 10 * i as u64;
 
         let hrla = Hrla::new(HrlaParams {
-            a: f(c.a),
             b: f(c.b),
             alpha: f(c.alpha),
             beta: f(c.beta),
             h: f(c.h),
         })
+        .unwrap()
+        .at(f(c.a))
         .unwrap();
         tally.check("HRLA", &hrla, hrla.moments(x, y, g), c, true, seed);
 
         let ula = Ula::new(UlaParams {
-            a: f(c.a),
             b: f(c.b),
             alpha: f(c.alpha),
             h: f(c.h),
         })
+        .unwrap()
+        .at(f(c.a))
         .unwrap();
         tally.check("ULA", &ula, ula.moments(x, y, g), c, true, seed + 1);
 
         // A single OLA step is Gaussian for any (alpha, h), stable or not.
         let ola = Ola::new(OlaParams {
-            a: f(c.a),
             alpha: f(c.alpha),
             h: f(c.h),
         })
+        .unwrap()
+        .at(f(c.a))
         .unwrap();
         tally.check("OLA", &ola, ola.moments(x, y, g), c, false, seed + 2);
     }
@@ -236,16 +239,16 @@ struct Tally<'a> {
 impl Tally<'_> {
     /// One case of one sampler: its z-scores (see `one_step_zs`), printed
     /// and counted.
-    fn check<F: Float, S: Sampler<F>>(
+    fn check<F: Float, K: Kernel<F>>(
         &mut self,
         sampler_name: &str,
-        sampler: &S,
+        kernel: &K,
         m: StepMoments<F>,
         c: &Case,
         velocity: bool,
         seed: u64,
     ) {
-        let zs = one_step_zs(sampler, m, c.state(), velocity, seed);
+        let zs = one_step_zs(kernel, m, c.state(), velocity, seed);
         let label = self.label;
         println!(
             "{label} {sampler_name:4} {:10} var_x={:.4e} var_y={:.4e} cov={:.4e} | z: mean_x {:+.2} mean_y {:+.2} var_x {:+.2} var_y {:+.2} cov {:+.2}",

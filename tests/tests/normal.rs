@@ -1,7 +1,7 @@
-//! The standard normal sampler, `<F as Float>::standard_normal`, in f64 and
-//! f32: a Kolmogorov–Smirnov test, the frequencies of the Ziggurat's tail
-//! branch, the first four moments, and an independent recomputation of the
-//! Ziggurat tables.
+//! The standard normal sampler, `StandardNormal::standard_normal` (every
+//! `Float` is a `StandardNormal`), in f64 and f32: a Kolmogorov–Smirnov
+//! test, the frequencies of the Ziggurat's tail branch, the first four
+//! moments, and an independent recomputation of the Ziggurat tables.
 //!
 //! Every step's noise comes from this sampler: a biased tail or a
 //! mis-tabulated Ziggurat layer distorts the invariant law by amounts that

@@ -9,9 +9,10 @@
 //! hide behind a run that still finds the minimum.
 
 use hrla::{
-    Best, Constant, Error, FnSchedule, FromFn, Gaussian, Hrla, HrlaParams, Linear, Ola, OlaParams,
+    Best, Error, FnSchedule, FromFn, Gaussian, Hrla, HrlaParams, Kernel, Linear, Ola, OlaParams,
     Optimizer, Point, Potential, Rastrigin, Sampler, Schedule, Status, Ula, UlaParams,
 };
+use hrla_tests::hostile::same_error;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::{Rng, SeedableRng};
 
@@ -19,9 +20,10 @@ fn rng(seed: u64) -> Xoshiro256PlusPlus {
     Xoshiro256PlusPlus::seed_from_u64(seed)
 }
 
-fn paper_hrla(a: f64) -> Hrla<f64> {
+/// HRLA with the paper's `b = 10`, `alpha = beta = 1`, `h = 0.01` (the
+/// inverse temperature is the optimiser's schedule).
+fn paper_hrla() -> Hrla<f64> {
     Hrla::new(HrlaParams {
-        a,
         b: 10.0,
         alpha: 1.0,
         beta: 1.0,
@@ -40,8 +42,8 @@ fn paper_hrla(a: f64) -> Hrla<f64> {
 fn paper_run(seed: u64) -> f64 {
     let mut rng = rng(seed);
     let mut start = Gaussian::new([3.0; 10], 10f64.sqrt()).unwrap();
-    let mut opt: Optimizer<f64, Rastrigin, Hrla<f64>, Constant<f64>, 10, 10> =
-        Optimizer::new(Rastrigin, paper_hrla(4.0), 10, &mut start, &mut rng).unwrap();
+    let mut opt: Optimizer<f64, Rastrigin, Hrla<f64>, f64, 10, 10> =
+        Optimizer::new(Rastrigin, paper_hrla(), 4.0, 10, &mut start, &mut rng).unwrap();
     let report = opt.run(14_000, &mut rng).unwrap();
     assert_eq!(report.iterations, 14_000);
     assert_eq!(report.status, Status::Running);
@@ -109,8 +111,8 @@ fn check_bookkeeping(stride: u64, seed: u64) {
     const K: u64 = 400;
     let mut rng = rng(seed);
     let mut start = Gaussian::new([3.0; 2], 10f64.sqrt()).unwrap();
-    let mut opt: Optimizer<f64, Rastrigin, Hrla<f64>, Constant<f64>, 2, N> =
-        Optimizer::new(Rastrigin, paper_hrla(2.0), N, &mut start, &mut rng)
+    let mut opt: Optimizer<f64, Rastrigin, Hrla<f64>, f64, 2, N> =
+        Optimizer::new(Rastrigin, paper_hrla(), 2.0, N, &mut start, &mut rng)
             .unwrap()
             .with_stride(stride)
             .unwrap();
@@ -200,8 +202,8 @@ fn stride_does_not_change_the_trajectory() {
     let make = |stride| {
         let mut rng = rng(99);
         let mut start = Gaussian::new([3.0; 4], 10f64.sqrt()).unwrap();
-        let mut opt: Optimizer<f64, Rastrigin, Hrla<f64>, Constant<f64>, 4, 6> =
-            Optimizer::new(Rastrigin, paper_hrla(3.0), 6, &mut start, &mut rng)
+        let mut opt: Optimizer<f64, Rastrigin, Hrla<f64>, f64, 4, 6> =
+            Optimizer::new(Rastrigin, paper_hrla(), 3.0, 6, &mut start, &mut rng)
                 .unwrap()
                 .with_stride(stride)
                 .unwrap();
@@ -231,8 +233,8 @@ fn target_stops_the_run_early() {
     const TARGET: f64 = 0.05;
     let build = |rng: &mut Xoshiro256PlusPlus| {
         let mut start = Gaussian::new([3.0; 2], 10f64.sqrt()).unwrap();
-        let opt: Optimizer<f64, Rastrigin, Hrla<f64>, Constant<f64>, 2, 4> =
-            Optimizer::new(Rastrigin, paper_hrla(4.0), 4, &mut start, rng)
+        let opt: Optimizer<f64, Rastrigin, Hrla<f64>, f64, 2, 4> =
+            Optimizer::new(Rastrigin, paper_hrla(), 4.0, 4, &mut start, rng)
                 .unwrap()
                 .with_target(TARGET)
                 .unwrap();
@@ -278,8 +280,8 @@ fn target_stops_the_run_early() {
 fn target_already_met_runs_no_step() {
     let mut r = rng(1);
     let mut start = Point::new([0.0, 0.5]).unwrap();
-    let mut opt: Optimizer<f64, Rastrigin, Hrla<f64>, Constant<f64>, 2, 2> =
-        Optimizer::new(Rastrigin, paper_hrla(4.0), 2, &mut start, &mut r)
+    let mut opt: Optimizer<f64, Rastrigin, Hrla<f64>, f64, 2, 2> =
+        Optimizer::new(Rastrigin, paper_hrla(), 4.0, 2, &mut start, &mut r)
             .unwrap()
             .with_target(4.25)
             .unwrap();
@@ -304,25 +306,18 @@ struct Cliff {
 }
 
 impl Potential<f64, 1> for Cliff {
-    fn value(&self, x: &[f64; 1]) -> f64 {
+    fn value_and_gradient(&self, x: &[f64; 1], g: &mut [f64; 1]) -> f64 {
         let r = x[0].abs();
         if r <= 3.0 {
+            g[0] = x[0];
             0.5 * x[0] * x[0]
         } else if r <= 6.0 {
+            g[0] = -10.0 * x[0].signum();
             100.0 - 10.0 * (r - 3.0)
         } else {
+            g[0] = self.outside_grad;
             self.outside
         }
-    }
-    fn gradient(&self, x: &[f64; 1], g: &mut [f64; 1]) {
-        let r = x[0].abs();
-        g[0] = if r <= 3.0 {
-            x[0]
-        } else if r <= 6.0 {
-            -10.0 * x[0].signum()
-        } else {
-            self.outside_grad
-        };
     }
 }
 
@@ -333,8 +328,8 @@ fn check_partial_divergence(cliff: Cliff) {
     const N: usize = 6;
     let mut r = rng(41);
     let mut start = FromFn(|c: usize, _: &mut dyn Rng| if c % 2 == 0 { [0.0] } else { [4.5] });
-    let mut opt: Optimizer<f64, Cliff, Hrla<f64>, Constant<f64>, 1, N> =
-        Optimizer::new(cliff, paper_hrla(4.0), N, &mut start, &mut r).unwrap();
+    let mut opt: Optimizer<f64, Cliff, Hrla<f64>, f64, 1, N> =
+        Optimizer::new(cliff, paper_hrla(), 4.0, N, &mut start, &mut r).unwrap();
     let mut evaluations = N as u64;
     // Per chain: (iterate of divergence, x, y) once diverged.
     type Frozen = Option<(u64, [f64; 1], [f64; 1])>;
@@ -428,13 +423,11 @@ fn negative_infinity_value_beyond_radius_freezes_chains() {
 struct Explode;
 
 impl Potential<f64, 2> for Explode {
-    fn value(&self, x: &[f64; 2]) -> f64 {
-        -x.iter().map(|v| v * v * v * v).sum::<f64>()
-    }
-    fn gradient(&self, x: &[f64; 2], g: &mut [f64; 2]) {
+    fn value_and_gradient(&self, x: &[f64; 2], g: &mut [f64; 2]) -> f64 {
         for (gi, xi) in g.iter_mut().zip(x) {
             *gi = -4.0 * xi * xi * xi;
         }
+        -x.iter().map(|v| v * v * v * v).sum::<f64>()
     }
 }
 
@@ -443,8 +436,8 @@ fn blow_up_ends_in_all_diverged() {
     const BUDGET: u64 = 1000;
     let mut r = rng(51);
     let mut start = Point::new([1.0, -1.0]).unwrap();
-    let mut opt: Optimizer<f64, Explode, Hrla<f64>, Constant<f64>, 2, 4> =
-        Optimizer::new(Explode, paper_hrla(4.0), 4, &mut start, &mut r).unwrap();
+    let mut opt: Optimizer<f64, Explode, Hrla<f64>, f64, 2, 4> =
+        Optimizer::new(Explode, paper_hrla(), 4.0, 4, &mut start, &mut r).unwrap();
     let report = opt.run(BUDGET, &mut r).unwrap();
     println!(
         "all chains diverged after {} steps; best {:e}",
@@ -482,31 +475,33 @@ fn blow_up_ends_in_all_diverged() {
 // ---------------------------------------------------------------------------
 // (e) The optimiser applies the schedule.
 
-/// The step from iterate k to k + 1 runs at a_k: after j steps the sampler
-/// is at a_{j-1}, its coefficients are those of a fresh sampler built at
-/// a_{j-1}, and each chain moved exactly as that fresh sampler moves it
-/// with the same random numbers.
-fn check_schedule_is_applied<S, P>(make: impl Fn(f64) -> S, sampler_at: P)
+/// The step from iterate k to k + 1 runs at a_k: before any step the
+/// optimiser's kernel is at a_0; after j steps it is at a_{j-1}, its
+/// coefficients are those of a fresh sampler's kernel at a_{j-1}, each
+/// chain moved exactly as that fresh kernel moves it with the same random
+/// numbers, and the sampler itself (without `a`) never changes.
+fn check_schedule_is_applied<S>(make: impl Fn() -> S)
 where
     S: Sampler<f64> + Clone + PartialEq + std::fmt::Debug,
-    P: Fn(&S) -> f64,
+    S::Kernel: PartialEq + std::fmt::Debug,
 {
     let schedule = Linear::new(0.5, 3.0, 10).unwrap();
     let mut r = rng(61);
     let mut start = Gaussian::new([1.0; 3], 1.0).unwrap();
     let mut opt: Optimizer<f64, Rastrigin, S, Linear<f64>, 3, 3> =
-        Optimizer::with_schedule(Rastrigin, make(7.0), schedule, 3, &mut start, &mut r).unwrap();
-    // Before any step the sampler keeps its own temperature.
-    assert_eq!(opt.sampler().inverse_temperature(), 7.0);
+        Optimizer::new(Rastrigin, make(), schedule, 3, &mut start, &mut r).unwrap();
+    // Before any step the kernel is at the schedule's a_0.
+    assert_eq!(opt.kernel().inverse_temperature(), 0.5);
+    assert_eq!(opt.kernel(), &make().at(0.5).unwrap());
     for j in 1..=15u64 {
         let before: Vec<_> = opt.chains().to_vec();
         let mut replay_rng = r.clone();
         opt.step(&mut r).unwrap();
         let a = schedule.inverse_temperature(j - 1);
-        assert_eq!(opt.sampler().inverse_temperature().to_bits(), a.to_bits());
-        assert_eq!(sampler_at(opt.sampler()).to_bits(), a.to_bits());
-        let fresh = make(a);
-        assert_eq!(opt.sampler(), &fresh, "coefficients at step {j}");
+        assert_eq!(opt.kernel().inverse_temperature().to_bits(), a.to_bits());
+        assert_eq!(opt.sampler(), &make(), "the sampler changed at step {j}");
+        let fresh = make().at(a).unwrap();
+        assert_eq!(opt.kernel(), &fresh, "coefficients at step {j}");
         for (c, (old, new)) in before.iter().zip(opt.chains()).enumerate() {
             let (mut x, mut y) = (*old.x(), *old.y());
             fresh.step(&mut x, &mut y, old.gradient(), &mut replay_rng);
@@ -519,15 +514,9 @@ where
 
 #[test]
 fn optimiser_applies_the_schedule_to_each_sampler() {
-    check_schedule_is_applied(paper_hrla, |s: &Hrla<f64>| s.params().a);
-    check_schedule_is_applied(
-        |a| Ula::new(UlaParams::paper(a, 0.01)).unwrap(),
-        |s: &_| s.params().a,
-    );
-    check_schedule_is_applied(
-        |a| Ola::new(OlaParams::paper(a, 0.01)).unwrap(),
-        |s: &_| s.params().a,
-    );
+    check_schedule_is_applied(paper_hrla);
+    check_schedule_is_applied(|| Ula::new(UlaParams::paper(0.01)).unwrap());
+    check_schedule_is_applied(|| Ola::new(OlaParams::paper(0.01)).unwrap());
 }
 
 // ---------------------------------------------------------------------------
@@ -541,7 +530,7 @@ fn state_of<F: hrla::Float, S: Sampler<F>, C: Schedule<F>>(
         bits.extend(c.x().iter().chain(c.y()).map(|v| v.to_bits_u64()));
         bits.push(c.value().to_bits_u64());
     }
-    bits.push(opt.sampler().inverse_temperature().to_bits_u64());
+    bits.push(opt.kernel().inverse_temperature().to_bits_u64());
     (bits, opt.report())
 }
 
@@ -553,8 +542,7 @@ fn check_bad_schedule_value(bad: f64, expected: impl Fn(&Error) -> bool) {
     let mut r = rng(71);
     let mut start = Gaussian::new([2.0; 2], 1.0).unwrap();
     let mut opt: Optimizer<f64, Rastrigin, Hrla<f64>, _, 2, 3> =
-        Optimizer::with_schedule(Rastrigin, paper_hrla(2.0), schedule, 3, &mut start, &mut r)
-            .unwrap();
+        Optimizer::new(Rastrigin, paper_hrla(), schedule, 3, &mut start, &mut r).unwrap();
     for _ in 0..3 {
         assert_eq!(opt.step(&mut r), Ok(Status::Running));
     }
@@ -608,7 +596,7 @@ fn bad_schedule_value_is_an_error_and_changes_nothing() {
 fn chain_count_errors() {
     let mut r = rng(81);
     let mut start = Point::new([1.0, 2.0]).unwrap();
-    type Opt = Optimizer<f64, Rastrigin, Hrla<f64>, Constant<f64>, 2, 4>;
+    type Opt = Optimizer<f64, Rastrigin, Hrla<f64>, f64, 2, 4>;
     for (chains, ok) in [
         (0, false),
         (1, true),
@@ -616,7 +604,7 @@ fn chain_count_errors() {
         (5, false),
         (usize::MAX, false),
     ] {
-        let got = Opt::new(Rastrigin, paper_hrla(4.0), chains, &mut start, &mut r);
+        let got = Opt::new(Rastrigin, paper_hrla(), 4.0, chains, &mut start, &mut r);
         if ok {
             assert_eq!(got.unwrap().chains().len(), chains);
         } else {
@@ -630,7 +618,7 @@ fn chain_count_errors() {
             );
         }
     }
-    let opt = Opt::new(Rastrigin, paper_hrla(4.0), 2, &mut start, &mut r).unwrap();
+    let opt = Opt::new(Rastrigin, paper_hrla(), 4.0, 2, &mut start, &mut r).unwrap();
     assert_eq!(
         opt.clone().with_stride(0).unwrap_err(),
         Error::Zero { name: "stride" }
@@ -648,46 +636,110 @@ fn chain_count_errors() {
     );
 }
 
+/// The schedule's `a_0` is taken at construction: a value the sampler
+/// refuses is the sampler's error, from `new`, whether the schedule is a
+/// plain float or a function whose later values are fine.
+#[test]
+fn refused_initial_temperature_errors() {
+    let mut r = rng(85);
+    let mut start = Point::new([1.0, 2.0]).unwrap();
+    let cases: [(f64, Error); 5] = [
+        (
+            0.0,
+            Error::NotPositive {
+                name: "a",
+                value: 0.0,
+            },
+        ),
+        (
+            -1.0,
+            Error::NotPositive {
+                name: "a",
+                value: -1.0,
+            },
+        ),
+        (
+            f64::INFINITY,
+            Error::NotPositive {
+                name: "a",
+                value: f64::INFINITY,
+            },
+        ),
+        (
+            f64::NAN,
+            Error::NotPositive {
+                name: "a",
+                value: f64::NAN,
+            },
+        ),
+        // Positive but so small that sx2 = beta/a overflows.
+        (5e-324, Error::DegenerateCoefficients),
+    ];
+    for (a0, want) in cases {
+        let plain: Result<Optimizer<f64, Rastrigin, Hrla<f64>, f64, 2, 4>, _> =
+            Optimizer::new(Rastrigin, paper_hrla(), a0, 2, &mut start, &mut r);
+        let schedule = FnSchedule(move |k: u64| if k == 0 { a0 } else { 4.0 });
+        let by_fn: Result<Optimizer<f64, Rastrigin, Hrla<f64>, _, 2, 4>, _> =
+            Optimizer::new(Rastrigin, paper_hrla(), schedule, 2, &mut start, &mut r);
+        for got in [plain.map(|o| o.report()), by_fn.map(|o| o.report())] {
+            let err = got.unwrap_err();
+            assert!(same_error(&err, &want), "a_0 = {a0}: {err:?}");
+        }
+    }
+    // A bad value later in the schedule is not `new`'s concern: it is the
+    // error of the step that uses it (see
+    // `bad_schedule_value_is_an_error_and_changes_nothing`).
+    let schedule = FnSchedule(|k: u64| if k == 0 { 4.0 } else { f64::NAN });
+    let opt: Result<Optimizer<f64, Rastrigin, Hrla<f64>, _, 2, 4>, _> =
+        Optimizer::new(Rastrigin, paper_hrla(), schedule, 2, &mut start, &mut r);
+    assert_eq!(opt.unwrap().kernel().inverse_temperature(), 4.0);
+}
+
 /// Finite everywhere except a NaN gradient at the origin.
 #[derive(Debug)]
 struct NanGradientAtOrigin;
 
 impl Potential<f64, 2> for NanGradientAtOrigin {
-    fn value(&self, _: &[f64; 2]) -> f64 {
-        1.0
-    }
-    fn gradient(&self, x: &[f64; 2], g: &mut [f64; 2]) {
+    fn value_and_gradient(&self, x: &[f64; 2], g: &mut [f64; 2]) -> f64 {
         *g = if *x == [0.0, 0.0] {
             [f64::NAN, 0.0]
         } else {
             [0.0; 2]
         };
+        1.0
     }
 }
 
 #[test]
 fn non_finite_start_errors() {
     let mut r = rng(91);
-    type Opt<P> = Optimizer<f64, P, Hrla<f64>, Constant<f64>, 2, 4>;
+    type Opt<P> = Optimizer<f64, P, Hrla<f64>, f64, 2, 4>;
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         let mut start = FromFn(
             move |c: usize, _: &mut dyn Rng| {
                 if c == 2 { [0.0, bad] } else { [1.0, 1.0] }
             },
         );
-        let got = Opt::new(Rastrigin, paper_hrla(4.0), 4, &mut start, &mut r);
+        let got = Opt::new(Rastrigin, paper_hrla(), 4.0, 4, &mut start, &mut r);
         assert_eq!(got.unwrap_err(), Error::NonFiniteStart { chain: 2 });
     }
     // A finite point where U overflows: (1e200)^2 = inf.
     let mut start = Point::new([1e200, 0.0]).unwrap();
-    let got = Opt::new(Rastrigin, paper_hrla(4.0), 3, &mut start, &mut r);
+    let got = Opt::new(Rastrigin, paper_hrla(), 4.0, 3, &mut start, &mut r);
     assert_eq!(got.unwrap_err(), Error::NonFiniteStart { chain: 0 });
     // A finite value beside a NaN gradient.
     let mut start = FromFn(|c: usize, _: &mut dyn Rng| [1.0 - c as f64, 0.0]);
-    let got = Opt::new(NanGradientAtOrigin, paper_hrla(4.0), 3, &mut start, &mut r);
+    let got = Opt::new(
+        NanGradientAtOrigin,
+        paper_hrla(),
+        4.0,
+        3,
+        &mut start,
+        &mut r,
+    );
     assert_eq!(got.unwrap_err(), Error::NonFiniteStart { chain: 1 });
     // A huge but finite standard deviation sends x^2 to infinity.
     let mut start = Gaussian::new([0.0; 2], 1e300).unwrap();
-    let got = Opt::new(Rastrigin, paper_hrla(4.0), 3, &mut start, &mut r);
+    let got = Opt::new(Rastrigin, paper_hrla(), 4.0, 3, &mut start, &mut r);
     assert_eq!(got.unwrap_err(), Error::NonFiniteStart { chain: 0 });
 }

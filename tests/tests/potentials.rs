@@ -1,6 +1,6 @@
 //! The built-in potentials (Rastrigin, Quadratic, DoubleWell,
-//! Styblinski-Tang, Levy): gradients against central differences, the
-//! fused `value_and_gradient` against the separate evaluations, f32
+//! Styblinski-Tang, Levy, Ackley): gradients against central differences,
+//! the fused `value_and_gradient` against the separate evaluations, f32
 //! Rastrigin against f64, and the known minima and minimisers.
 //!
 //! Every sampler step trusts `∇U`, and `KnownMinimum` is what benchmarks
@@ -8,7 +8,9 @@
 //! would not crash anything, only make the optimiser quietly worse, so they
 //! are checked against independent computations here.
 
-use hrla::{DoubleWell, KnownMinimum, Levy, Potential, Quadratic, Rastrigin, StyblinskiTang};
+use hrla::{
+    Ackley, DoubleWell, KnownMinimum, Levy, Potential, Quadratic, Rastrigin, StyblinskiTang,
+};
 use hrla_tests::prop::config;
 use proptest::prelude::*;
 
@@ -19,6 +21,11 @@ use proptest::prelude::*;
 // gives a truncation error <= 5e-9 and |U| <= 2500 a rounding error <= 3e-8:
 // the tolerance 1e-6 + 1e-8 |g| is 30 times the worst case and still far
 // below any real error in a derivative (which would be O(1)).
+//
+// Ackley has a cone-shaped kink at the origin, where its third derivative
+// grows like 1/|x|^2: it is checked at |x| >= 0.1, where |U'''| <= 1010
+// (measured: about 1010 in one dimension, from the cosine term, and 320 in
+// four near |x| = 0.1), so the truncation error is <= 2e-8 (|U| <= 23).
 
 const FD_STEP: f64 = 1e-5;
 
@@ -102,6 +109,24 @@ proptest! {
         check_minimum(&StyblinskiTang, x)?;
     }
 
+    /// On Ackley's usual domain [-32.768, 32.768]^D, and near the funnel,
+    /// away from the kink at the origin.
+    #[test]
+    fn ackley_gradient_and_minimum(
+        x in box4(32.768),
+        near in box4(1.0),
+        x1 in -32.768f64..32.768,
+    ) {
+        let norm = |v: &[f64]| v.iter().map(|t| t * t).sum::<f64>().sqrt();
+        prop_assume!(norm(&x) >= 0.1 && norm(&near) >= 0.1 && x1.abs() >= 0.1);
+        check_gradient(&Ackley, x)?;
+        check_minimum(&Ackley, x)?;
+        check_gradient(&Ackley, near)?;
+        check_minimum(&Ackley, near)?;
+        check_gradient(&Ackley, [x1])?;
+        check_minimum(&Ackley, [x1])?;
+    }
+
     #[test]
     fn levy_gradient_and_minimum(x in box4(10.0), x1 in -10.0f64..10.0) {
         check_gradient(&Levy, x)?;
@@ -175,6 +200,18 @@ fn known_minima_are_values_at_minimisers() {
     check::<_, 10>(&StyblinskiTang, "StyblinskiTang", 1e-12);
     check::<_, 1>(&Levy, "Levy", 1e-30);
     check::<_, 10>(&Levy, "Levy", 1e-30);
+    check::<_, 1>(&Ackley, "Ackley", 0.0);
+    check::<_, 10>(&Ackley, "Ackley", 0.0);
+    // Ackley at its kink: U(0) = 0 and the gradient returned is 0, exactly,
+    // in f64 and f32.
+    let mut g = [1.0f64; 4];
+    assert_eq!(Ackley.value_and_gradient(&[0.0; 4], &mut g), 0.0);
+    assert_eq!(g, [0.0; 4]);
+    let mut g = [1.0f32; 3];
+    assert_eq!(Ackley.value_and_gradient(&[0.0; 3], &mut g), 0.0);
+    assert_eq!(g, [0.0; 3]);
+    assert_eq!(KnownMinimum::<f32, 3>::global_minimum(&Ackley), 0.0);
+    assert_eq!(KnownMinimum::<f64, 4>::global_minimiser(&Ackley), [0.0; 4]);
     // f32 Rastrigin: exactly 0 at 0.
     let v: f32 = Rastrigin.value(&[0.0f32; 4]);
     assert_eq!(v, 0.0);

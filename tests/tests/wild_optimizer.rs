@@ -8,9 +8,10 @@
 //! start that is finite but whose potential is not, chains that all diverge.
 //! The contract checked:
 //!
-//! - construction fails exactly with `Count` for a bad chain count and with
-//!   `NonFiniteStart` naming the first chain whose point or potential is
-//!   not finite (replayed from the same random numbers);
+//! - construction fails exactly with `Count` for a bad chain count, then
+//!   with the sampler's error when it refuses the schedule's `a_0`, then
+//!   with `NonFiniteStart` naming the first chain whose point or potential
+//!   is not finite (replayed from the same random numbers);
 //! - `step` and `run` never panic and never return a NaN best, whatever the
 //!   start, schedule, stride and target, and the best never rises;
 //! - `run` fails only with the error the sampler gives for the schedule's
@@ -19,8 +20,9 @@
 use std::fmt::Debug;
 
 use hrla::{
-    Constant, Error, Gaussian, Geometric, Hrla, HrlaParams, Linear, Ola, OlaParams, Optimizer,
-    Point, Potential, Quadratic, Rastrigin, Sampler, Schedule, Start, Status, Ula, UlaParams,
+    Constant, Error, Gaussian, Geometric, Hrla, HrlaParams, Kernel, Linear, Ola, OlaParams,
+    Optimizer, Point, Potential, Quadratic, Rastrigin, Sampler, Schedule, Start, Status, Ula,
+    UlaParams,
 };
 use hrla_tests::hostile::{
     SEED, expect_error, mostly_sane64, no_panic, same_error, steps_strategy, wild64,
@@ -30,12 +32,14 @@ use proptest::prelude::*;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::{Rng, SeedableRng};
 
-/// One of the built-in schedules, or a table of arbitrary values.
+/// One of the built-in schedules, a plain float (any value: the sampler
+/// judges it), or a table of arbitrary values.
 #[derive(Clone, Copy, Debug)]
 enum AnySchedule {
     Constant(Constant<f64>),
     Linear(Linear<f64>),
     Geometric(Geometric<f64>),
+    Plain(f64),
     Table([f64; 4]),
 }
 
@@ -45,6 +49,7 @@ impl Schedule<f64> for AnySchedule {
             Self::Constant(s) => s.inverse_temperature(k),
             Self::Linear(s) => s.inverse_temperature(k),
             Self::Geometric(s) => s.inverse_temperature(k),
+            Self::Plain(a) => a.inverse_temperature(k),
             Self::Table(t) => t[(k % 4) as usize],
         }
     }
@@ -99,21 +104,15 @@ enum AnyPotential {
 }
 
 impl Potential<f64, 2> for AnyPotential {
-    fn value(&self, x: &[f64; 2]) -> f64 {
+    fn value_and_gradient(&self, x: &[f64; 2], g: &mut [f64; 2]) -> f64 {
         match self {
-            Self::Rastrigin => Rastrigin.value(x),
-            Self::Quadratic(q) => q.value(x),
-            Self::Explode => -x.iter().map(|v| v * v * v * v).sum::<f64>(),
-        }
-    }
-    fn gradient(&self, x: &[f64; 2], g: &mut [f64; 2]) {
-        match self {
-            Self::Rastrigin => Rastrigin.gradient(x, g),
-            Self::Quadratic(q) => q.gradient(x, g),
+            Self::Rastrigin => Rastrigin.value_and_gradient(x, g),
+            Self::Quadratic(q) => q.value_and_gradient(x, g),
             Self::Explode => {
                 for (gi, xi) in g.iter_mut().zip(x) {
                     *gi = -4.0 * xi * xi * xi;
                 }
+                -x.iter().map(|v| v * v * v * v).sum::<f64>()
             }
         }
     }
@@ -131,7 +130,7 @@ fn any_potential() -> impl Strategy<Value = Option<AnyPotential>> {
 const CAP: usize = 4;
 const STEPS: u64 = 30;
 
-#[derive(Debug)]
+#[derive(Clone, Copy, Debug)]
 struct Wild {
     potential: Option<AnyPotential>,
     schedule: Option<AnySchedule>,
@@ -177,7 +176,10 @@ fn wild_setup() -> impl Strategy<Value = Wild> {
 
 /// Constructs and runs an optimiser from a wild setup, checking every
 /// outcome against its documented contract.
-fn exercise<S: Sampler<f64> + Clone + Debug>(sampler: S, w: &Wild) -> Result<(), TestCaseError> {
+fn exercise<S: Sampler<f64> + Clone + Debug>(sampler: S, w: &Wild) -> Result<(), TestCaseError>
+where
+    S::Kernel: Debug,
+{
     let (Some(potential), Some(schedule), Some(mut start)) = (w.potential, w.schedule, w.start)
     else {
         return Ok(());
@@ -185,8 +187,8 @@ fn exercise<S: Sampler<f64> + Clone + Debug>(sampler: S, w: &Wild) -> Result<(),
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(w.seed);
     let rng0 = rng.clone();
     let start0 = start;
-    let got = no_panic("Optimizer::with_schedule", || {
-        Optimizer::<f64, AnyPotential, S, AnySchedule, 2, CAP>::with_schedule(
+    let got = no_panic("Optimizer::new", || {
+        Optimizer::<f64, AnyPotential, S, AnySchedule, 2, CAP>::new(
             potential,
             sampler.clone(),
             schedule,
@@ -203,6 +205,20 @@ fn exercise<S: Sampler<f64> + Clone + Debug>(sampler: S, w: &Wild) -> Result<(),
                 value: w.chains,
                 max: CAP
             }
+        );
+        return Ok(());
+    }
+    // The kernel at a_0 is taken before any initial point: its refusal is
+    // the error.
+    let a0 = schedule.inverse_temperature(0);
+    if let Err(refusal) = sampler.at(a0) {
+        let e = got.map(|o| o.report()).unwrap_err();
+        prop_assert!(
+            same_error(&e, &refusal),
+            "construction failed with {:?}, but the sampler gives {:?} for a_0 = {}",
+            e,
+            refusal,
+            a0
         );
         return Ok(());
     }
@@ -235,6 +251,7 @@ fn exercise<S: Sampler<f64> + Clone + Debug>(sampler: S, w: &Wild) -> Result<(),
     };
     let initial_best = opt.best().value;
     prop_assert!(initial_best.is_finite());
+    prop_assert_eq!(opt.kernel().inverse_temperature().to_bits(), a0.to_bits());
 
     let opt = match no_panic("with_stride", || opt.with_stride(w.stride))? {
         Ok(o) => o,
@@ -282,8 +299,7 @@ fn exercise<S: Sampler<f64> + Clone + Debug>(sampler: S, w: &Wild) -> Result<(),
             // Only the sampler's refusal of the schedule's value at this
             // iterate can stop a run.
             let a = schedule.inverse_temperature(opt.iteration());
-            let mut probe = opt.sampler().clone();
-            let refusal = probe.set_inverse_temperature(a);
+            let refusal = opt.sampler().at(a);
             prop_assert!(
                 refusal.as_ref().is_err_and(|r| same_error(r, &e)),
                 "run failed with {:?}, but the sampler gives {:?} for a = {}",
@@ -306,25 +322,32 @@ fn exercise<S: Sampler<f64> + Clone + Debug>(sampler: S, w: &Wild) -> Result<(),
 proptest! {
     #![proptest_config(config(300, SEED))]
 
+    /// Each sampler under the wild setup, and under the wild setup with a
+    /// plain float `a` for its schedule.
     #[test]
     fn optimiser_with_hrla(w in wild_setup(), a in mostly_sane64(), h in mostly_sane64()) {
-        if let Ok(s) = Hrla::new(HrlaParams::paper(a, h)) {
+        let plain = Wild { schedule: Some(AnySchedule::Plain(a)), ..w };
+        if let Ok(s) = Hrla::new(HrlaParams::paper(h)) {
             exercise(s, &w)?;
+            exercise(s, &plain)?;
         }
-        exercise(Hrla::new(HrlaParams::paper(4.0, 0.01)).unwrap(), &w)?;
+        exercise(Hrla::new(HrlaParams::paper(0.01)).unwrap(), &w)?;
+        exercise(Hrla::new(HrlaParams::paper(0.01)).unwrap(), &plain)?;
     }
 
     #[test]
     fn optimiser_with_ula(w in wild_setup(), a in mostly_sane64(), h in mostly_sane64()) {
-        if let Ok(s) = Ula::new(UlaParams::paper(a, h)) {
+        if let Ok(s) = Ula::new(UlaParams::paper(h)) {
             exercise(s, &w)?;
+            exercise(s, &Wild { schedule: Some(AnySchedule::Plain(a)), ..w })?;
         }
     }
 
     #[test]
     fn optimiser_with_ola(w in wild_setup(), a in mostly_sane64(), h in mostly_sane64()) {
-        if let Ok(s) = Ola::new(OlaParams::paper(a, h)) {
+        if let Ok(s) = Ola::new(OlaParams::paper(h)) {
             exercise(s, &w)?;
+            exercise(s, &Wild { schedule: Some(AnySchedule::Plain(a)), ..w })?;
         }
     }
 }

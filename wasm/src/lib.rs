@@ -34,7 +34,8 @@
 
 mod settings;
 
-use hrla::{AnySampler, AnySchedule, Gaussian, Rastrigin, Sampler};
+use hrla::Kernel as _;
+use hrla::{AnySampler, AnySchedule, Gaussian, Rastrigin};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use wasm_bindgen::prelude::*;
@@ -92,12 +93,12 @@ impl Optimizer {
     /// Draws the initial points and evaluates them, as the kernel does.
     pub fn from_settings(settings: &Settings) -> Result<Self, SettingsError> {
         let schedule = settings.temperature.schedule()?;
-        // The sampler starts at a_0, so a bad first temperature is caught here.
-        let a0 = hrla::Schedule::inverse_temperature(&schedule, 0);
-        let sampler = AnySampler::paper(settings.sampler, a0, settings.h)?;
+        let sampler = AnySampler::paper(settings.sampler, settings.h)?;
         let mut start = Gaussian::new(settings.centre, settings.spread)?;
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
-        let kernel = Kernel::with_schedule(
+        // Takes the sampler's kernel at a_0: a bad first temperature is
+        // caught here.
+        let kernel = Kernel::new(
             Rastrigin,
             sampler,
             schedule,
@@ -168,7 +169,7 @@ impl Optimizer {
             best.x[1],
             best.value,
             best.iteration as f64,
-            self.kernel.sampler().inverse_temperature(),
+            self.kernel.kernel().inverse_temperature(),
             report.diverged_chains as f64,
         ];
     }

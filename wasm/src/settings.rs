@@ -8,11 +8,7 @@ use wasm_bindgen::JsValue;
 
 /// Parses a sampler's name, `"hrla"`, `"ula"` or `"ola"` (any case).
 pub fn parse_sampler(name: &str) -> Result<SamplerKind, SettingsError> {
-    let name = name.to_ascii_lowercase();
-    SamplerKind::ALL
-        .into_iter()
-        .find(|kind| kind.name() == name)
-        .ok_or(SettingsError::UnknownSampler)
+    name.parse().map_err(|_| SettingsError::UnknownSampler)
 }
 
 /// The inverse temperature along the run.

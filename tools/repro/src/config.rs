@@ -2,7 +2,7 @@
 //! size, chains, steps, temperature and start of a run ([`RunSpec`]), what
 //! it records, and the checks that it is one the kernel accepts.
 
-use hrla::{AnySampler, AnySchedule, Constant, Linear, Schedule};
+use hrla::{AnySampler, AnySchedule, Constant, Linear, Sampler, SamplerKind};
 
 use crate::error::ReproError;
 use crate::stats::grid_points;
@@ -11,35 +11,9 @@ use crate::stats::grid_points;
 /// generic, so each is its own instantiation in the engine).
 pub const DIMENSIONS: [usize; 7] = [1, 2, 5, 10, 20, 50, 100];
 
-/// The three samplers of the paper.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
-pub enum SamplerKind {
-    /// High-resolution Langevin, exact OU step (the paper's method).
-    Hrla,
-    /// Underdamped Langevin, exact OU step.
-    Ula,
-    /// Overdamped Langevin, Euler–Maruyama.
-    Ola,
-}
-
-impl SamplerKind {
-    /// The kernel's name for the same sampler.
-    pub fn kernel(self) -> hrla::SamplerKind {
-        match self {
-            SamplerKind::Hrla => hrla::SamplerKind::Hrla,
-            SamplerKind::Ula => hrla::SamplerKind::Ula,
-            SamplerKind::Ola => hrla::SamplerKind::Ola,
-        }
-    }
-
-    /// The name used in tables and legends.
-    pub fn name(self) -> &'static str {
-        match self {
-            SamplerKind::Hrla => "HRLA",
-            SamplerKind::Ula => "ULA",
-            SamplerKind::Ola => "OLA",
-        }
-    }
+/// The name of a sampler in tables and legends: `HRLA`, `ULA`, `OLA`.
+pub fn sampler_label(kind: SamplerKind) -> String {
+    kind.name().to_ascii_uppercase()
 }
 
 /// The inverse temperature along a run.
@@ -152,14 +126,10 @@ impl RunSpec {
         self.chains as u64 * self.steps
     }
 
-    /// The kernel's schedule over the run and its sampler at iterate 0.
+    /// The kernel's schedule over the run and its sampler.
     pub fn kernel_setup(&self) -> Result<(AnySchedule<f64>, AnySampler<f64>), hrla::Error> {
         let schedule = self.temperature.schedule(self.steps)?;
-        let sampler = AnySampler::paper(
-            self.sampler.kernel(),
-            schedule.inverse_temperature(0),
-            self.h,
-        )?;
+        let sampler = AnySampler::paper(self.sampler, self.h)?;
         Ok((schedule, sampler))
     }
 
@@ -199,14 +169,11 @@ impl RunSpec {
         {
             return bad("the start variance must be finite and >= 0");
         }
-        self.kernel_setup()?;
+        let (schedule, sampler) = self.kernel_setup()?;
         // Every a_k of a linear schedule lies between its ends, and the
         // coefficients are monotone in a, so checking both ends suffices.
-        AnySampler::paper(
-            self.sampler.kernel(),
-            self.temperature.label_value(),
-            self.h,
-        )?;
+        sampler.at(hrla::Schedule::inverse_temperature(&schedule, 0))?;
+        sampler.at(self.temperature.label_value())?;
         Ok(())
     }
 }

@@ -60,7 +60,7 @@ impl<const D: usize> Swarm<D> {
         let mut left = spec.chains;
         while left > 0 {
             let n = left.min(CHUNK);
-            let part = Optimizer::with_schedule(Rastrigin, sampler, schedule, n, &mut start, rng)?;
+            let part = Optimizer::new(Rastrigin, sampler, schedule, n, &mut start, rng)?;
             parts.push(Box::new(part));
             left -= n;
         }
@@ -180,8 +180,9 @@ fn run_d<const D: usize, R: Rng + ?Sized>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::{SamplerKind, Temperature};
+    use crate::config::Temperature;
     use crate::seed::run_rng;
+    use hrla::SamplerKind;
 
     fn spec(chains: usize, temperature: Temperature) -> RunSpec {
         RunSpec {
@@ -223,8 +224,7 @@ mod tests {
             let mut whole: Box<
                 Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, 10, N>,
             > = Box::new(
-                Optimizer::with_schedule(Rastrigin, sampler, schedule, N, &mut start, &mut rng_b)
-                    .unwrap(),
+                Optimizer::new(Rastrigin, sampler, schedule, N, &mut start, &mut rng_b).unwrap(),
             );
             for _ in 0..s.steps {
                 swarm.step(&mut rng_a).unwrap();

@@ -6,7 +6,7 @@ use std::fmt::{Display, Write as _};
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use crate::config::{RunSpec, Temperature};
+use crate::config::{RunSpec, Temperature, sampler_label};
 use crate::error::ReproError;
 use crate::exec::{CheckpointResult, ConfigResult, ProtocolResult};
 use crate::protocol::ProtocolId;
@@ -97,7 +97,7 @@ fn config_columns(id: ProtocolId, s: &RunSpec) -> String {
     format!(
         "{},{},{},{},{},{}",
         id.name(),
-        s.sampler.name(),
+        sampler_label(s.sampler),
         s.d,
         s.h,
         s.chains,
@@ -194,7 +194,7 @@ fn describe(s: &RunSpec, k: u64) -> [(&'static str, String); 10] {
         Temperature::Linear { low, .. } => format!("linear from {low}"),
     };
     [
-        ("sampler", s.sampler.name().to_string()),
+        ("sampler", sampler_label(s.sampler)),
         ("d", s.d.to_string()),
         ("h", s.h.to_string()),
         ("N", s.chains.to_string()),

@@ -11,7 +11,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use crate::config::RunSpec;
+use crate::config::{RunSpec, sampler_label};
 use crate::error::ReproError;
 use crate::exec::ProtocolResult;
 use crate::protocol::SeriesKey;
@@ -31,7 +31,7 @@ const COLOURS: [RGBColor; 8] = [
 fn series_label(key: SeriesKey, s: &RunSpec) -> String {
     let t = s.temperature;
     match key {
-        SeriesKey::Sampler => s.sampler.name().to_string(),
+        SeriesKey::Sampler => sampler_label(s.sampler),
         SeriesKey::Temperature => format!("{} = {}", t.label_name(), t.label_value()),
     }
 }

@@ -1,7 +1,9 @@
 //! The protocols of spec section 7 as plans: their default parameters, the
 //! command-line overrides, and the grid of configurations they expand to.
 
-use crate::config::{RunSpec, SamplerKind, StartSpec, Temperature};
+use hrla::SamplerKind;
+
+use crate::config::{RunSpec, StartSpec, Temperature};
 use crate::error::ReproError;
 
 /// The experimental protocols of the paper (spec section 7).
@@ -100,7 +102,7 @@ fn parse_nk(s: &str) -> Result<(usize, u64), String> {
 /// start x a` is run. Unset options keep the protocol's defaults.
 #[derive(Clone, Debug, Default, clap::Args)]
 pub struct Overrides {
-    /// Samplers.
+    /// Samplers: hrla, ula, ola.
     #[arg(long, value_delimiter = ',')]
     pub sampler: Option<Vec<SamplerKind>>,
     /// Dimensions (compiled in: 1, 2, 5, 10, 20, 50, 100).

@@ -19,7 +19,7 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use hrla::{Float, Levy, Potential, Rastrigin};
+use hrla::{Float, Levy, Potential, Rastrigin, StandardNormal};
 use hrla_embedded::{N, SEED, STEPS};
 use micromath::F32Ext;
 use rand_xoshiro::Xoshiro256PlusPlus;

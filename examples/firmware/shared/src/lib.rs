@@ -32,7 +32,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
-use hrla::{Error, Float, Gaussian, Hrla, HrlaParams, Optimizer, Rastrigin, Report};
+use hrla::{Error, Float, Gaussian, Hrla, Optimizer, Rastrigin, Report};
 use rand_xoshiro::Xoshiro128PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
@@ -46,7 +46,7 @@ pub const STEPS: u64 = 2_000;
 pub const SEED: u64 = 2025;
 
 /// The optimiser the example runs.
-pub type Demo<F> = Optimizer<F, Rastrigin, Hrla<F>, hrla::Constant<F>, D, N>;
+pub type Demo<F> = Optimizer<F, Rastrigin, Hrla<F>, F, D, N>;
 
 /// Where [`report`] writes its lines: semihosting on the firmware, stdout on
 /// the host.
@@ -61,9 +61,10 @@ pub trait Sink {
 /// code; the seed is a parameter so that tests can try several.
 pub fn run<F: Float>(seed: u64, steps: u64) -> Result<(Demo<F>, Report<F, D>), Error> {
     let mut rng = Xoshiro128PlusPlus::seed_from_u64(seed);
-    let sampler = Hrla::new(HrlaParams::paper(F::from_f64(4.0), F::from_f64(0.01)))?;
+    let sampler = Hrla::paper(F::from_f64(0.01))?;
     let mut start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10.0).sqrt())?;
-    let mut opt: Demo<F> = Optimizer::new(Rastrigin, sampler, N, &mut start, &mut rng)?;
+    let a = F::from_f64(4.0);
+    let mut opt: Demo<F> = Optimizer::new(Rastrigin, sampler, a, N, &mut start, &mut rng)?;
     let report = opt.run(steps, &mut rng)?;
     Ok((opt, report))
 }

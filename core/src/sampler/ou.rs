@@ -1,4 +1,4 @@
-//! The exact Ornstein–Uhlenbeck step shared by HRLA and ULA.
+//! The exact Ornstein–Uhlenbeck step shared by HRLA and ULA: [`OuKernel`].
 //!
 //! With the gradient frozen at `g` over a step of length `h`, each coordinate
 //! of `(x, y)` solves a linear SDE whose law after `h` is Gaussian. Writing
@@ -42,6 +42,9 @@
 //! temperature refreshes three numbers per step (two products and a square
 //! root); everything depending on `u` alone is computed once.
 
+use rand_core::Rng;
+
+use super::traits::{Kernel, StepMoments};
 use crate::error::{Error, positive};
 use crate::float::Float;
 
@@ -103,25 +106,6 @@ pub(crate) fn omega<F: Float>(u: F) -> F {
     }
 }
 
-/// Mean and covariance of one step of one coordinate, given `(x, y)` and the
-/// gradient component `g` at the start of the step.
-///
-/// For OLA, which has no velocity, `mean_y = y` and the `y` entries of the
-/// covariance are zero.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StepMoments<F> {
-    /// Conditional mean of the new position.
-    pub mean_x: F,
-    /// Conditional mean of the new velocity.
-    pub mean_y: F,
-    /// Conditional variance of the new position.
-    pub var_x: F,
-    /// Conditional covariance of the new position and velocity.
-    pub cov_xy: F,
-    /// Conditional variance of the new velocity.
-    pub var_y: F,
-}
-
 /// The lower-triangular factor through which a step turns two independent
 /// standard normals `z1`, `z2` into the Gaussian noise of one coordinate:
 ///
@@ -142,9 +126,16 @@ pub struct NoiseFactor<F> {
     pub xx: F,
 }
 
-/// The coefficients of the exact step at one inverse temperature `a`.
+/// The exact step of HRLA or ULA at one inverse temperature `a`: what
+/// [`Hrla::at`](crate::Hrla) and [`Ula::at`](crate::Ula) return.
+///
+/// Every coordinate moves to the Gaussian of its [`StepMoments`], drawn as
+/// `y' = mean_y + yy z1`, `x' = mean_x + xy z1 + xx z2` through the
+/// [`NoiseFactor`], from the pair `(z1, z2)` of
+/// [`StandardNormal::standard_normal_pair`](crate::StandardNormal::standard_normal_pair),
+/// coordinate after coordinate.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct OuStep<F> {
+pub struct OuKernel<F> {
     // Fixed by (b, alpha, beta, h).
     e: F,
     c_xy: F,
@@ -164,11 +155,11 @@ pub(crate) struct OuStep<F> {
     l_xx: F,
 }
 
-impl<F: Float> OuStep<F> {
-    /// Validates `(a, b, alpha, h)` (finite, > 0) and `beta` (finite, >= 0:
-    /// ULA is `beta = 0`) and computes every coefficient.
-    pub(crate) fn new(a: F, b: F, alpha: F, beta: F, h: F) -> Result<Self, Error> {
-        let a = positive("a", a)?;
+impl<F: Float> OuKernel<F> {
+    /// Validates `(b, alpha, h)` (finite, > 0) and `beta` (finite, >= 0:
+    /// ULA is `beta = 0`) and computes the coefficients that do not depend
+    /// on `a`; [`OuKernel::at`] completes them.
+    pub(crate) fn untempered(b: F, alpha: F, beta: F, h: F) -> Result<Self, Error> {
         let b = positive("b", b)?;
         let alpha = positive("alpha", alpha)?;
         let h = positive("h", h)?;
@@ -183,7 +174,7 @@ impl<F: Float> OuStep<F> {
         let p1 = phi1(u);
         let p1_2u = phi1(u + u);
         let sy2_h = sy2 * h;
-        let mut step = Self {
+        let step = Self {
             e: (-u).exp(),
             c_xy: h * p1,
             l_yy: (F::TWO * sy2_h * p1_2u).sqrt(),
@@ -218,14 +209,13 @@ impl<F: Float> OuStep<F> {
         if !fixed.iter().all(|c| c.is_finite()) || !var_y_positive {
             return Err(Error::DegenerateCoefficients);
         }
-        step.set_a(a)?;
         Ok(step)
     }
 
-    /// Refreshes the three temperature-dependent coefficients. On error the
-    /// step is left unchanged.
+    /// This kernel with the three coefficients that depend on the inverse
+    /// temperature computed for `a`.
     #[inline]
-    pub(crate) fn set_a(&mut self, a: F) -> Result<(), Error> {
+    pub(crate) fn at(mut self, a: F) -> Result<Self, Error> {
         let a = positive("a", a)?;
         let c_xg = self.beta_h + a * self.h2_phi2_over_b;
         let c_yg = a * self.h_phi1_over_b;
@@ -237,23 +227,11 @@ impl<F: Float> OuStep<F> {
         self.c_xg = c_xg;
         self.c_yg = c_yg;
         self.l_xx = l_xx;
-        Ok(())
+        Ok(self)
     }
 
-    pub(crate) fn moments(&self, x: F, y: F, g: F) -> StepMoments<F> {
-        let (mean_x, mean_y) = self.mean(x, y, g);
-        StepMoments {
-            mean_x,
-            mean_y,
-            var_x: self.two_beta_h / self.a
-                + self.schur_y
-                + self.cov_xy * (self.cov_xy / self.var_y),
-            cov_xy: self.cov_xy,
-            var_y: self.var_y,
-        }
-    }
-
-    pub(crate) fn noise_factor(&self) -> NoiseFactor<F> {
+    /// The factor that turns two standard normals into the step's noise.
+    pub fn noise_factor(&self) -> NoiseFactor<F> {
         NoiseFactor {
             yy: self.l_yy,
             xy: self.l_xy,
@@ -271,9 +249,49 @@ impl<F: Float> OuStep<F> {
 
     /// One exact step of one coordinate from two standard normals.
     #[inline(always)]
-    pub(crate) fn apply(&self, x: &mut F, y: &mut F, g: F, z1: F, z2: F) {
+    fn apply(&self, x: &mut F, y: &mut F, g: F, z1: F, z2: F) {
         let (mx, my) = self.mean(*x, *y, g);
         *x = mx + self.l_xy * z1 + self.l_xx * z2;
         *y = my + self.l_yy * z1;
+    }
+}
+
+impl<F: Float> Kernel<F> for OuKernel<F> {
+    #[inline]
+    fn inverse_temperature(&self) -> F {
+        self.a
+    }
+
+    fn moments(&self, x: F, y: F, g: F) -> StepMoments<F> {
+        let (mean_x, mean_y) = self.mean(x, y, g);
+        StepMoments {
+            mean_x,
+            mean_y,
+            var_x: self.two_beta_h / self.a
+                + self.schur_y
+                + self.cov_xy * (self.cov_xy / self.var_y),
+            cov_xy: self.cov_xy,
+            var_y: self.var_y,
+        }
+    }
+
+    /// Draws in the documented order: per coordinate, the pair `(z1, z2)`.
+    #[inline]
+    fn step<R: Rng + ?Sized, const D: usize>(
+        &self,
+        x: &mut [F; D],
+        y: &mut [F; D],
+        grad: &[F; D],
+        rng: &mut R,
+    ) {
+        // All the draws first, then the update: the update's loop then has no
+        // branch and vectorises across coordinates (same stream either way).
+        let mut z = [(F::ZERO, F::ZERO); D];
+        for zi in &mut z {
+            *zi = F::standard_normal_pair(rng);
+        }
+        for (((xi, yi), &gi), &(z1, z2)) in x.iter_mut().zip(y.iter_mut()).zip(grad).zip(&z) {
+            self.apply(xi, yi, gi, z1, z2);
+        }
     }
 }

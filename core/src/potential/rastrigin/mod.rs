@@ -1,37 +1,11 @@
-//! Potentials `U: R^D -> R` to minimise, and the built-in benchmarks.
+//! Rastrigin's function in the paper's form, with its fused trigonometry
+//! (the child module `trig`) and its block-wise evaluation.
 
-use crate::error::{Error, finite, positive};
+mod trig;
+
+use super::traits::{KnownMinimum, Potential};
 use crate::float::Float;
-use crate::trig;
-
-/// A smooth potential `U` on `R^D` with its gradient.
-///
-/// Implement [`Potential::value`] and [`Potential::gradient`]; override
-/// [`Potential::value_and_gradient`] when the two share work (the optimiser
-/// only calls that one, once per chain and step). A non-finite value or
-/// gradient is allowed: the optimiser marks the chain as diverged.
-pub trait Potential<F: Float, const D: usize> {
-    /// `U(x)`.
-    fn value(&self, x: &[F; D]) -> F;
-
-    /// Writes `∇U(x)` into `grad`.
-    fn gradient(&self, x: &[F; D], grad: &mut [F; D]);
-
-    /// Writes `∇U(x)` into `grad` and returns `U(x)`.
-    #[inline]
-    fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        self.gradient(x, grad);
-        self.value(x)
-    }
-}
-
-/// A potential whose global minimum is known: for tests and benchmarks.
-pub trait KnownMinimum<F: Float, const D: usize>: Potential<F, D> {
-    /// The global minimum `U*`.
-    fn global_minimum(&self) -> F;
-    /// A global minimiser `x*` (one of them, when there are several).
-    fn global_minimiser(&self) -> [F; D];
-}
+use crate::lanes;
 
 /// `2π`, rounded once to `F`.
 #[inline(always)]
@@ -56,15 +30,6 @@ fn tau<F: Float>() -> F {
 pub struct Rastrigin;
 
 impl<F: Float, const D: usize> Potential<F, D> for Rastrigin {
-    fn value(&self, x: &[F; D]) -> F {
-        let mut grad = [F::ZERO; D];
-        self.value_and_gradient(x, &mut grad)
-    }
-
-    fn gradient(&self, x: &[F; D], grad: &mut [F; D]) {
-        self.value_and_gradient(x, grad);
-    }
-
     #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
         // Constant choices, folded away: blocks of one 256-bit vector where
@@ -72,8 +37,8 @@ impl<F: Float, const D: usize> Potential<F, D> for Rastrigin {
         // 128-bit vector, single coordinates without vectors (padding would
         // only waste work there). The sum's lanes are the same on every
         // target, so the value's bits are too.
-        let l = trig::lanes::<F>();
-        match (l, trig::VECTORS, trig::WIDE && D >= 2 * l) {
+        let l = lanes::lanes::<F>();
+        match (l, lanes::VECTORS, lanes::WIDE && D >= 2 * l) {
             (2, true, true) => rastrigin::<F, D, 4, 2>(x, grad),
             (2, true, false) => rastrigin::<F, D, 2, 2>(x, grad),
             (2, false, _) => rastrigin::<F, D, 1, 2>(x, grad),
@@ -225,6 +190,15 @@ fn sum_lanes<F: Float, const L: usize>(mut lanes: [F; L]) -> F {
     lanes[0]
 }
 
+impl<F: Float, const D: usize> KnownMinimum<F, D> for Rastrigin {
+    fn global_minimum(&self) -> F {
+        F::ZERO
+    }
+    fn global_minimiser(&self) -> [F; D] {
+        [F::ZERO; D]
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -276,229 +250,5 @@ mod tests {
         same_bits::<f32, 8, 4, 8>();
         same_bits::<f32, 10, 4, 8>();
         same_bits::<f32, 17, 4, 8>();
-    }
-}
-
-impl<F: Float, const D: usize> KnownMinimum<F, D> for Rastrigin {
-    fn global_minimum(&self) -> F {
-        F::ZERO
-    }
-    fn global_minimiser(&self) -> [F; D] {
-        [F::ZERO; D]
-    }
-}
-
-/// The isotropic quadratic `U(x) = (k/2) |x - m|^2` with stiffness `k > 0`.
-///
-/// Its Gibbs law `exp(-a U)` is `N(m, I / (a k))`, and every sampler's step
-/// is linear in the state, so the moments of long runs can be checked
-/// exactly. Global minimum `U* = 0` at `x* = m`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Quadratic<F, const D: usize> {
-    stiffness: F,
-    centre: [F; D],
-}
-
-impl<F: Float, const D: usize> Quadratic<F, D> {
-    /// `k` finite and > 0, `m` finite.
-    pub fn new(stiffness: F, centre: [F; D]) -> Result<Self, Error> {
-        let stiffness = positive("stiffness", stiffness)?;
-        for &m in &centre {
-            finite("centre", m)?;
-        }
-        Ok(Self { stiffness, centre })
-    }
-
-    /// The stiffness `k`.
-    pub fn stiffness(&self) -> F {
-        self.stiffness
-    }
-}
-
-impl<F: Float, const D: usize> Potential<F, D> for Quadratic<F, D> {
-    fn value(&self, x: &[F; D]) -> F {
-        let mut grad = [F::ZERO; D];
-        self.value_and_gradient(x, &mut grad)
-    }
-
-    fn gradient(&self, x: &[F; D], grad: &mut [F; D]) {
-        for ((gi, &xi), &mi) in grad.iter_mut().zip(x).zip(&self.centre) {
-            *gi = self.stiffness * (xi - mi);
-        }
-    }
-
-    fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        // Sum (k r) r rather than k |r|^2: with a tiny k and a huge r the
-        // latter is 0 * inf = NaN, the former the finite true value.
-        let mut kr2 = F::ZERO;
-        for ((gi, &xi), &mi) in grad.iter_mut().zip(x).zip(&self.centre) {
-            let r = xi - mi;
-            *gi = self.stiffness * r;
-            kr2 += *gi * r;
-        }
-        F::HALF * kr2
-    }
-}
-
-impl<F: Float, const D: usize> KnownMinimum<F, D> for Quadratic<F, D> {
-    fn global_minimum(&self) -> F {
-        F::ZERO
-    }
-    fn global_minimiser(&self) -> [F; D] {
-        self.centre
-    }
-}
-
-/// The separable double well `U(x) = sum_i (x_i^2 - 1)^2`,
-/// `∇U(x) = 4 x (x^2 - 1)`.
-///
-/// `U* = 0` at the `2^D` points with every `x_i = ±1`; a saddle of height 1
-/// per coordinate at `x_i = 0`. In one dimension its Gibbs law is a
-/// two-humped density, the test case for the invariant-law test.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct DoubleWell;
-
-impl<F: Float, const D: usize> Potential<F, D> for DoubleWell {
-    fn value(&self, x: &[F; D]) -> F {
-        let mut grad = [F::ZERO; D];
-        self.value_and_gradient(x, &mut grad)
-    }
-
-    fn gradient(&self, x: &[F; D], grad: &mut [F; D]) {
-        self.value_and_gradient(x, grad);
-    }
-
-    fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        let mut u = F::ZERO;
-        for (&xi, gi) in x.iter().zip(grad.iter_mut()) {
-            let w = xi * xi - F::ONE;
-            *gi = F::from_f64(4.0) * xi * w;
-            u += w * w;
-        }
-        u
-    }
-}
-
-impl<F: Float, const D: usize> KnownMinimum<F, D> for DoubleWell {
-    fn global_minimum(&self) -> F {
-        F::ZERO
-    }
-    /// `(1, ..., 1)`, one of the `2^D` minimisers.
-    fn global_minimiser(&self) -> [F; D] {
-        [F::ONE; D]
-    }
-}
-
-/// The root of `4x^3 - 32x + 5 = 0` in `(-3, -2.5)`: the Styblinski–Tang
-/// minimiser of one coordinate (computed to 40 digits offline).
-const STYBLINSKI_TANG_X: f64 = -2.903_534_027_771_177;
-/// `(x^4 - 16x^2 + 5x) / 2` at that root.
-const STYBLINSKI_TANG_U: f64 = -39.166_165_703_771_41;
-
-/// Styblinski–Tang, `U(x) = (1/2) sum_i (x_i^4 - 16 x_i^2 + 5 x_i)`.
-///
-/// Global minimum `U* = -39.166165703771415 D` at
-/// `x* = (-2.9035340277711771, ...)`; `2^D - 1` other local minima with a
-/// coordinate near `+2.7468`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct StyblinskiTang;
-
-impl<F: Float, const D: usize> Potential<F, D> for StyblinskiTang {
-    fn value(&self, x: &[F; D]) -> F {
-        let mut grad = [F::ZERO; D];
-        self.value_and_gradient(x, &mut grad)
-    }
-
-    fn gradient(&self, x: &[F; D], grad: &mut [F; D]) {
-        self.value_and_gradient(x, grad);
-    }
-
-    fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        let (c16, c5) = (F::from_f64(16.0), F::from_f64(5.0));
-        let mut u = F::ZERO;
-        for (&xi, gi) in x.iter().zip(grad.iter_mut()) {
-            let x2 = xi * xi;
-            *gi = F::TWO * xi * x2 - c16 * xi + F::from_f64(2.5);
-            u += (x2 * x2 - c16 * x2 + c5 * xi) * F::HALF;
-        }
-        u
-    }
-}
-
-impl<F: Float, const D: usize> KnownMinimum<F, D> for StyblinskiTang {
-    fn global_minimum(&self) -> F {
-        F::from_f64(STYBLINSKI_TANG_U * D as f64)
-    }
-    fn global_minimiser(&self) -> [F; D] {
-        [F::from_f64(STYBLINSKI_TANG_X); D]
-    }
-}
-
-/// Levy's function, with `w_i = 1 + (x_i - 1)/4`:
-///
-/// ```text
-/// U(x) = sin^2(π w_1)
-///      + sum_{i<D} (w_i - 1)^2 (1 + 10 sin^2(π w_i + 1))
-///      + (w_D - 1)^2 (1 + sin^2(2π w_D))
-/// ```
-///
-/// Global minimum `U* = 0` at `x* = (1, ..., 1)`; many local minima.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Levy;
-
-impl<F: Float, const D: usize> Potential<F, D> for Levy {
-    fn value(&self, x: &[F; D]) -> F {
-        let mut grad = [F::ZERO; D];
-        self.value_and_gradient(x, &mut grad)
-    }
-
-    fn gradient(&self, x: &[F; D], grad: &mut [F; D]) {
-        self.value_and_gradient(x, grad);
-    }
-
-    fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        if D == 0 {
-            return F::ZERO;
-        }
-        let quarter = F::from_f64(0.25);
-        let ten = F::from_f64(10.0);
-        let pi = F::PI;
-        let w = |xi: F| F::ONE + (xi - F::ONE) * quarter;
-        // dU/dx_i = dU/dw_i / 4.
-        let (s1, c1) = (pi * w(x[0])).fast_sin_cos();
-        let mut u = s1 * s1;
-        grad.fill(F::ZERO);
-        grad[0] = F::TWO * pi * s1 * c1 * quarter;
-        for i in 0..D {
-            let wi = w(x[i]);
-            let d = wi - F::ONE;
-            let (term, dterm) = if i + 1 < D {
-                let (s, c) = (pi * wi + F::ONE).fast_sin_cos();
-                let bracket = F::ONE + ten * s * s;
-                (
-                    d * d * bracket,
-                    F::TWO * d * bracket + d * d * ten * F::TWO * s * c * pi,
-                )
-            } else {
-                let (s, c) = (F::TWO * pi * wi).fast_sin_cos();
-                let bracket = F::ONE + s * s;
-                (
-                    d * d * bracket,
-                    F::TWO * d * bracket + d * d * F::TWO * s * c * F::TWO * pi,
-                )
-            };
-            u += term;
-            grad[i] += dterm * quarter;
-        }
-        u
-    }
-}
-
-impl<F: Float, const D: usize> KnownMinimum<F, D> for Levy {
-    fn global_minimum(&self) -> F {
-        F::ZERO
-    }
-    fn global_minimiser(&self) -> [F; D] {
-        [F::ONE; D]
     }
 }

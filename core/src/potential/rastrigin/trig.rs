@@ -17,14 +17,20 @@
 //! bit-identical on every target. Arguments too large for the rounding trick
 //! (`|x| >= 2^49` in f64, `2^20` in f32) or not finite take
 //! [`Float::fast_sin_cos`] of the rounded `2πx` (libm, or micromath with that
-//! feature in f32), on the caller's cold path. The host test `trig.rs`
+//! feature in f32), on the caller's cold path.
+//!
+//! The constants are this module's own, in each float type: the
+//! coefficients are rounded from the `f64` ones by `Float::from_f64` inside
+//! fully unrolled polynomials, so that even an unoptimised loop never
+//! converts them at run time (on a soft-float Cortex-M such a conversion is
+//! a library call). The host test `trig.rs`
 //! bounds the error against a double-double evaluation.
 
 use crate::float::Float;
 
 /// fdlibm `__kernel_sin`: `sin t = t + t z (S1 + S2 z + ... + S6 z^5)`,
 /// `z = t^2`, on `|t| <= π/4`, as the bit patterns fdlibm publishes.
-pub(crate) const SIN: [f64; 6] = [
+const SIN: [f64; 6] = [
     f64::from_bits(0xBFC5_5555_5555_5549), // -1.66666666666666324348e-01
     f64::from_bits(0x3F81_1111_1110_F8A6), //  8.33333333332248946124e-03
     f64::from_bits(0xBF2A_01A0_19C1_61D5), // -1.98412698298579493134e-04
@@ -34,7 +40,7 @@ pub(crate) const SIN: [f64; 6] = [
 ];
 
 /// fdlibm `__kernel_cos`: `cos t = 1 - z/2 + z^2 (C1 + C2 z + ... + C6 z^5)`.
-pub(crate) const COS: [f64; 6] = [
+const COS: [f64; 6] = [
     f64::from_bits(0x3FA5_5555_5555_554C), //  4.16666666666666019037e-02
     f64::from_bits(0xBF56_C16C_16C1_5177), // -1.38888888888741095749e-03
     f64::from_bits(0x3EFA_01A0_19CB_1590), //  2.48015872894767294178e-05
@@ -43,59 +49,44 @@ pub(crate) const COS: [f64; 6] = [
     f64::from_bits(0xBDA8_FAE9_BE88_38D4), // -1.13596475577881948265e-11
 ];
 
-/// `sum_k coef[k] z^k` by Horner's rule (`coef` non-empty).
+/// `1.5 * 2^(mantissa bits)`: `(v + M) - M` rounds `v` to the nearest
+/// integer (ties to even) for `|v| < M/3`.
 #[inline(always)]
-fn horner<F: Float>(coef: &[F], z: F) -> F {
-    let (&last, rest) = coef.split_last().expect("non-empty");
-    rest.iter().rev().fold(last, |acc, &c| acc * z + c)
+fn round_magic<F: Float>() -> F {
+    F::from_f64(1.5 * (1u64 << (F::MANTISSA_DIGITS - 1)) as f64)
 }
 
-/// `sum_k coef[k] z^k` as two Horner halves, `lo(z) + z^m hi(z)` with
-/// `m = len/2`: two independent chains, half the latency, for one more
-/// multiplication. Only for the f64 length (6): at f32's 4 the gain is nil
-/// on vector hardware and the extra product costs a soft-float call on a
-/// Cortex-M.
+/// Below this `|x|` (`2^49` in f64, `2^20` in f32) the polynomial path is
+/// exact in its reduction: `2x` stays far below a third of the magic number.
 #[inline(always)]
-fn split_horner<F: Float>(coef: &[F], z: F) -> F {
-    if coef.len() < 6 {
-        return horner(coef, z);
-    }
-    let (lo, hi) = coef.split_at(coef.len() / 2);
-    let mut zm = z;
-    for _ in 1..lo.len() {
-        zm *= z;
-    }
-    horner(lo, z) + zm * horner(hi, z)
+fn fast_limit<F: Float>() -> F {
+    F::from_f64((1u64 << (F::MANTISSA_DIGITS - 4)) as f64)
 }
 
-/// Lanes of one 128-bit vector of `F` (SSE2, NEON, wasm SIMD128), the unit
-/// the compiler vectorises; small, so that padding a short tail wastes
-/// little.
-pub(crate) const fn lanes<F>() -> usize {
-    16 / core::mem::size_of::<F>()
+/// `sum_k c[k] z^k` for fdlibm's coefficients `c`, in `F`: all six terms
+/// in f64, as two Horner halves `lo(z) + z^3 hi(z)` (two independent
+/// chains, half the latency); the first four in f32, where the dropped
+/// terms are below a tenth of an ulp, by plain Horner (the split gains
+/// nothing at that length and costs a soft-float product on a Cortex-M).
+#[inline(always)]
+fn polynomial<F: Float>(c: &[f64; 6], z: F) -> F {
+    let k = |i: usize| F::from_f64(c[i]);
+    if F::MANTISSA_DIGITS > 24 {
+        let lo = (k(2) * z + k(1)) * z + k(0);
+        let hi = (k(5) * z + k(4)) * z + k(3);
+        let z3 = z * z * z;
+        lo + z3 * hi
+    } else {
+        ((k(3) * z + k(2)) * z + k(1)) * z + k(0)
+    }
 }
-
-/// Whether the target has 256-bit float vectors (AVX): blocks of two
-/// [`lanes`] vectors. Results do not depend on it.
-pub(crate) const WIDE: bool = cfg!(target_feature = "avx");
-
-/// Whether the target has 128-bit float vectors for blocks of [`lanes`]
-/// coordinates; without them (Cortex-M, RISC-V, plain wasm32) a block is one
-/// coordinate. Results do not depend on it.
-pub(crate) const VECTORS: bool = cfg!(any(
-    target_arch = "x86_64",
-    target_arch = "aarch64",
-    target_feature = "sse2",
-    target_feature = "simd128",
-    all(target_arch = "arm", target_feature = "neon")
-));
 
 /// `(sin(2π x_j), 1 - cos(2π x_j))` for one block of coordinates, on the
 /// polynomial path: right where [`all_small`] holds, to be patched by
 /// [`patch_large`] where it does not.
 #[inline(always)]
 pub(crate) fn block<F: Float, const L: usize>(x: &[F; L]) -> ([F; L], [F; L]) {
-    let magic = F::ROUND_MAGIC;
+    let magic = round_magic::<F>();
     let mut s = [F::ZERO; L];
     let mut omc = [F::ZERO; L];
     for ((&xi, si), oi) in x.iter().zip(s.iter_mut()).zip(omc.iter_mut()) {
@@ -107,8 +98,8 @@ pub(crate) fn block<F: Float, const L: usize>(x: &[F; L]) -> ([F; L], [F; L]) {
         let odd = n - F::TWO * ((F::HALF * n + magic) - magic);
         let t = F::PI * r;
         let z = t * t;
-        let sin_t = t + (t * z) * split_horner(F::SIN_COEFFICIENTS, z);
-        let cos_t = F::ONE - (F::HALF * z - (z * z) * split_horner(F::COS_COEFFICIENTS, z));
+        let sin_t = t + (t * z) * polynomial(&SIN, z);
+        let cos_t = F::ONE - (F::HALF * z - (z * z) * polynomial(&COS, z));
         let two_sc = (sin_t + sin_t) * cos_t;
         let (sin, w) = if odd == F::ZERO {
             (two_sc, sin_t)
@@ -137,7 +128,7 @@ pub(crate) fn all_small<F: Float, const L: usize>(x: &[F; L]) -> bool {
 
 #[inline(always)]
 fn is_small<F: Float>(x: F) -> bool {
-    x.abs() < F::TRIG_FAST_LIMIT
+    x.abs() < fast_limit::<F>()
 }
 
 /// Replaces the polynomial's values of [`block`] by libm's (micromath's)

@@ -1,0 +1,23 @@
+//! Potentials `U: R^D -> R` to minimise: the [`Potential`] trait and the
+//! built-in benchmarks, one file each.
+//!
+//! A new potential is one file here (a type, its
+//! [`Potential::value_and_gradient`], and, when the minimum is known,
+//! [`KnownMinimum`]) and its `mod` and `pub use` lines below; the crate
+//! root re-exports everything this module does.
+
+mod ackley;
+mod double_well;
+mod levy;
+mod quadratic;
+mod rastrigin;
+mod styblinski_tang;
+mod traits;
+
+pub use ackley::Ackley;
+pub use double_well::DoubleWell;
+pub use levy::Levy;
+pub use quadratic::Quadratic;
+pub use rastrigin::Rastrigin;
+pub use styblinski_tang::StyblinskiTang;
+pub use traits::{KnownMinimum, Potential};

@@ -1,0 +1,72 @@
+//! What a sampler is: a method ([`Sampler`]) that, at each inverse
+//! temperature `a`, gives the Markov kernel of one step ([`Kernel`]).
+//!
+//! The inverse temperature lives with whoever drives the chains (the
+//! optimiser's schedule); a sampler holds only its `a`-free parameters, and
+//! [`Sampler::at`] derives the step's coefficients at the `a` asked for.
+
+use rand_core::Rng;
+
+use crate::error::Error;
+use crate::float::Float;
+
+/// A Langevin-type sampling method: its parameters, without the inverse
+/// temperature.
+///
+/// A new sampler is one file: a type implementing this trait, with a
+/// `paper(h)` constructor, and its [`Kernel`] (or an existing one, as ULA
+/// reuses HRLA's).
+pub trait Sampler<F: Float> {
+    /// The step at one inverse temperature.
+    type Kernel: Kernel<F>;
+
+    /// The step at inverse temperature `a`. Errors when `a` is not finite
+    /// and > 0, or when the step's coefficients overflow or vanish there.
+    fn at(&self, a: F) -> Result<Self::Kernel, Error>;
+}
+
+/// One step of a Langevin-type chain at a fixed inverse temperature.
+///
+/// The chain's state is a position `x` and a velocity `y` (kernels without a
+/// velocity leave `y` alone). The gradient of the potential at `x` is
+/// passed in, so a step costs no potential evaluation of its own: the caller
+/// evaluates the potential once, after the step, for both the running best
+/// and the next step's gradient.
+pub trait Kernel<F: Float>: Copy {
+    /// The inverse temperature `a` of this step.
+    fn inverse_temperature(&self) -> F;
+
+    /// The conditional mean and covariance of one step of one coordinate
+    /// from position `x`, velocity `y` and gradient component `g`.
+    fn moments(&self, x: F, y: F, g: F) -> StepMoments<F>;
+
+    /// Advances `(x, y)` by one step, given `grad = ∇U(x)`.
+    ///
+    /// Must not fail: every check belongs in [`Sampler::at`].
+    fn step<R: Rng + ?Sized, const D: usize>(
+        &self,
+        x: &mut [F; D],
+        y: &mut [F; D],
+        grad: &[F; D],
+        rng: &mut R,
+    );
+}
+
+/// Mean and covariance of one step of one coordinate, given `(x, y)` and the
+/// gradient component `g` at the start of the step.
+///
+/// For OLA, which has no velocity, `mean_y = y` and the `y` entries of the
+/// covariance are zero.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepMoments<F> {
+    /// Conditional mean of the new position.
+    pub mean_x: F,
+    /// Conditional mean of the new velocity.
+    pub mean_y: F,
+    /// Conditional variance of the new position.
+    pub var_x: F,
+    /// Conditional covariance of the new position and velocity.
+    pub cov_xy: F,
+    /// Conditional variance of the new velocity.
+    pub var_y: F,
+}

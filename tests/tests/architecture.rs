@@ -1,0 +1,216 @@
+//! The kernel's module graph has no cycle: every `use crate::…` or
+//! `use super::…` of a file in `core/src` points down a layered order
+//! (`float` before `sampler`, a trait file before the files that implement
+//! it, ...), so each module can be read knowing only the ones it imports.
+//! A cycle would mean two modules that can only be understood together.
+//!
+//! The graph is read from the source text: a module is a file, an edge is a
+//! path starting with `crate::` or `super::` outside comments and outside
+//! `#[cfg(test)]` modules, and a parent's `pub use child::…` (a re-export
+//! makes whoever imports it depend on the child).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// Every `.rs` file under `dir`, by module path (`sampler::hrla`).
+fn modules(dir: &Path, prefix: &[String], out: &mut BTreeMap<String, PathBuf>) {
+    for entry in fs::read_dir(dir).expect("readable source folder") {
+        let path = entry.expect("entry").path();
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        if path.is_dir() {
+            let mut p = prefix.to_vec();
+            p.push(name);
+            modules(&path, &p, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            let mut p = prefix.to_vec();
+            if name != "mod" && name != "lib" {
+                p.push(name);
+            }
+            out.insert(p.join("::"), path);
+        }
+    }
+}
+
+/// The source without comments and without its `#[cfg(test)]` module.
+fn code(src: &str) -> String {
+    let src = match src.find("#[cfg(test)]\nmod tests") {
+        Some(i) => &src[..i],
+        None => src,
+    };
+    src.lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The module a path names, resolved from module `current`: its longest
+/// prefix that is a module.
+fn target(current: &str, path: &str, mods: &BTreeMap<String, PathBuf>) -> Option<String> {
+    let mut segs: Vec<&str> = path.split("::").collect();
+    let mut base: Vec<&str> = if current.is_empty() {
+        vec![]
+    } else {
+        current.split("::").collect()
+    };
+    match segs[0] {
+        "crate" => base.clear(),
+        "super" => {
+            while segs.first() == Some(&"super") {
+                base.pop();
+                segs.remove(0);
+            }
+            return resolve(&base, &segs, mods);
+        }
+        _ => return None,
+    }
+    segs.remove(0);
+    resolve(&base, &segs, mods)
+}
+
+fn resolve(base: &[&str], segs: &[&str], mods: &BTreeMap<String, PathBuf>) -> Option<String> {
+    (0..=segs.len()).rev().find_map(|i| {
+        let m: Vec<&str> = base.iter().chain(&segs[..i]).copied().collect();
+        let m = m.join("::");
+        mods.contains_key(&m).then_some(m)
+    })
+}
+
+/// Edges of the graph: the paths each file uses, `use` groups expanded one
+/// level (`use super::{a::X, b::Y}`).
+fn edges(mods: &BTreeMap<String, PathBuf>) -> BTreeMap<String, BTreeSet<String>> {
+    let mut graph = BTreeMap::new();
+    for (m, path) in mods {
+        let src = code(&fs::read_to_string(path).expect("readable source"));
+        let mut out = BTreeSet::new();
+        let mut paths = Vec::new();
+        for stmt in src.split(';') {
+            // `a::B as C` names module `a` whatever the alias.
+            let stmt: String = stmt
+                .split(" as ")
+                .enumerate()
+                .map(|(i, part)| {
+                    if i == 0 {
+                        part
+                    } else {
+                        part.trim_start()
+                            .split_once(|c: char| !(c.is_alphanumeric() || c == '_'))
+                            .map_or("", |(_, rest)| rest)
+                    }
+                })
+                .collect::<String>()
+                .split_whitespace()
+                .collect();
+            let Some(i) = stmt.find("use") else { continue };
+            let body = &stmt[i + 3..];
+            let child = format!(
+                "{m}{}{}",
+                if m.is_empty() { "" } else { "::" },
+                body.split("::").next().unwrap_or("")
+            );
+            if mods.contains_key(&child) && &child != m {
+                // A re-export of a child module's items.
+                out.insert(child);
+                continue;
+            }
+            if !(body.starts_with("crate::") || body.starts_with("super::")) {
+                continue;
+            }
+            match body.split_once("::{") {
+                Some((head, rest)) => {
+                    for item in rest.trim_end_matches('}').split(',') {
+                        paths.push(format!("{head}::{item}"));
+                    }
+                }
+                None => paths.push(body.to_string()),
+            }
+        }
+        // Paths written out in the code, outside `use`.
+        for word in src.split(|c: char| !(c.is_alphanumeric() || c == '_' || c == ':')) {
+            if word.starts_with("crate::") || word.starts_with("super::") {
+                paths.push(word.to_string());
+            }
+        }
+        for p in paths {
+            if let Some(t) = target(m, &p, mods) {
+                if &t != m {
+                    out.insert(t);
+                }
+            }
+        }
+        graph.insert(m.clone(), out);
+    }
+    graph
+}
+
+/// A cycle of the graph, if any (depth-first search).
+fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
+    fn visit(
+        v: &str,
+        graph: &BTreeMap<String, BTreeSet<String>>,
+        state: &mut BTreeMap<String, u8>,
+        stack: &mut Vec<String>,
+    ) -> Option<Vec<String>> {
+        state.insert(v.to_string(), 1);
+        stack.push(v.to_string());
+        for w in &graph[v] {
+            match state.get(w.as_str()) {
+                Some(1) => {
+                    let i = stack.iter().position(|s| s == w).unwrap();
+                    let mut cycle = stack[i..].to_vec();
+                    cycle.push(w.clone());
+                    return Some(cycle);
+                }
+                Some(_) => {}
+                None => {
+                    if let Some(c) = visit(w, graph, state, stack) {
+                        return Some(c);
+                    }
+                }
+            }
+        }
+        stack.pop();
+        state.insert(v.to_string(), 2);
+        None
+    }
+    let mut state = BTreeMap::new();
+    for v in graph.keys() {
+        if !state.contains_key(v.as_str()) {
+            if let Some(c) = visit(v, graph, &mut state, &mut Vec::new()) {
+                return Some(c);
+            }
+        }
+    }
+    None
+}
+
+#[test]
+fn the_kernel_has_no_import_cycle() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../core/src");
+    let mut mods = BTreeMap::new();
+    modules(&root, &[], &mut mods);
+    let graph = edges(&mods);
+    // The reader must see the edges it is meant to: a sample of known ones.
+    assert!(graph["sampler::hrla"].contains("sampler::traits"));
+    assert!(graph["sampler::hrla"].contains("sampler::ou"));
+    assert!(graph["float"].contains("normal"));
+    assert!(graph["sampler"].contains("sampler::hrla"));
+    assert!(graph["potential::rastrigin"].contains("lanes"));
+    if let Some(cycle) = find_cycle(&graph) {
+        panic!("import cycle: {}", cycle.join(" -> "));
+    }
+}
+
+#[test]
+fn the_cycle_finder_finds_a_cycle() {
+    let graph: BTreeMap<String, BTreeSet<String>> = [
+        ("a", vec!["b"]),
+        ("b", vec!["c"]),
+        ("c", vec!["a"]),
+        ("d", vec![]),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v.into_iter().map(String::from).collect()))
+    .collect();
+    assert!(find_cycle(&graph).is_some());
+}
