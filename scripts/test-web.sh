@@ -2,7 +2,8 @@
 # The wasm wrapper and the demo page: bit-identity of the wasm build (in
 # Node) with the native build, and the page in Debian's Chromium; and the
 # firmware example's computation in wasm, bit-identical to the host's (and
-# to the firmware's under QEMU).
+# to the firmware's under QEMU when $HRLA_FIRMWARE_OUT names a firmware run,
+# as scripts/test.sh arranges; without it, a WARNING says what was skipped).
 # Installs what is missing: the rustup target, wasm-bindgen-cli, chromium,
 # playwright-core (npm ci from the committed lock file).
 # Artefacts (screenshots) go to target/web-tests/.
@@ -49,4 +50,18 @@ fi
 # Always: npm ci installs exactly the lock file (one package, a second or two).
 (cd web/tests && npm ci --no-audit --no-fund)
 
-node --test web/tests/*.test.mjs
+# Without the firmware's output, embedded.test.mjs skips its four QEMU
+# comparisons: say so before the run and again at the end, where it is seen.
+firmware_warning() {
+  [ -n "${HRLA_FIRMWARE_OUT:-}" ] && return 0
+  echo "WARNING: HRLA_FIRMWARE_OUT is not set: the 4 comparisons of the wasm build with the" \
+    "firmware under QEMU (embedded f32, f64, f32+micromath, f64+micromath: 'wasm in Node ==" \
+    "firmware under QEMU') are SKIPPED, since there is no fresh firmware output to compare with." \
+    "To run them: scripts/test.sh (does both), or scripts/test-firmware.sh then" \
+    "HRLA_FIRMWARE_OUT=$TARGET_DIR/firmware-check scripts/test-web.sh" >&2
+}
+firmware_warning
+status=0
+node --test web/tests/*.test.mjs || status=$?
+firmware_warning
+exit "$status"

@@ -53,11 +53,13 @@ step "firmware: Algorithm 1 on an emulated Cortex-M3, bit-identical to the host"
 step "wasm wrapper and demo page (bit-identity in Node, the page in Chromium), firmware computation in wasm"
 ./scripts/test-web.sh 2>&1 | tee -a "$LOG"
 
-# cargo prints "test result: ok. N passed; M failed; ...", node's TAP
-# reporter "# pass N" and "# fail M", the firmware script its own
-# "firmware: N passed, M failed" (its QEMU comparisons are not cargo tests).
-awk '/^test result:/ { p += $4; f += $6 }
+# cargo prints "test result: ok. N passed; M failed; K ignored; ...", node's
+# TAP reporter "# pass N", "# fail M" and "# skipped K", the firmware script
+# its own "firmware: N passed, M failed" (its QEMU comparisons are not cargo
+# tests). Ignored and skipped tests both count as skipped.
+awk '/^test result:/ { p += $4; f += $6; s += $8 }
      /^# pass / { p += $3 }
      /^# fail / { f += $3 }
+     /^# skipped / { s += $3 }
      /^firmware: [0-9]+ passed, [0-9]+ failed$/ { p += $2; f += $4 }
-     END { printf "\nsummary: %d passed, %d failed\n", p, f }' "$LOG"
+     END { printf "\nsummary: %d passed, %d failed, %d skipped\n", p, f, s }' "$LOG"

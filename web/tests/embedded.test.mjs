@@ -8,8 +8,9 @@
 // $HRLA_WEB_OUT/embedded/<variant>.host.txt. The firmware's output,
 // <variant>.qemu-results.txt, is read from $HRLA_FIRMWARE_OUT, which
 // scripts/test.sh sets after a fresh firmware run; run alone, test-web.sh
-// does not set it and those comparisons are skipped rather than made against
-// a possibly stale run.
+// does not set it and those four comparisons are skipped (with a warning from
+// test-web.sh and this reason in node's report) rather than made against a
+// possibly stale run.
 import assert from "node:assert/strict";
 import { readFileSync } from "node:fs";
 import { createRequire } from "node:module";
@@ -21,6 +22,11 @@ const require = createRequire(import.meta.url);
 const plain = require(join(OUT, "embedded-node", "hrla_embedded_wasm.js"));
 const micromath = require(join(OUT, "embedded-node-micromath", "hrla_embedded_wasm.js"));
 const FIRMWARE = process.env.HRLA_FIRMWARE_OUT;
+/** Why the QEMU comparisons are skipped; scripts/test-web.sh prints the same. */
+const NO_FIRMWARE =
+  "HRLA_FIRMWARE_OUT is not set, so the wasm report is not compared with the firmware's under QEMU; " +
+  "to compare, run scripts/test.sh, or scripts/test-firmware.sh then " +
+  `HRLA_FIRMWARE_OUT=${process.env.CARGO_TARGET_DIR ?? "target"}/firmware-check scripts/test-web.sh`;
 
 // Variant names as test-firmware.sh names its files.
 const VARIANTS = [
@@ -52,7 +58,7 @@ for (const { name, float } of VARIANTS) {
 
   test(
     `embedded ${name}: wasm in Node == firmware under QEMU, bit for bit`,
-    { skip: FIRMWARE ? false : "HRLA_FIRMWARE_OUT not set (scripts/test.sh sets it)" },
+    { skip: FIRMWARE ? false : NO_FIRMWARE },
     () => {
       const qemu = readFileSync(join(FIRMWARE, `${name}.qemu-results.txt`), "utf8");
       assertWellFormed(qemu, float);
