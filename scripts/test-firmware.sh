@@ -104,12 +104,14 @@ for fp in f32 f64; do
       exit 1
     fi
     # Budgets, so that "small" stays true: the README quotes the table.
+    # Static RAM holds the 16 chains (a static in the firmware: 1.1 KiB in
+    # f32, 1.8 KiB in f64), the stack the optimiser that borrows them.
     flash=$((vt + text + rodata + data))
     budget_flash=32768
     [ "$extra" = fmt ] && budget_flash=49152
-    if ((flash > budget_flash || data + bss + uninit > 256 || stack > 6144)); then
+    if ((flash > budget_flash || data + bss + uninit > 2048 || stack > 6144)); then
       echo "error: firmware $name over budget: flash $flash > $budget_flash," \
-        "static RAM $((data + bss + uninit)) > 256 or stack $stack > 6144 bytes" >&2
+        "static RAM $((data + bss + uninit)) > 2048 or stack $stack > 6144 bytes" >&2
       exit 1
     fi
     table+="

@@ -9,35 +9,11 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use hrla::{AnySampler, Float, Optimizer, Rastrigin, SamplerKind, Schedule};
+use hrla::{Float, SamplerKind};
 use hrla_bench::{Bare, constant, optimizer, paper_kernel, rng, slow_linear};
 
-/// Chains per optimiser: larger swarms are split so that each optimiser
-/// (which holds its chains inline) stays small on the stack.
-const GROUP: usize = 100;
-
-type Group<F, C, const D: usize> = Box<Optimizer<F, Rastrigin, AnySampler<F>, C, D, GROUP>>;
-
-fn swarm<F: Float, C: Schedule<F> + Clone, const D: usize>(
-    method: SamplerKind,
-    schedule: C,
-    chains: usize,
-) -> (Vec<Group<F, C, D>>, rand_xoshiro::Xoshiro256PlusPlus) {
-    let mut r = rng(7);
-    let mut groups = Vec::new();
-    let mut left = chains;
-    while left > 0 {
-        let n = left.min(GROUP);
-        groups.push(Box::new(optimizer::<F, C, D, GROUP>(
-            method,
-            schedule.clone(),
-            n,
-            &mut r,
-        )));
-        left -= n;
-    }
-    (groups, r)
-}
+/// The seed of every benchmark's optimiser and bare chains.
+const SEED: u64 = 7;
 
 fn float_name<F: Float>() -> &'static str {
     if core::mem::size_of::<F>() == 8 {
@@ -57,18 +33,13 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
     for chains in [1usize, 10, 1000] {
         g.throughput(Throughput::Elements((chains * D) as u64));
         for method in SamplerKind::ALL {
-            let (mut opt, mut r) = swarm::<F, _, D>(method, constant::<F>(), chains);
+            let mut opt = optimizer::<F, _, D>(method, constant::<F>(), chains, SEED);
             g.bench_function(
                 BenchmarkId::new(format!("{}/best", method.name()), chains),
-                |b| {
-                    b.iter(|| {
-                        for o in opt.iter_mut() {
-                            black_box(o.step(&mut r).expect("valid"));
-                        }
-                    })
-                },
+                |b| b.iter(|| opt.step().expect("valid")),
             );
             let sampler = paper_kernel::<F>(method);
+            let mut r = rng(SEED);
             let mut bare = Bare::<F, D>::new(chains, &mut r);
             g.bench_function(
                 BenchmarkId::new(format!("{}/no-value", method.name()), chains),
@@ -77,14 +48,11 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
         }
         // HRLA with a = a_k changing every step: the cost of the per-step
         // refresh of the temperature-dependent coefficients.
-        let (mut opt, mut r) = swarm::<F, _, D>(SamplerKind::Hrla, slow_linear::<F>(), chains);
+        let mut opt = optimizer::<F, _, D>(SamplerKind::Hrla, slow_linear::<F>(), chains, SEED);
         g.bench_function(BenchmarkId::new("hrla/best-annealed", chains), |b| {
-            b.iter(|| {
-                for o in opt.iter_mut() {
-                    black_box(o.step(&mut r).expect("valid"));
-                }
-            })
+            b.iter(|| opt.step().expect("valid"))
         });
+        let mut r = rng(SEED);
         let mut bare = Bare::<F, D>::new(chains, &mut r);
         g.bench_function(BenchmarkId::new("floor/normals+value+grad", chains), |b| {
             b.iter(|| black_box(bare.floor(&mut r)))

@@ -3,8 +3,8 @@
 
 use hrla::rand_core::Rng;
 use hrla::{
-    AnyKernel, AnySampler, Float, Gaussian, Kernel, Linear, Optimizer, Potential, Rastrigin,
-    Sampler, SamplerKind, Schedule,
+    AnyKernel, AnySampler, Builder, Chain, Float, Gaussian, Kernel, Linear, Optimizer, Potential,
+    Rastrigin, Sampler, SamplerKind, Schedule,
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -19,21 +19,34 @@ pub fn paper_kernel<F: Float>(kind: SamplerKind) -> AnyKernel<F> {
     paper(kind).at(constant()).expect("valid")
 }
 
-/// The generator every benchmark uses.
+/// The shared generator of the [`Bare`] loops (the optimiser's chains have
+/// their own, seeded by the kernel).
 pub fn rng(seed: u64) -> Xoshiro256PlusPlus {
     Xoshiro256PlusPlus::seed_from_u64(seed)
 }
 
+/// The optimiser of the benchmarks: every chain in one `Vec` it owns.
+pub type Swarm<F, C, const D: usize> =
+    Optimizer<F, Rastrigin, AnySampler<F>, C, Vec<Chain<F, D>>, D>;
+
 /// Algorithm 1 on D-dimensional Rastrigin from the paper's start, with a
-/// schedule: every step evaluates `U` and `∇U` and updates the running best.
-pub fn optimizer<F: Float, C: Schedule<F>, const D: usize, const N: usize>(
+/// schedule, over `chains` chains on the heap seeded with `seed` (each
+/// chain draws from its own generator, `hrla::chain_seed(seed, c)`): every
+/// [`step`](Optimizer::step) evaluates `U` and `∇U` and updates the running
+/// best. No stopping rule: the benchmarks step it as long as they like (a
+/// schedule with a length gets it as a budget, which only `run` reads).
+pub fn optimizer<F: Float, C: Schedule<F>, const D: usize>(
     method: SamplerKind,
     schedule: C,
     chains: usize,
-    rng: &mut Xoshiro256PlusPlus,
-) -> Optimizer<F, Rastrigin, AnySampler<F>, C, D, N> {
-    let mut start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10f64.sqrt())).expect("valid");
-    Optimizer::new(Rastrigin, paper(method), schedule, chains, &mut start, rng).expect("valid")
+    seed: u64,
+) -> Swarm<F, C, D> {
+    let start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10f64.sqrt())).expect("valid");
+    let storage = (0..chains).map(|_| Chain::new()).collect::<Vec<_>>();
+    Builder::new(Rastrigin, paper(method), schedule, start)
+        .seed(seed)
+        .build(storage)
+        .expect("valid")
 }
 
 /// The constant schedule of the paper's setting, `a = 4`.
@@ -49,7 +62,11 @@ pub fn slow_linear<F: Float>() -> Linear<F> {
     Linear::new(F::from_f64(4.0), F::from_f64(4.4), 1_000_000_000).expect("valid")
 }
 
-/// Chains without the optimiser: position, velocity, gradient.
+/// Chains without the optimiser: position, velocity, gradient. Unlike the
+/// optimiser's chains, which each own a generator, the bare chains all draw
+/// from one shared generator passed to every call: they measure the
+/// sampler's step (and the floor's parts) alone, as a plain sampling loop
+/// would run it, and their random stream need not be the optimiser's.
 pub struct Bare<F, const D: usize> {
     x: Vec<[F; D]>,
     y: Vec<[F; D]>,

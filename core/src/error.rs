@@ -42,7 +42,8 @@ pub enum Error {
         /// What was counted (`stride`, `steps`).
         name: &'static str,
     },
-    /// The number of chains is zero or above the optimiser's capacity.
+    /// A count outside the range a caller allows (for example more chains
+    /// than a user interface offers).
     Count {
         /// What was counted (`chains`).
         name: &'static str,
@@ -58,23 +59,75 @@ pub enum Error {
         /// The names known, each after a space.
         expected: &'static str,
     },
-    /// The potential or its gradient is not finite at an initial point.
+    /// An initial point, or the potential or its gradient there, is not
+    /// finite.
     NonFiniteStart {
         /// The chain whose initial point was bad.
         chain: usize,
+        /// What was not finite: `position`, `value` or `gradient`.
+        what: &'static str,
+    },
+    /// A parameter lies outside the range the crate's accuracy is
+    /// documented and tested for.
+    OutOfRange {
+        /// The parameter (`alpha h`, `a`, ...).
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// The smallest value allowed.
+        min: f64,
+        /// The largest value allowed.
+        max: f64,
+    },
+    /// An evaluation budget smaller than the evaluations of the initial
+    /// points (one per chain).
+    Budget {
+        /// The budget.
+        budget: u64,
+        /// The number of chains.
+        chains: usize,
+    },
+    /// A step budget shorter than the schedule: the annealing would be cut
+    /// short.
+    ScheduleLongerThanRun {
+        /// The schedule's length.
+        schedule: u64,
+        /// The step budget.
+        steps: u64,
+    },
+    /// [`run`](crate::Optimizer::run) without a stopping rule would never
+    /// end.
+    NoStoppingRule,
+    /// Every chain has diverged (its position, potential or gradient went
+    /// non-finite): the run has no live chain and no result to trust.
+    AllDiverged {
+        /// The number of chains.
+        chains: usize,
+    },
+    /// A chain's potential fell to `-inf` or below `-sqrt(MAX)` of its
+    /// float type: the potential looks unbounded below, and the run's best
+    /// value means nothing.
+    UnboundedBelow {
+        /// The first chain that showed it.
+        chain: usize,
+        /// Its value.
+        value: f64,
     },
 }
 
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let value = |v: f64| Num(v);
         match *self {
-            Error::NotPositive { name, value } => {
-                write!(f, "`{name}` must be finite and > 0, got {value}")
+            Error::NotPositive { name, value: v } => {
+                write!(f, "`{name}` must be finite and > 0, got {}", value(v))
             }
-            Error::Negative { name, value } => {
-                write!(f, "`{name}` must be finite and >= 0, got {value}")
+            Error::Negative { name, value: v } => {
+                write!(f, "`{name}` must be finite and >= 0, got {}", value(v))
             }
-            Error::NotFinite { name, value } => write!(f, "`{name}` must be finite, got {value}"),
+            Error::NotFinite { name, value: v } => {
+                write!(f, "`{name}` must be finite, got {}", value(v))
+            }
             Error::Zero { name } => write!(f, "`{name}` must be at least 1, got 0"),
             Error::DegenerateCoefficients => f.write_str(
                 "the step coefficients overflow or vanish for these parameters \
@@ -86,15 +139,61 @@ impl fmt::Display for Error {
             Error::Unknown { what, expected } => {
                 write!(f, "unknown {what}; expected one of:{expected}")
             }
-            Error::NonFiniteStart { chain } => write!(
+            Error::NonFiniteStart { chain, what } => write!(
                 f,
-                "the potential or its gradient is not finite at the initial point of chain {chain}"
+                "the initial point of chain {chain}: its {what} is not finite"
+            ),
+            Error::OutOfRange {
+                name,
+                value: v,
+                min,
+                max,
+            } => write!(
+                f,
+                "`{name}` = {} is outside [{min:e}, {max:e}], the range the step's accuracy is tested for",
+                value(v)
+            ),
+            Error::Budget { budget, chains } => write!(
+                f,
+                "an evaluation budget of {budget} is below the {chains} evaluations of the initial points"
+            ),
+            Error::ScheduleLongerThanRun { schedule, steps } => write!(
+                f,
+                "a step budget of {steps} would cut the schedule of {schedule} steps short"
+            ),
+            Error::NoStoppingRule => f.write_str(
+                "the run has no stopping rule: give a step or evaluation budget, a target or a stall rule",
+            ),
+            Error::AllDiverged { chains } => write!(
+                f,
+                "all {chains} chains diverged (non-finite position, potential or gradient): \
+                 try a smaller step h"
+            ),
+            Error::UnboundedBelow { chain, value: v } => write!(
+                f,
+                "the potential looks unbounded below: chain {chain} reached U = {}",
+                value(v)
             ),
         }
     }
 }
 
 impl core::error::Error for Error {}
+
+/// A number as a person reads it: plain in the usual range, in exponent
+/// form when very large or small (so that `-1e300` is not 300 digits).
+struct Num(f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a != 0.0 && a.is_finite() && !(1e-4..1e6).contains(&a) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
 
 /// `Ok(v)` when `v` is finite and strictly positive.
 pub(crate) fn positive<F: Float>(name: &'static str, v: F) -> Result<F, Error> {
@@ -116,6 +215,32 @@ pub(crate) fn finite<F: Float>(name: &'static str, v: F) -> Result<F, Error> {
         Err(Error::NotFinite {
             name,
             value: v.to_f64(),
+        })
+    }
+}
+
+/// The range of `u = alpha h` over which the exact step's coefficients are
+/// tested against a double-double reference (`tests/tests/moments.rs`), in
+/// f32 and f64; outside it their accuracy is not known.
+pub(crate) const ALPHA_H: (f64, f64) = (1e-8, 50.0);
+
+/// The range of inverse temperatures over which the samplers'
+/// coefficients are tested (`tests/tests/moments.rs`): from a nearly flat
+/// `exp(-a U)` to one concentrated within about `1e-3` of a minimum of
+/// unit curvature.
+pub(crate) const INVERSE_TEMPERATURE: (f64, f64) = (1e-6, 1e6);
+
+/// `Ok(v)` when `v` lies in `[range.0, range.1]`, the ends rounded to `F`
+/// (so that `1e-8f32`, which is just below `1e-8`, is in range in f32).
+pub(crate) fn in_range<F: Float>(name: &'static str, v: F, range: (f64, f64)) -> Result<F, Error> {
+    if v >= F::from_f64(range.0) && v <= F::from_f64(range.1) {
+        Ok(v)
+    } else {
+        Err(Error::OutOfRange {
+            name,
+            value: v.to_f64(),
+            min: range.0,
+            max: range.1,
         })
     }
 }

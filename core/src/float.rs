@@ -54,6 +54,8 @@ pub trait Float:
     const PI: Self;
     /// Positive infinity.
     const INFINITY: Self;
+    /// The largest finite value.
+    const MAX: Self;
     /// Significant bits, the implicit one included (53 for `f64`, 24 for
     /// `f32`), as `f64::MANTISSA_DIGITS`.
     const MANTISSA_DIGITS: u32;
@@ -97,6 +99,7 @@ impl Float for f64 {
     const HALF: Self = 0.5;
     const PI: Self = core::f64::consts::PI;
     const INFINITY: Self = f64::INFINITY;
+    const MAX: Self = f64::MAX;
     const MANTISSA_DIGITS: u32 = f64::MANTISSA_DIGITS;
 
     #[inline]
@@ -164,6 +167,7 @@ impl Float for f32 {
     const HALF: Self = 0.5;
     const PI: Self = core::f32::consts::PI;
     const INFINITY: Self = f32::INFINITY;
+    const MAX: Self = f32::MAX;
     const MANTISSA_DIGITS: u32 = f32::MANTISSA_DIGITS;
 
     #[inline]

@@ -37,24 +37,60 @@
 //! Minimise 10-D Rastrigin with the paper's parameters:
 //!
 //! ```
-//! use hrla::{Gaussian, Hrla, Optimizer, Rastrigin};
-//! use rand_xoshiro::{Xoshiro256PlusPlus, rand_core::SeedableRng};
+//! use hrla::{Builder, Chain, Gaussian, Hrla, Rastrigin, Stop};
 //!
-//! let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
-//! // The paper's setting (b = 10, alpha = beta = 1) at h = 0.01, at a = 4.
-//! let sampler = Hrla::paper(0.01)?;
-//! let mut start = Gaussian::new([3.0; 10], 10f64.sqrt())?;
-//! let mut opt: Optimizer<f64, _, _, _, 10, 10> =
-//!     Optimizer::new(Rastrigin, sampler, 4.0, 10, &mut start, &mut rng)?;
-//! let report = opt.run(14_000, &mut rng)?;
-//! assert!(report.best.value < 2.0);
+//! // The chains live where the caller puts them: here on the heap.
+//! let mut chains: Vec<Chain<f64, 10>> = (0..10).map(|_| Chain::new()).collect();
+//! let mut opt = Builder::new(
+//!     Rastrigin,
+//!     Hrla::paper(0.01)?,                     // b = 10, alpha = beta = 1, h = 0.01
+//!     4.0,                                    // the schedule: a constant a = 4
+//!     Gaussian::new([3.0; 10], 10f64.sqrt())?, // x_0 ~ N(3·1, 10 I)
+//! )
+//! .seed(1)
+//! .stop(Stop::new().steps(14_000))
+//! .build(&mut chains)?;
+//! let report = opt.run()?;
+//! println!("{report}");
+//! assert!(report.value < 2.0);
+//! println!("x* = {:?}", opt.best().x);
+//! # Ok::<(), hrla::Error>(())
+//! ```
+//!
+//! A potential of one's own is a closure ([`FnPotential`]) or a type
+//! implementing [`Potential`], and [`check_gradient`] compares its gradient
+//! with finite differences:
+//!
+//! ```
+//! use hrla::{Builder, Chain, FnPotential, Gaussian, Linear, Ola, Stop, check_gradient};
+//!
+//! // Himmelblau's function: four global minima, U* = 0.
+//! let himmelblau = FnPotential::new(|x: &[f64; 2], g: &mut [f64; 2]| {
+//!     let (p, q) = (x[0] * x[0] + x[1] - 11.0, x[0] + x[1] * x[1] - 7.0);
+//!     *g = [4.0 * x[0] * p + 2.0 * q, 2.0 * p + 4.0 * x[1] * q];
+//!     p * p + q * q
+//! });
+//! assert!(check_gradient(&himmelblau, &[1.0, -2.0])?.error < 1e-8);
+//!
+//! let mut chains: Vec<Chain<f64, 2>> = (0..32).map(|_| Chain::new()).collect();
+//! let mut opt = Builder::new(
+//!     &himmelblau,                       // a reference is a potential too
+//!     Ola::paper(1e-3)?,
+//!     Linear::new(0.1, 100.0, 20_000)?,  // annealing; its length is the step budget
+//!     Gaussian::new([0.0; 2], 3.0)?,
+//! )
+//! .stop(Stop::new().target(1e-4))        // or earlier, at the target
+//! .build(&mut chains)?;
+//! let report = opt.run()?;
+//! assert!(report.value < 1e-2, "{report}");
 //! # Ok::<(), hrla::Error>(())
 //! ```
 //!
 //! # Inventory
 //!
-//! - Potentials: the [`Potential`] trait, and [`Rastrigin`] (the paper's
-//!   form), [`Quadratic`], [`DoubleWell`], [`StyblinskiTang`], [`Levy`] and
+//! - Potentials: the [`Potential`] trait, [`FnPotential`] for closures,
+//!   [`check_gradient`], and [`Rastrigin`] (the paper's form),
+//!   [`Quadratic`], [`DoubleWell`], [`StyblinskiTang`], [`Levy`] and
 //!   [`Ackley`], each with its [`KnownMinimum`].
 //! - Samplers: [`Hrla`], [`Ula`], [`Ola`] (and [`AnySampler`] to pick one
 //!   at run time, by [`SamplerKind`]); each gives its [`Kernel`] at an
@@ -63,37 +99,71 @@
 //!   [`NoiseFactor`] its Cholesky factor.
 //! - Schedules: a plain float (constant `a`), [`Constant`], [`Linear`],
 //!   [`Geometric`], [`FnSchedule`], [`AnySchedule`].
-//! - Randomness: [`StandardNormal`], exact normals for both float types.
 //! - Starts: [`Gaussian`], [`Point`], [`FromFn`].
-//! - Algorithm 1: [`Optimizer`], with [`Chain`], [`Best`], [`Report`].
+//! - Algorithm 1: [`Builder`] and [`Optimizer`], over [`Chain`]s, with
+//!   [`Stop`] rules, [`Progress`] for an observer, and a [`Report`] whose
+//!   [`Termination`] says why the run ended; failures are [`Error`]s.
+//! - Randomness: [`chain_seed`], one stream per chain; [`StandardNormal`],
+//!   exact normals for both float types.
+//!
+//! # Validity
+//!
+//! Every constructor checks its numbers and returns a typed [`Error`]; no
+//! public function panics on bad input. The exact step is documented and
+//! tested for `alpha h` in `[1e-8, 50]` and inverse temperatures in
+//! `[1e-6, 1e6]`, and refuses values outside ([`Error::OutOfRange`]). A run
+//! whose chains all diverged ([`Error::AllDiverged`]) or whose potential
+//! looks unbounded below ([`Error::UnboundedBelow`]) ends with an error,
+//! never with a report.
 //!
 //! # Randomness and reproducibility
 //!
-//! Any [`rand_core::Rng`] drives the chains; `rand_xoshiro`'s
-//! `Xoshiro256PlusPlus` is the default choice, and `Xoshiro128PlusPlus`
-//! suits 32-bit microcontrollers (with it the `f32` normal sampler does
-//! 32-bit arithmetic only: its pairs of normals take one `next_u64`, which
-//! such a generator makes from two `next_u32`). Normals are exact (256-layer
-//! Ziggurat). All maths goes through `libm`, never the platform's library,
-//! and the kernel never fuses multiply-adds, so a seed gives bit-identical
-//! results on x86_64, wasm32 and Cortex-M. The `micromath` feature swaps
-//! the `f32` exponential and logarithm of the normal sampler's rare
-//! branches (and the sine and cosine of [`Levy`]) for micromath's smaller
-//! approximations: this changes some `f32` results and makes the normals
-//! slightly inexact; the step coefficients and Rastrigin's polynomial sine
-//! keep full accuracy.
+//! Each chain has its own generator, `R::seed_from_u64(chain_seed(seed, c))`
+//! for chain `c` of a run seeded with `seed`, and draws its initial point
+//! and every step's normals from it alone: chain `c`'s trajectory depends
+//! on `(seed, c)` only, not on the order or number of chains stepped with
+//! it. `rand_xoshiro`'s `Xoshiro256PlusPlus` is the default generator, and
+//! `Xoshiro128PlusPlus` suits 32-bit microcontrollers (with it the `f32`
+//! normal sampler does 32-bit arithmetic only: its pairs of normals take
+//! one `next_u64`, which such a generator makes from two `next_u32`).
+//! Normals are exact (256-layer Ziggurat). All maths goes through `libm`,
+//! never the platform's library, and the kernel never fuses multiply-adds,
+//! so a seed gives bit-identical results on x86_64, wasm32 and Cortex-M.
+//! The `micromath` feature swaps the `f32` exponential and logarithm of
+//! the normal sampler's rare branches (and the sine and cosine of [`Levy`])
+//! for micromath's smaller approximations: this changes some `f32` results
+//! and makes the normals slightly inexact; the step coefficients and
+//! Rastrigin's polynomial sine keep full accuracy.
 //!
 //! # Memory
 //!
-//! An optimiser holds its chains inline; each chain stores `4 D + 2` floats
-//! (position, velocity, gradient, value, and its best point and value) plus
-//! an iteration counter and a flag. From `core::mem::size_of` (checked
-//! by a test):
+//! The caller owns the chains: any `AsRef<[Chain]> + AsMut<[Chain]>`, such
+//! as an array or a `heapless::Vec` on firmware (the crate re-exports
+//! [`heapless`]) or a `Vec` on a host, so their number and size are limited
+//! by the storage, never by a stack. Each chain stores `4 D + 2` floats
+//! (position, velocity, gradient, value, and its best point and value), an
+//! iteration counter, a flag and its generator; the optimiser itself holds
+//! no array of size `D` or `N`. From `core::mem::size_of` (checked by a
+//! test):
 //!
-//! | optimiser | bytes |
+//! | type | bytes |
 //! |---|---|
-//! | `Optimizer<f32, Rastrigin, Hrla<f32>, f32, 2, 16>` | 1 112 |
-//! | `Optimizer<f64, Rastrigin, Hrla<f64>, f64, 10, 10>` | 3 952 |
+//! | `Chain<f32, 2, Xoshiro128PlusPlus>` | 72 |
+//! | `Chain<f64, 10>` (`Xoshiro256PlusPlus`) | 384 |
+//!
+//! ```
+//! use hrla::{Builder, Chain, Gaussian, Hrla, Rastrigin, Stop, heapless};
+//! use rand_xoshiro::Xoshiro128PlusPlus;
+//!
+//! // 16 chains of 2-D Rastrigin in f32, without allocation.
+//! let mut chains: heapless::Vec<Chain<f32, 2, Xoshiro128PlusPlus>, 16> =
+//!     (0..16).map(|_| Chain::default()).collect();
+//! let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01)?, 4.0, Gaussian::new([3.0; 2], 3.0)?)
+//!     .stop(Stop::new().steps(2_000))
+//!     .build(&mut chains)?;
+//! opt.run()?;
+//! # Ok::<(), hrla::Error>(())
+//! ```
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -112,10 +182,11 @@ mod ziggurat_tables;
 pub use error::Error;
 pub use float::Float;
 pub use normal::StandardNormal;
-pub use optimizer::{Best, Chain, Optimizer, Report, Status};
+pub use optimizer::*;
 pub use potential::*;
 pub use sampler::*;
 pub use schedule::{AnySchedule, Constant, FnSchedule, Geometric, Linear, Schedule};
 pub use start::{FromFn, Gaussian, Point, Start};
 
+pub use heapless;
 pub use rand_core;

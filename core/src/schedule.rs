@@ -11,6 +11,13 @@ use crate::float::Float;
 pub trait Schedule<F: Float> {
     /// `a_k`.
     fn inverse_temperature(&self, k: u64) -> F;
+
+    /// The number of steps over which the schedule changes `a`, when it
+    /// has one (`K` for [`Linear`] and [`Geometric`]): a run's step budget
+    /// by default, and never less than it.
+    fn length(&self) -> Option<u64> {
+        None
+    }
 }
 
 fn count(name: &'static str, steps: u64) -> Result<u64, Error> {
@@ -84,6 +91,10 @@ impl<F: Float> Linear<F> {
 }
 
 impl<F: Float> Schedule<F> for Linear<F> {
+    fn length(&self) -> Option<u64> {
+        Some(self.steps)
+    }
+
     #[inline]
     fn inverse_temperature(&self, k: u64) -> F {
         if k >= self.steps {
@@ -128,6 +139,10 @@ impl<F: Float> Geometric<F> {
 }
 
 impl<F: Float> Schedule<F> for Geometric<F> {
+    fn length(&self) -> Option<u64> {
+        Some(self.steps)
+    }
+
     #[inline]
     fn inverse_temperature(&self, k: u64) -> F {
         if k >= self.steps {
@@ -179,6 +194,14 @@ pub enum AnySchedule<F> {
 }
 
 impl<F: Float> Schedule<F> for AnySchedule<F> {
+    fn length(&self) -> Option<u64> {
+        match self {
+            Self::Constant(s) => s.length(),
+            Self::Linear(s) => s.length(),
+            Self::Geometric(s) => s.length(),
+        }
+    }
+
     #[inline]
     fn inverse_temperature(&self, k: u64) -> F {
         match self {

@@ -7,8 +7,17 @@ use crate::float::Float;
 
 /// Draws the initial position of each chain (the velocity starts at 0).
 pub trait Start<F: Float, const D: usize> {
-    /// The initial position of chain `chain`.
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R) -> [F; D];
+    /// Writes the initial position of chain `chain` into `x`, drawing from
+    /// that chain's own generator `rng`.
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]);
+}
+
+/// A start behind a mutable reference is the same start: it can then live
+/// on the heap, or serve several runs.
+impl<F: Float, const D: usize, S: Start<F, D> + ?Sized> Start<F, D> for &mut S {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]) {
+        (**self).initial_point(chain, rng, x);
+    }
 }
 
 /// Every chain starts at the same point.
@@ -26,16 +35,16 @@ impl<F: Float, const D: usize> Point<F, D> {
 }
 
 impl<F: Float, const D: usize> Start<F, D> for Point<F, D> {
-    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, _rng: &mut R) -> [F; D] {
-        self.0
+    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, _rng: &mut R, x: &mut [F; D]) {
+        *x = self.0;
     }
 }
 
 /// Independent isotropic Gaussian starts, `x_0 ~ N(m, s^2 I)`.
 ///
 /// The paper's experiments start from `N(3·1, 10 I)`:
-/// `Gaussian::new([3.0; 10], 10f64.sqrt())`. Coordinates are drawn in order,
-/// chain after chain.
+/// `Gaussian::new([3.0; 10], 10f64.sqrt())`. Coordinates are drawn in
+/// order, from each chain's own generator.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gaussian<F, const D: usize> {
     mean: [F; D],
@@ -60,12 +69,10 @@ impl<F: Float, const D: usize> Gaussian<F, D> {
 }
 
 impl<F: Float, const D: usize> Start<F, D> for Gaussian<F, D> {
-    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R) -> [F; D] {
-        let mut x = self.mean;
-        for xi in &mut x {
-            *xi += self.std_dev * F::standard_normal(rng);
+    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F; D]) {
+        for (xi, &m) in x.iter_mut().zip(&self.mean) {
+            *xi = m + self.std_dev * F::standard_normal(rng);
         }
-        x
     }
 }
 
@@ -78,9 +85,9 @@ impl<F: Float, const D: usize, G> Start<F, D> for FromFn<G>
 where
     G: FnMut(usize, &mut dyn Rng) -> [F; D],
 {
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R) -> [F; D] {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]) {
         // `&mut R` is itself a sized `Rng`, so it coerces to `dyn Rng`.
         let mut rng = rng;
-        (self.0)(chain, &mut rng)
+        *x = (self.0)(chain, &mut rng);
     }
 }

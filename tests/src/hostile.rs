@@ -11,7 +11,10 @@
 //!
 //! The contract: a constructor returns a typed error or a valid object and
 //! never panics; where one bad parameter determines the error, it is exactly
-//! `NotPositive`/`NotFinite` with that parameter's name and value.
+//! `NotPositive`/`NotFinite` with that parameter's name and value; a valid
+//! parameter outside the range the kernel's accuracy is tested for (`alpha
+//! h` in `[1e-8, 50]`, `a` in `[1e-6, 1e6]`) is exactly `OutOfRange` with
+//! its name, value and range.
 
 use std::fmt::Debug;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -163,6 +166,49 @@ pub fn no_panic<T>(what: &str, f: impl FnOnce() -> T) -> Result<T, TestCaseError
             .unwrap_or_default();
         TestCaseError::fail(format!("{what} panicked: {msg}"))
     })
+}
+
+/// The range of `alpha h` that `Hrla::new` and `Ula::new` accept.
+pub const ALPHA_H: (f64, f64) = (1e-8, 50.0);
+
+/// The range of inverse temperatures that every sampler's `at` accepts.
+pub const INVERSE_TEMPERATURE: (f64, f64) = (1e-6, 1e6);
+
+/// A value checked against a range after the parameters it derives from
+/// were found valid one by one: `(name, value, (min, max))`.
+pub type Ranged = (&'static str, f64, (f64, f64));
+
+/// The `OutOfRange` error a ranged value gives, if it lies outside.
+pub fn out_of_range((name, value, (min, max)): Ranged) -> Option<Error> {
+    (!(value >= min && value <= max)).then_some(Error::OutOfRange {
+        name,
+        value,
+        min,
+        max,
+    })
+}
+
+/// [`check_outcome`] with a range check between the parameters and the
+/// derived coefficients: when every early parameter is fine and `range`
+/// lies outside its bounds, the error is exactly its `OutOfRange` (the
+/// late parameters and the coefficients come after it).
+pub fn check_outcome_in_range<T: Debug>(
+    got: &Result<T, Error>,
+    early: &[(&'static str, f64, bool)],
+    range: Option<Ranged>,
+    degenerate_ok: bool,
+) -> Result<(), TestCaseError> {
+    let early_ok = early.iter().all(|p| p.2);
+    if let (true, Some(want)) = (early_ok, range.and_then(out_of_range)) {
+        prop_assert!(
+            matches!(got, Err(e) if *e == want),
+            "expected {:?}, got {:?}",
+            want,
+            got
+        );
+        return Ok(());
+    }
+    check_outcome(got, early, &[], degenerate_ok)
 }
 
 /// The outcome of a constructor with parameters `(name, value, must_be)`

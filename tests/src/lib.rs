@@ -4,6 +4,7 @@
 //! that each test file holds only the tests of its one subject, and so that
 //! a helper can carry unit tests of its own (as `stats` does).
 pub mod dd;
+pub mod fixtures;
 pub mod hostile;
 pub mod prop;
 pub mod reference;

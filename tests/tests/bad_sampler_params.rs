@@ -12,6 +12,12 @@
 //!   is exactly `NotPositive` with that parameter's name and value; the
 //!   parameters `b`, `alpha`, `beta`, `h` are checked by `new`, and `a`
 //!   only by `at`, so a bad `a` is reported only once the others are fine;
+//! - valid parameters outside the range the step's accuracy is tested for
+//!   are refused with exactly `OutOfRange`: `alpha h` outside `[1e-8, 50]`
+//!   by `Hrla::new` and `Ula::new` (after the parameters, before the
+//!   coefficients), `a` outside `[1e-6, 1e6]` by every `at` (values such
+//!   as `h = 1e300` or `a = 5e-324`, which the kernel used to accept or
+//!   refuse only when a coefficient overflowed);
 //! - a valid kernel gives finite means and finite, non-negative variances
 //!   (and a positive semi-definite covariance) for finite states of moderate
 //!   size (|x|, |y|, |g| <= 1: far out, `x + c g` may overflow legitimately),
@@ -26,16 +32,15 @@
 use std::fmt::Debug;
 
 use hrla::{
-    Constant, Error, Float, Gaussian, Geometric, Hrla, HrlaParams, Kernel, Linear, Ola, OlaParams,
-    Optimizer, Point, Quadratic, Rastrigin, Sampler, Status, Ula, UlaParams,
+    Builder, Chain, Constant, Error, Float, Gaussian, Geometric, Hrla, HrlaParams, Kernel, Linear,
+    Ola, OlaParams, Point, Quadratic, Rastrigin, Sampler, Stop, Termination, Ula, UlaParams,
 };
 use hrla_tests::hostile::{
-    SEED, check_outcome, mostly_sane32, mostly_sane64, no_panic, same_error, valid, wild32, wild64,
+    ALPHA_H, INVERSE_TEMPERATURE, Ranged, SEED, check_outcome_in_range, mostly_sane32,
+    mostly_sane64, no_panic, out_of_range, same_error, valid, wild32, wild64,
 };
 use hrla_tests::prop::config;
 use proptest::prelude::*;
-use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
 
 /// A valid kernel: finite means, finite non-negative variances and a
 /// positive semi-definite covariance from moderate finite states.
@@ -70,9 +75,10 @@ fn check_moments<F: Float>(kernel: &impl Kernel<F>) -> Result<(), TestCaseError>
     Ok(())
 }
 
-/// `sampler.at(a)`: an invalid `a` is `NotPositive { "a" }` (or the
-/// coefficients' `DegenerateCoefficients`), an accepted one gives a kernel
-/// at exactly `a`; the kernel, if any.
+/// `sampler.at(a)`: an invalid `a` is `NotPositive { "a" }`, a valid one
+/// outside `[1e-6, 1e6]` is `OutOfRange { "a" }` (otherwise the
+/// coefficients may still give `DegenerateCoefficients`), an accepted one
+/// gives a kernel at exactly `a`; the kernel, if any.
 fn kernel_at<F: Float, S: Sampler<F> + Debug>(
     sampler: &S,
     a: F,
@@ -81,7 +87,12 @@ where
     S::Kernel: Debug,
 {
     let got = no_panic("at", || sampler.at(a))?;
-    check_outcome(&got, &[("a", a.to_f64(), valid(a))], &[], true)?;
+    check_outcome_in_range(
+        &got,
+        &[("a", a.to_f64(), valid(a))],
+        Some(("a", a.to_f64(), INVERSE_TEMPERATURE)),
+        true,
+    )?;
     if let Ok(k) = &got {
         prop_assert_eq!(k.inverse_temperature().to_bits_u64(), a.to_bits_u64());
     }
@@ -112,44 +123,66 @@ where
 }
 
 /// A short run of a valid sampler on 2-D Rastrigin at an accepted constant
-/// temperature `a` cannot fail (finite start) and keeps a finite best.
+/// temperature `a` never panics and keeps a finite best: it spends its
+/// step budget with at least one live chain, or ends with `AllDiverged`
+/// (Rastrigin is bounded below, so never with `UnboundedBelow`), after
+/// which a step is `AllDiverged` again.
 fn check_runs<F: Float, S: Sampler<F> + Clone + Debug>(
     sampler: &S,
     a: F,
 ) -> Result<(), TestCaseError> {
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
-    let mut start = Point::new([F::from_f64(0.5), F::from_f64(-0.25)]).unwrap();
-    let mut opt: Optimizer<F, Rastrigin, S, F, 2, 3> =
-        Optimizer::new(Rastrigin, sampler.clone(), a, 3, &mut start, &mut rng).unwrap();
-    let report = no_panic("run", || opt.run(20, &mut rng))?;
-    let report = report.map_err(|e| TestCaseError::fail(format!("run failed: {e:?}")))?;
-    prop_assert!(report.best.value.is_finite());
+    let start = Point::new([F::from_f64(0.5), F::from_f64(-0.25)]).unwrap();
+    let mut opt = Builder::new(Rastrigin, sampler.clone(), a, start)
+        .seed(1)
+        .stop(Stop::new().steps(20))
+        .build(vec![Chain::<F, 2>::new(); 3])
+        .unwrap();
+    let result = no_panic("run", || opt.run())?;
+    prop_assert!(opt.best().value.is_finite());
     // U(0.5, -0.25) = (0.25 + 2) + (0.0625 + 1) = 3.3125: the best never exceeds the start.
-    prop_assert!(report.best.value <= F::from_f64(3.3125 + 1e-6));
-    prop_assert!(report.iterations <= 20);
-    prop_assert_eq!(
-        report.status == Status::AllDiverged,
-        report.diverged_chains == 3
-    );
-    if report.status == Status::Running {
-        prop_assert_eq!(report.iterations, 20);
+    prop_assert!(opt.best().value <= F::from_f64(3.3125 + 1e-6));
+    prop_assert!(opt.iteration() <= 20);
+    match result {
+        Ok(report) => {
+            prop_assert_eq!(report.termination, Termination::Steps);
+            prop_assert_eq!(report.iterations, 20);
+            prop_assert!(report.diverged_chains < 3);
+            prop_assert_eq!(report.value.to_bits_u64(), opt.best().value.to_bits_u64());
+            let after = no_panic("step", || opt.step())?;
+            if opt.diverged_chains() < 3 {
+                prop_assert_eq!(after, Ok(()));
+            } else {
+                prop_assert_eq!(after, Err(Error::AllDiverged { chains: 3 }));
+            }
+        }
+        Err(e) => {
+            prop_assert_eq!(e, Error::AllDiverged { chains: 3 });
+            prop_assert_eq!(opt.diverged_chains(), 3);
+            let after = no_panic("step", || opt.step())?;
+            prop_assert_eq!(after, Err(Error::AllDiverged { chains: 3 }));
+        }
     }
-    let after = no_panic("step", || opt.step(&mut rng))?;
-    prop_assert!(after.is_ok());
     prop_assert!(opt.best().value.is_finite());
     Ok(())
 }
 
 /// Constructs a sampler with `new` and checks the outcome against the
-/// parameters `early` (see `check_outcome`): the sampler, if accepted.
+/// parameters `early` and the derived `range` (see
+/// `check_outcome_in_range`): the sampler, if accepted.
 fn construct<S: Debug>(
     what: &str,
     new: impl FnOnce() -> Result<S, Error>,
     early: &[(&'static str, f64, bool)],
+    range: Option<Ranged>,
 ) -> Result<Option<S>, TestCaseError> {
     let got = no_panic(what, new)?;
-    check_outcome(&got, early, &[], true)?;
+    check_outcome_in_range(&got, early, range, true)?;
     Ok(got.ok())
+}
+
+/// `alpha h` as the samplers compute it, in `F`, with its range.
+fn alpha_h<F: Float>(alpha: F, h: F) -> Option<Ranged> {
+    Some(("alpha h", (alpha * h).to_f64(), ALPHA_H))
 }
 
 /// What every accepted sampler promises at a temperature `a`: a kernel
@@ -178,7 +211,7 @@ fn check_hrla<F: Float>(p: HrlaParams<F>, a: F, a2: F) -> Result<(), TestCaseErr
         ("alpha", p.alpha.to_f64(), valid(p.alpha)),
         ("h", p.h.to_f64(), valid(p.h)),
     ];
-    if let Some(s) = construct("Hrla::new", || Hrla::new(p), &early)? {
+    if let Some(s) = construct("Hrla::new", || Hrla::new(p), &early, alpha_h(p.alpha, p.h))? {
         prop_assert_eq!(s.params(), p);
         check_accepted(&s, a, a2)?;
     }
@@ -191,7 +224,7 @@ fn check_ula<F: Float>(p: UlaParams<F>, a: F, a2: F) -> Result<(), TestCaseError
         ("alpha", p.alpha.to_f64(), valid(p.alpha)),
         ("h", p.h.to_f64(), valid(p.h)),
     ];
-    if let Some(s) = construct("Ula::new", || Ula::new(p), &early)? {
+    if let Some(s) = construct("Ula::new", || Ula::new(p), &early, alpha_h(p.alpha, p.h))? {
         prop_assert_eq!(s.params(), p);
         check_accepted(&s, a, a2)?;
     }
@@ -203,7 +236,9 @@ fn check_ola<F: Float>(p: OlaParams<F>, a: F, a2: F) -> Result<(), TestCaseError
         ("alpha", p.alpha.to_f64(), valid(p.alpha)),
         ("h", p.h.to_f64(), valid(p.h)),
     ];
-    if let Some(s) = construct("Ola::new", || Ola::new(p), &early)? {
+    // OLA has no `alpha h` range (its step is Euler's, with no
+    // coefficient to lose accuracy); only its `a` is ranged.
+    if let Some(s) = construct("Ola::new", || Ola::new(p), &early, None)? {
         prop_assert_eq!(s.params(), p);
         check_accepted(&s, a, a2)?;
     }
@@ -215,7 +250,9 @@ proptest! {
 
     /// One wild parameter, the others the paper's (`a = 4`): a bad one is
     /// named exactly, e.g. `h = NaN` gives `NotPositive { name: "h", value:
-    /// NaN }` from `new`, and `a = NaN` the same for "a" from `at`.
+    /// NaN }` from `new`, and `a = NaN` the same for "a" from `at`; a valid
+    /// one that takes `alpha h` or `a` out of its range is exactly
+    /// `OutOfRange` (`h = 1e300`: `OutOfRange { "alpha h", 1e300, 1e-8, 50 }`).
     #[test]
     fn hrla_one_bad_parameter(which in 0..5usize, v in wild64(), a2 in wild64()) {
         let mut p = HrlaParams { b: 10.0, alpha: 1.0, beta: 1.0, h: 0.01 };
@@ -227,7 +264,14 @@ proptest! {
             prop_assert!(sampler.is_ok());
         }
         let got = sampler.and_then(|s| s.at(a));
-        if valid(v) {
+        let range = match name {
+            "alpha" | "h" => out_of_range(("alpha h", p.alpha * p.h, ALPHA_H)),
+            "a" => out_of_range(("a", a, INVERSE_TEMPERATURE)),
+            _ => None,
+        };
+        if let (true, Some(want)) = (valid(v), range) {
+            prop_assert_eq!(got, Err(want));
+        } else if valid(v) {
             prop_assert!(got.is_ok() || got == Err(Error::DegenerateCoefficients), "{:?}", got);
         } else {
             let e = got.unwrap_err();
@@ -332,16 +376,48 @@ fn exact_errors() {
             value: -f64::MAX
         })
     );
-    // h^2 overflows.
+    // alpha h = 1e300 is far outside [1e-8, 50] (it used to be refused
+    // only because h^2 overflowed).
     assert_eq!(
         Hrla::new(HrlaParams { h: 1e300, ..paper }),
+        Err(Error::OutOfRange {
+            name: "alpha h",
+            value: 1e300,
+            min: 1e-8,
+            max: 50.0
+        })
+    );
+    // With alpha h = 1e-8 in range, h = 1e292 still makes h^3 overflow.
+    assert_eq!(
+        Hrla::new(HrlaParams {
+            alpha: 1e-300,
+            h: 1e292,
+            ..paper
+        }),
         Err(Error::DegenerateCoefficients)
     );
-    // sx2 = beta / a overflows.
+    // a = 5e-324 is outside [1e-6, 1e6] (it used to be refused only
+    // because sx2 = beta / a overflowed).
     assert_eq!(
         Hrla::new(paper).unwrap().at(5e-324),
-        Err(Error::DegenerateCoefficients)
+        Err(Error::OutOfRange {
+            name: "a",
+            value: 5e-324,
+            min: 1e-6,
+            max: 1e6
+        })
     );
+    // An `a` in range can still overflow a coefficient: with h = 1e152
+    // (alpha h = 1), a h^2 phi2(1) / b overflows at a = 1e6 but not at 1.
+    let steep = Hrla::new(HrlaParams {
+        b: 1.0,
+        alpha: 1e-152,
+        beta: 1.0,
+        h: 1e152,
+    })
+    .unwrap();
+    assert!(steep.at(1.0).is_ok());
+    assert_eq!(steep.at(1e6), Err(Error::DegenerateCoefficients));
     // The parameters are checked by `new`, before any `a`: a bad h with a
     // bad a is the error of h.
     assert_eq!(
@@ -351,8 +427,35 @@ fn exact_errors() {
             value: -1.0
         })
     );
-    // ULA has no sx2: the same tiny a is fine.
-    assert!(Ula::new(UlaParams::paper(0.01)).unwrap().at(5e-324).is_ok());
+    // ULA has no sx2, and used to accept the same tiny a: it is now out of
+    // range too, as is anything beyond 1e6 or below 1e-6.
+    let ula = Ula::new(UlaParams::paper(0.01)).unwrap();
+    for a in [5e-324, 1e-7, 1.000001e6, 1e300] {
+        assert_eq!(
+            ula.at(a),
+            Err(Error::OutOfRange {
+                name: "a",
+                value: a,
+                min: 1e-6,
+                max: 1e6
+            })
+        );
+    }
+    // The ends are accepted.
+    assert!(ula.at(1e-6).is_ok() && ula.at(1e6).is_ok());
+    // alpha h = 1e-30 and 1e8: refused; 1e-8 and 50: accepted.
+    for h in [1e-30, 1e8] {
+        assert_eq!(
+            Ula::new(UlaParams::paper(h)),
+            Err(Error::OutOfRange {
+                name: "alpha h",
+                value: h,
+                min: 1e-8,
+                max: 50.0
+            })
+        );
+    }
+    assert!(Ula::paper(1e-8).is_ok() && Ula::paper(50.0).is_ok());
     assert_eq!(
         Ula::new(UlaParams::paper(-0.0)),
         Err(Error::NotPositive {
@@ -369,9 +472,21 @@ fn exact_errors() {
             value: f64::INFINITY
         })
     );
-    // OLA's noise sqrt(2 alpha h / a) overflows for a subnormal a.
+    // A subnormal a, which used to be refused only because OLA's noise
+    // sqrt(2 alpha h / a) overflowed, is out of range.
     assert_eq!(
         Ola::new(OlaParams::paper(1.0f32)).unwrap().at(1e-45),
+        Err(Error::OutOfRange {
+            name: "a",
+            value: f64::from(1e-45f32),
+            min: 1e-6,
+            max: 1e6
+        })
+    );
+    // OLA's noise sqrt(2 alpha h / a) still overflows for a huge alpha h
+    // (OLA has no alpha h range) at an a in range.
+    assert_eq!(
+        Ola::new(OlaParams::paper(3e38f32)).unwrap().at(1.0),
         Err(Error::DegenerateCoefficients)
     );
     assert_eq!(

@@ -1,6 +1,8 @@
 //! Valid but extreme parameters at which the textbook formulas overflow or
 //! give NaN: the in-between values of the annealing schedules, an optimiser
-//! run under such a schedule, and a quadratic with a subnormal stiffness.
+//! under such a schedule (whose values now lie outside the range the
+//! samplers accept: a typed `OutOfRange`, never `inf`), the widest
+//! schedules inside that range, and a quadratic with a subnormal stiffness.
 //!
 //! Every parameter here passes validation, so the caller has been promised
 //! a working object; the kernel keeps that promise by evaluating the
@@ -8,9 +10,9 @@
 //! logarithms instead of the ratio, `(k r) r` instead of `k |r|^2`). These
 //! tests hold it to that for the parameters where the direct order fails.
 
-use hrla::{Float, Geometric, Hrla, Linear, Optimizer, Point, Potential, Quadratic, Schedule};
-use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
+use hrla::{
+    Builder, Chain, Error, Float, Geometric, Hrla, Linear, Point, Potential, Quadratic, Schedule,
+};
 
 /// The schedules promise never to produce a value the sampler refuses
 /// ("the built-in schedules validate their parameters so that they never
@@ -113,17 +115,56 @@ impl Potential<f64, 2> for Flat {
 
 /// The same seen from the optimiser: a valid annealing schedule whose direct
 /// formula reaches `a = inf` at k = 2 must not stop the run with
-/// `NotPositive { name: "a", value: inf }`.
+/// `NotPositive { name: "a", value: inf }`. Its values from `a_1 = 1e307`
+/// on are now outside the range `[1e-6, 1e6]` the samplers accept (the
+/// run used to go on at them): the step that would use `a_1` fails with
+/// exactly `OutOfRange` for that finite value, and changes nothing.
 #[test]
-fn huge_but_valid_linear_schedule_runs() {
+fn huge_but_valid_linear_schedule_is_out_of_range() {
     let sampler = Hrla::paper(0.01f64).unwrap();
     let schedule = Linear::new(1.0, 1e308, 10).unwrap();
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(0);
-    let mut start = Point::new([0.5f64, 0.5]).unwrap();
-    let mut opt: Optimizer<f64, Flat, Hrla<f64>, Linear<f64>, 2, 2> =
-        Optimizer::new(Flat, sampler, schedule, 2, &mut start, &mut rng).unwrap();
-    let got = opt.run(20, &mut rng);
-    assert!(got.is_ok(), "{got:?} at k = {}", opt.iteration());
+    let a1 = schedule.inverse_temperature(1);
+    assert!(a1.is_finite() && a1 > 1e306, "a_1 = {a1}");
+    let start = Point::new([0.5f64, 0.5]).unwrap();
+    let mut opt = Builder::new(Flat, sampler, schedule, start)
+        .build(vec![Chain::new(); 2])
+        .unwrap();
+    // a_0 = 1 is in range: the first step runs.
+    assert_eq!(opt.step(), Ok(()));
+    let before = opt.chains().to_vec();
+    let want = Error::OutOfRange {
+        name: "a",
+        value: a1,
+        min: 1e-6,
+        max: 1e6,
+    };
+    assert_eq!(opt.step(), Err(want));
+    assert_eq!(opt.iteration(), 1);
+    assert_eq!(opt.chains(), &before[..]);
+    assert_eq!(opt.run(), Err(want));
+}
+
+/// The widest linear and geometric schedules whose values all lie in the
+/// accepted range, `a` from `1e-6` to `1e6`, run their whole length (the
+/// interpolation never steps outside the ends by rounding).
+#[test]
+fn widest_accepted_schedules_run() {
+    let sampler = Hrla::paper(0.01f64).unwrap();
+    for (low, high) in [(1e-6, 1e6), (1e6, 1e-6)] {
+        let linear = Linear::new(low, high, 1000).unwrap();
+        let geometric = Geometric::new(low, high, 1000).unwrap();
+        let start = Point::new([0.5f64, 0.5]).unwrap();
+        let mut opt = Builder::new(Flat, sampler, linear, start)
+            .build(vec![Chain::new(); 2])
+            .unwrap();
+        let report = opt.run().unwrap();
+        assert_eq!(report.iterations, 1000);
+        let mut opt = Builder::new(Flat, sampler, geometric, start)
+            .build(vec![Chain::new(); 2])
+            .unwrap();
+        let report = opt.run().unwrap();
+        assert_eq!(report.iterations, 1000);
+    }
 }
 
 /// `Quadratic` with the smallest subnormal stiffness at a finite point far

@@ -9,13 +9,11 @@
 //! checked against a computation that shares no formula with the kernel.
 
 use hrla::{
-    Float, FnSchedule, Hrla, HrlaParams, Kernel, NoiseFactor, Optimizer, OuKernel, Point,
+    Builder, Chain, Float, FnSchedule, Hrla, HrlaParams, Kernel, NoiseFactor, OuKernel, Point,
     Rastrigin, Sampler, Schedule, Ula, UlaParams,
 };
 use hrla_tests::dd::Dd;
 use hrla_tests::reference::{Reference, ou_step};
-use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
 
 /// `alpha h` values: from deep in the cancellation regime to the ends of
 /// the stable range.
@@ -85,15 +83,45 @@ fn errors(k: &Coefficients, r: &Reference) -> Vec<(&'static str, f64)> {
     ]
 }
 
+/// The range of `alpha h` the samplers accept (`Error::OutOfRange`
+/// outside), which `U` spans.
+const ALPHA_H: (f64, f64) = (1e-8, 50.0);
+
+/// `h`, or the nearest `F` inside it, such that the product `alpha h`
+/// computed in `F` lies in [`ALPHA_H`] (its ends rounded to `F`): in f32
+/// `alpha h` for `h = 1e-8/alpha` can round just below the end, so the ends
+/// of the range are checked at the first values `F` can reach inside it.
+/// (f64 needs no nudge: the loop is a no-op there, asserted below.)
+fn h_in_range<F: Float>(alpha: F, h: F) -> F {
+    let step = 2f64.powi(1 - F::MANTISSA_DIGITS as i32);
+    let mut h = h;
+    for _ in 0..4 {
+        let u = alpha * h;
+        if u < F::from_f64(ALPHA_H.0) {
+            h = F::from_f64(h.to_f64() * (1.0 + step));
+        } else if u > F::from_f64(ALPHA_H.1) {
+            h = F::from_f64(h.to_f64() * (1.0 - step));
+        } else {
+            return h;
+        }
+    }
+    panic!(
+        "alpha h = {:e} not brought into range",
+        (alpha * h).to_f64()
+    );
+}
+
 /// Every (sampler, parameters, u) case, with the kernel read at float `F`
-/// (parameters rounded to `F` first; the reference takes the rounded values,
-/// so it is exact for what the kernel was given). Also returns `u`.
+/// (parameters rounded to `F` first, `h` then nudged into the accepted
+/// range by [`h_in_range`]; the reference takes the rounded values, so it
+/// is exact for what the kernel was given). Also returns `u`.
 fn cases<F: Float>() -> Vec<(String, f64, Coefficients, Reference)> {
     let mut out = Vec::new();
     for &(a, b, alpha, beta) in &PARAMS {
         for &u in &U {
             let r = |v: f64| F::from_f64(v);
-            let (af, bf, alf, bef, hf) = (r(a), r(b), r(alpha), r(beta), r(u / alpha));
+            let (af, bf, alf, bef) = (r(a), r(b), r(alpha), r(beta));
+            let hf = h_in_range(alf, r(u / alpha));
             let w = |v: F| v.to_f64();
             let params = HrlaParams {
                 b: bf,
@@ -145,13 +173,14 @@ fn check_annealed<F: Float>(params: HrlaParams<F>, a_hot: F, a: F, fresh: &OuKer
     );
     // The schedule path: a_0 = a_hot, then a.
     let schedule = FnSchedule(move |k: u64| if k == 0 { a_hot } else { a });
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
-    let mut start = Point::new([F::from_f64(0.25)]).unwrap();
-    let mut opt: Optimizer<F, Rastrigin, Hrla<F>, _, 1, 1> =
-        Optimizer::new(Rastrigin, sampler, schedule, 1, &mut start, &mut rng).unwrap();
+    let start = Point::new([F::from_f64(0.25)]).unwrap();
+    let mut opt = Builder::new(Rastrigin, sampler, schedule, start)
+        .seed(1)
+        .build([Chain::<F, 1>::new()])
+        .unwrap();
     assert_eq!(opt.kernel(), &hot);
     for k in 0..3u64 {
-        opt.step(&mut rng).unwrap();
+        opt.step().unwrap();
         let want = if k == 0 { &hot } else { fresh };
         assert_eq!(opt.kernel(), want, "kernel after step {k}");
         assert_eq!(
@@ -199,6 +228,18 @@ fn check<F: Float>(unit: f64) -> f64 {
         worst.1
     );
     worst.0
+}
+
+/// In f64 every case is in the accepted range as given: the nudge of
+/// [`h_in_range`] moves f32 values only.
+#[test]
+fn f64_cases_need_no_nudge() {
+    for &(_, _, alpha, _) in &PARAMS {
+        for &u in &U {
+            let h = u / alpha;
+            assert_eq!(h_in_range(alpha, h).to_bits(), h.to_bits(), "u = {u:e}");
+        }
+    }
 }
 
 /// f64: measured worst 4.9 units (2^-53) for all coefficients but `e`, and

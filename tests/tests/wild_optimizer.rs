@@ -1,32 +1,43 @@
 //! The optimiser with everything hostile at once: potential, schedule
 //! (built-in or an arbitrary table of values), start, chain count, stride,
-//! target and seed are all drawn from `hrla_tests::hostile`, and the
+//! stopping rules (step and evaluation budgets, target, stall window and
+//! tolerance) and seed are all drawn from `hrla_tests::hostile`, and the
 //! sampler's parameters too.
 //!
 //! The per-constructor tests cannot see what goes wrong only in
 //! combination: a valid schedule whose value the sampler refuses mid-run, a
-//! start that is finite but whose potential is not, chains that all diverge.
-//! The contract checked:
+//! start that is finite but whose potential is not, chains that all diverge,
+//! a potential unbounded below, a budget below the chain count. The
+//! contract checked:
 //!
-//! - construction fails exactly with `Count` for a bad chain count, then
-//!   with the sampler's error when it refuses the schedule's `a_0`, then
-//!   with `NonFiniteStart` naming the first chain whose point or potential
-//!   is not finite (replayed from the same random numbers);
-//! - `step` and `run` never panic and never return a NaN best, whatever the
-//!   start, schedule, stride and target, and the best never rises;
-//! - `run` fails only with the error the sampler gives for the schedule's
-//!   value at that iterate.
+//! - `build` fails exactly with the first error in its order: `Zero` for an
+//!   empty storage, then for a zero stride; the `Stop` rules' errors (zero
+//!   budgets or stall window, non-finite target, negative or non-finite
+//!   stall tolerance); `Budget` for an evaluation budget below the chain
+//!   count; `ScheduleLongerThanRun`; the sampler's error when it refuses the
+//!   schedule's `a_0`; then `NonFiniteStart` naming the first chain whose
+//!   point, value or gradient is not finite, and which (replayed from that
+//!   chain's own generator);
+//! - `step`, `run` and `run_with` never panic and never return a NaN best,
+//!   whatever the start, schedule, stride and rules, and the best never
+//!   rises; a report's termination is a rule that holds, and the
+//!   evaluation budget is never exceeded;
+//! - a run fails only with `AllDiverged` (every chain diverged),
+//!   `UnboundedBelow` (only for the potential unbounded below, naming a
+//!   chain below `-sqrt(MAX)`), or the error the sampler gives for the
+//!   schedule's value at that iterate; `run` without any rule is
+//!   `NoStoppingRule`.
 
 use std::fmt::Debug;
 
+use std::ops::ControlFlow;
+
 use hrla::{
-    Constant, Error, Gaussian, Geometric, Hrla, HrlaParams, Kernel, Linear, Ola, OlaParams,
-    Optimizer, Point, Potential, Quadratic, Rastrigin, Sampler, Schedule, Start, Status, Ula,
-    UlaParams,
+    Builder, Chain, Constant, Error, Gaussian, Geometric, Hrla, HrlaParams, Kernel, Linear, Ola,
+    OlaParams, Point, Potential, Quadratic, Rastrigin, Sampler, Schedule, Start, Stop, Termination,
+    Ula, UlaParams, chain_seed,
 };
-use hrla_tests::hostile::{
-    SEED, expect_error, mostly_sane64, no_panic, same_error, steps_strategy, wild64,
-};
+use hrla_tests::hostile::{SEED, mostly_sane64, no_panic, same_error, steps_strategy, wild64};
 use hrla_tests::prop::config;
 use proptest::prelude::*;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -44,6 +55,16 @@ enum AnySchedule {
 }
 
 impl Schedule<f64> for AnySchedule {
+    fn length(&self) -> Option<u64> {
+        match self {
+            Self::Constant(s) => s.length(),
+            Self::Linear(s) => s.length(),
+            Self::Geometric(s) => s.length(),
+            Self::Plain(a) => a.length(),
+            Self::Table(_) => None,
+        }
+    }
+
     fn inverse_temperature(&self, k: u64) -> f64 {
         match self {
             Self::Constant(s) => s.inverse_temperature(k),
@@ -74,10 +95,10 @@ enum AnyStart {
 }
 
 impl Start<f64, 2> for AnyStart {
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R) -> [f64; 2] {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64; 2]) {
         match self {
-            Self::Point(s) => s.initial_point(chain, rng),
-            Self::Gaussian(s) => s.initial_point(chain, rng),
+            Self::Point(s) => s.initial_point(chain, rng, x),
+            Self::Gaussian(s) => s.initial_point(chain, rng, x),
         }
     }
 }
@@ -127,7 +148,8 @@ fn any_potential() -> impl Strategy<Value = Option<AnyPotential>> {
     ]
 }
 
-const CAP: usize = 4;
+/// No run here goes beyond this many steps: the observer of `run_with`
+/// stops it (a drawn step budget or schedule length may be huge).
 const STEPS: u64 = 30;
 
 #[derive(Clone, Copy, Debug)]
@@ -137,168 +159,310 @@ struct Wild {
     start: Option<AnyStart>,
     chains: usize,
     stride: u64,
-    target: f64,
+    steps: Option<u64>,
+    evaluations: Option<u64>,
+    target: Option<f64>,
+    stall: Option<(u64, f64)>,
     seed: u64,
 }
 
 fn wild_setup() -> impl Strategy<Value = Wild> {
     (
-        any_potential(),
-        any_schedule(),
-        any_start(),
+        (any_potential(), any_schedule(), any_start()),
+        // The zero counts, each refused by `build`, are rare enough that
+        // most cases get to run.
         prop_oneof![
-            1 => Just(0),
-            6 => 1..=CAP,
-            1 => Just(CAP + 1),
-            1 => Just(usize::MAX),
+            1 => Just(0usize),
+            10 => 1..=4usize,
+            2 => Just(7usize),
         ],
         prop_oneof![
             1 => Just(0u64),
-            4 => 1..5u64,
+            8 => 1..5u64,
             1 => Just(u64::MAX),
-            1 => any::<u64>(),
+            2 => any::<u64>(),
         ],
-        prop_oneof![1 => wild64(), 3 => -10.0f64..10.0],
+        prop_oneof![
+            4 => Just(None),
+            1 => Just(Some(0u64)),
+            6 => (1..=STEPS).prop_map(Some),
+            2 => any::<u64>().prop_map(Some),
+        ],
+        prop_oneof![
+            6 => Just(None),
+            1 => Just(Some(0u64)),
+            2 => (1..8u64).prop_map(Some),
+            4 => (8..200u64).prop_map(Some),
+            1 => any::<u64>().prop_map(Some),
+        ],
+        prop_oneof![
+            2 => Just(None),
+            1 => wild64().prop_map(Some),
+            2 => (-10.0f64..10.0).prop_map(Some),
+        ],
+        prop_oneof![
+            4 => Just(None),
+            1 => (0..5u64, wild64()).prop_map(Some),
+            3 => (1..10u64, 0.0f64..1.0).prop_map(Some),
+        ],
         any::<u64>(),
     )
         .prop_map(
-            |(potential, schedule, start, chains, stride, target, seed)| Wild {
+            |(
+                (potential, schedule, start),
+                chains,
+                stride,
+                steps,
+                evaluations,
+                target,
+                stall,
+                seed,
+            )| Wild {
                 potential,
                 schedule,
                 start,
                 chains,
                 stride,
+                steps,
+                evaluations,
                 target,
+                stall,
                 seed,
             },
         )
 }
 
-/// Constructs and runs an optimiser from a wild setup, checking every
-/// outcome against its documented contract.
+impl Wild {
+    fn stop(&self) -> Stop<f64> {
+        let mut stop = Stop::new();
+        if let Some(k) = self.steps {
+            stop = stop.steps(k);
+        }
+        if let Some(n) = self.evaluations {
+            stop = stop.evaluations(n);
+        }
+        if let Some(t) = self.target {
+            stop = stop.target(t);
+        }
+        if let Some((window, tolerance)) = self.stall {
+            stop = stop.stall(window, tolerance);
+        }
+        stop
+    }
+}
+
+/// The error `build` must give before drawing any initial point, in its
+/// order of checks, if any.
+fn settings_error<S: Sampler<f64>>(sampler: &S, schedule: &AnySchedule, w: &Wild) -> Option<Error> {
+    let n = w.chains;
+    if n == 0 {
+        return Some(Error::Zero { name: "chains" });
+    }
+    if w.stride == 0 {
+        return Some(Error::Zero { name: "stride" });
+    }
+    if w.steps == Some(0) {
+        return Some(Error::Zero {
+            name: "step budget",
+        });
+    }
+    if w.evaluations == Some(0) {
+        return Some(Error::Zero {
+            name: "evaluation budget",
+        });
+    }
+    if let Some(t) = w.target.filter(|t| !t.is_finite()) {
+        return Some(Error::NotFinite {
+            name: "target",
+            value: t,
+        });
+    }
+    if let Some((window, tolerance)) = w.stall {
+        if window == 0 {
+            return Some(Error::Zero {
+                name: "stall window",
+            });
+        }
+        if !(tolerance.is_finite() && tolerance >= 0.0) {
+            return Some(Error::Negative {
+                name: "stall tolerance",
+                value: tolerance,
+            });
+        }
+    }
+    if let Some(budget) = w.evaluations.filter(|&b| b < n as u64) {
+        return Some(Error::Budget { budget, chains: n });
+    }
+    if let (Some(schedule), Some(steps)) = (schedule.length(), w.steps) {
+        if steps < schedule {
+            return Some(Error::ScheduleLongerThanRun { schedule, steps });
+        }
+    }
+    sampler.at(schedule.inverse_temperature(0)).err()
+}
+
+/// Replays the initial points from each chain's own generator: the first
+/// chain whose point, value or gradient is not finite, and which.
+fn first_bad_start(
+    potential: &AnyPotential,
+    start: &mut AnyStart,
+    w: &Wild,
+) -> Option<(usize, &'static str)> {
+    for c in 0..w.chains {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(chain_seed(w.seed, c as u64));
+        let mut x = [0.0; 2];
+        start.initial_point(c, &mut rng, &mut x);
+        let mut g = [0.0; 2];
+        let v = potential.value_and_gradient(&x, &mut g);
+        if !x.iter().all(|t| t.is_finite()) {
+            return Some((c, "position"));
+        }
+        if !v.is_finite() {
+            return Some((c, "value"));
+        }
+        if !g.iter().all(|t| t.is_finite()) {
+            return Some((c, "gradient"));
+        }
+    }
+    None
+}
+
+/// Builds and runs an optimiser from a wild setup, checking every outcome
+/// against its documented contract.
 fn exercise<S: Sampler<f64> + Clone + Debug>(sampler: S, w: &Wild) -> Result<(), TestCaseError>
 where
     S::Kernel: Debug,
 {
-    let (Some(potential), Some(schedule), Some(mut start)) = (w.potential, w.schedule, w.start)
-    else {
+    let (Some(potential), Some(schedule), Some(start)) = (w.potential, w.schedule, w.start) else {
         return Ok(());
     };
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(w.seed);
-    let rng0 = rng.clone();
-    let start0 = start;
-    let got = no_panic("Optimizer::new", || {
-        Optimizer::<f64, AnyPotential, S, AnySchedule, 2, CAP>::new(
-            potential,
-            sampler.clone(),
-            schedule,
-            w.chains,
-            &mut start,
-            &mut rng,
-        )
+    let n = w.chains;
+    let got = no_panic("build", || {
+        Builder::new(potential, sampler.clone(), schedule, start)
+            .seed(w.seed)
+            .stride(w.stride)
+            .stop(w.stop())
+            .build(vec![Chain::<f64, 2>::new(); n])
     })?;
-    if w.chains == 0 || w.chains > CAP {
-        prop_assert_eq!(
-            got.unwrap_err(),
-            Error::Count {
-                name: "chains",
-                value: w.chains,
-                max: CAP
-            }
-        );
-        return Ok(());
-    }
-    // The kernel at a_0 is taken before any initial point: its refusal is
-    // the error.
-    let a0 = schedule.inverse_temperature(0);
-    if let Err(refusal) = sampler.at(a0) {
-        let e = got.map(|o| o.report()).unwrap_err();
-        prop_assert!(
-            same_error(&e, &refusal),
-            "construction failed with {:?}, but the sampler gives {:?} for a_0 = {}",
-            e,
-            refusal,
-            a0
-        );
-        return Ok(());
-    }
-    // Replay the draws: the first chain whose point or potential is not
-    // finite is the one reported.
-    let mut replay_rng = rng0;
-    let mut replay_start = start0;
-    let mut first_bad = None;
-    for c in 0..w.chains {
-        let x = replay_start.initial_point(c, &mut replay_rng);
-        let mut g = [0.0; 2];
-        let v = potential.value_and_gradient(&x, &mut g);
-        if !(v.is_finite() && x.iter().chain(&g).all(|t| t.is_finite())) {
-            first_bad = Some(c);
-            break;
-        }
-    }
-    let opt = match (got, first_bad) {
-        (Err(e), Some(c)) => {
-            prop_assert_eq!(e, Error::NonFiniteStart { chain: c });
+    let mut replay_start = start;
+    let want = settings_error(&sampler, &schedule, w).or_else(|| {
+        first_bad_start(&potential, &mut replay_start, w)
+            .map(|(chain, what)| Error::NonFiniteStart { chain, what })
+    });
+    let mut opt = match (got, want) {
+        (Err(e), Some(want)) => {
+            prop_assert!(
+                same_error(&e, &want),
+                "build gave {:?}, expected {:?}",
+                e,
+                want
+            );
             return Ok(());
         }
         (Ok(opt), None) => opt,
-        (got, bad) => {
+        (got, want) => {
             return Err(TestCaseError::fail(format!(
-                "construction gave {:?}, expected bad chain {bad:?}",
-                got.map(|o| o.report())
+                "build gave {:?}, expected {want:?}",
+                got.map(|o| o.iteration())
             )));
         }
     };
     let initial_best = opt.best().value;
     prop_assert!(initial_best.is_finite());
+    let a0 = schedule.inverse_temperature(0);
     prop_assert_eq!(opt.kernel().inverse_temperature().to_bits(), a0.to_bits());
-
-    let opt = match no_panic("with_stride", || opt.with_stride(w.stride))? {
-        Ok(o) => o,
-        Err(e) => {
-            prop_assert_eq!(w.stride, 0);
-            prop_assert_eq!(e, Error::Zero { name: "stride" });
-            return Ok(());
+    prop_assert_eq!(opt.evaluations(), n as u64);
+    // The schedule's length is the step budget when the rules have none.
+    let step_budget = w.steps.or(schedule.length());
+    prop_assert_eq!(*opt.stop(), {
+        let mut stop = w.stop();
+        if let (None, Some(k)) = (w.steps, schedule.length()) {
+            stop = stop.steps(k);
         }
-    };
-    prop_assert!(w.stride > 0);
-    let mut opt = match no_panic("with_target", || opt.with_target(w.target))? {
-        Ok(o) => o,
-        Err(e) => {
-            prop_assert!(!w.target.is_finite());
-            expect_error::<()>(
-                Err(e),
-                Error::NotFinite {
-                    name: "target",
-                    value: w.target,
-                },
-            )?;
-            return Ok(());
-        }
-    };
-    prop_assert!(w.target.is_finite());
+        stop
+    });
 
-    let result = no_panic("run", || opt.run(STEPS, &mut rng))?;
-    prop_assert!(opt.best().value.is_finite(), "best {}", opt.best().value);
-    prop_assert!(opt.best().value <= initial_best);
-    prop_assert_eq!(opt.best().iteration % w.stride, 0);
+    let no_rule =
+        step_budget.is_none() && w.evaluations.is_none() && w.target.is_none() && w.stall.is_none();
+    if no_rule {
+        prop_assert_eq!(opt.run(), Err(Error::NoStoppingRule));
+        prop_assert_eq!(opt.iteration(), 0);
+    }
+    let mut seen = 0u64;
+    let result = no_panic("run_with", || {
+        opt.run_with(1, |p| {
+            seen += 1;
+            if p.iteration >= STEPS {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        })
+    })?;
+    let best = *opt.best();
+    prop_assert!(best.value.is_finite(), "best {}", best.value);
+    prop_assert!(best.value <= initial_best);
+    prop_assert_eq!(best.iteration % w.stride, 0);
+    let k = opt.iteration();
+    prop_assert!(k <= STEPS);
+    // Every step was shown to the observer (`every = 1`), the failed one
+    // excepted.
+    prop_assert!(
+        seen == k || (seen + 1 == k && result.is_err()),
+        "{} of {}",
+        seen,
+        k
+    );
+    let evaluations = opt.evaluations();
+    prop_assert!(evaluations >= n as u64 && evaluations <= n as u64 * (k + 1));
+    if let Some(budget) = w.evaluations {
+        prop_assert!(
+            evaluations <= budget,
+            "{} evaluations > {}",
+            evaluations,
+            budget
+        );
+    }
     match result {
         Ok(report) => {
-            prop_assert!(report.best.value.is_finite());
-            prop_assert!(report.iterations <= STEPS);
-            prop_assert!(report.diverged_chains <= w.chains);
-            prop_assert!(report.gradient_evaluations >= w.chains as u64);
-            prop_assert!(report.gradient_evaluations <= w.chains as u64 * (report.iterations + 1));
-            match report.status {
-                Status::Running => prop_assert_eq!(report.iterations, STEPS),
-                Status::TargetReached => prop_assert!(report.best.value <= w.target),
-                Status::AllDiverged => prop_assert_eq!(report.diverged_chains, w.chains),
+            prop_assert_eq!(report.iterations, k);
+            prop_assert_eq!(report.value.to_bits(), best.value.to_bits());
+            prop_assert_eq!(report.found_at, best.iteration);
+            prop_assert_eq!(opt.chains()[report.chain].best(), &best);
+            prop_assert_eq!(report.evaluations, evaluations);
+            prop_assert_eq!(report.chains, n);
+            prop_assert!(report.diverged_chains < n);
+            let live = (n - report.diverged_chains) as u64;
+            match report.termination {
+                Termination::Steps => prop_assert_eq!(step_budget, Some(k)),
+                Termination::Evaluations => {
+                    prop_assert!(evaluations + live > w.evaluations.unwrap())
+                }
+                Termination::Target => prop_assert!(best.value <= w.target.unwrap()),
+                Termination::Stalled => prop_assert!(k >= w.stall.unwrap().0),
+                Termination::Observer => prop_assert_eq!(k, STEPS),
+            }
+            if report.termination != Termination::Observer {
+                prop_assert_eq!(opt.termination(), Some(report.termination));
             }
         }
+        Err(Error::AllDiverged { chains }) => {
+            prop_assert_eq!(chains, n);
+            prop_assert_eq!(opt.diverged_chains(), n);
+        }
+        Err(Error::UnboundedBelow { chain, value }) => {
+            prop_assert!(
+                matches!(potential, AnyPotential::Explode),
+                "{:?}",
+                potential
+            );
+            prop_assert!(value < -f64::MAX.sqrt(), "{}", value);
+            prop_assert_eq!(opt.chains()[chain].value().to_bits(), value.to_bits());
+        }
         Err(e) => {
-            // Only the sampler's refusal of the schedule's value at this
-            // iterate can stop a run.
-            let a = schedule.inverse_temperature(opt.iteration());
+            // Otherwise only the sampler's refusal of the schedule's value
+            // at this iterate can stop a run.
+            let a = schedule.inverse_temperature(k);
             let refusal = opt.sampler().at(a);
             prop_assert!(
                 refusal.as_ref().is_err_and(|r| same_error(r, &e)),
@@ -312,7 +476,7 @@ where
     // Stepping on after the run (even after an error or full divergence)
     // does not panic and keeps a finite best.
     for _ in 0..3 {
-        let _ = no_panic("step", || opt.step(&mut rng))?;
+        let _ = no_panic("step", || opt.step())?;
     }
     prop_assert!(opt.best().value.is_finite());
     let _ = opt.current_best();

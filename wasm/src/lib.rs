@@ -2,8 +2,9 @@
 //!
 //! A thin `wasm-bindgen` layer with no maths of its own: one exported type,
 //! [`Optimizer`], owns the kernel's [`hrla::Optimizer`] on 2-D Rastrigin in
-//! f64 with up to [`MAX_CHAINS`] chains, its random generator, and flat
-//! buffers that JavaScript reads through typed-array views into wasm memory:
+//! f64 with its chain storage (a `Vec` of up to [`MAX_CHAINS`] chains, each
+//! with its own generator), and flat buffers that JavaScript reads through
+//! typed-array views into wasm memory:
 //!
 //! ```js
 //! import init, { Optimizer, Summary, wasm_memory } from "./pkg/hrla_wasm.js";
@@ -21,13 +22,15 @@
 //!
 //! Bad settings come back as a JS `Error` whose message is the kernel's
 //! typed [`hrla::Error`] (or a [`SettingsError`] for a malformed object),
-//! never a trap.
+//! never a trap; so does a run that fails on the way (`advance` throws the
+//! kernel's [`hrla::Error::AllDiverged`] once every chain has diverged).
 //!
-//! Seeds are `u64`: a JS number up to `2^53 - 1` or a BigInt; the generator
-//! is `Xoshiro256PlusPlus::seed_from_u64(seed)`, the same on every target, so
-//! a seed and settings give bit-identical runs natively, in Node and in the
-//! browser (checked by `scripts/test-web.sh`). [`random_seed`] draws a seed
-//! from the browser's crypto (or the OS natively), to be shown and replayed.
+//! Seeds are `u64`: a JS number up to `2^53 - 1` or a BigInt. Chain `c`
+//! draws from `Xoshiro256PlusPlus::seed_from_u64(hrla::chain_seed(seed, c))`,
+//! the same on every target, so a seed and settings give bit-identical runs
+//! natively, in Node and in the browser (checked by `scripts/test-web.sh`).
+//! [`random_seed`] draws a seed from the browser's crypto (or the OS
+//! natively), to be shown and replayed.
 
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
@@ -35,18 +38,20 @@
 mod settings;
 
 use hrla::Kernel as _;
-use hrla::{AnySampler, AnySchedule, Gaussian, Rastrigin};
-use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
+use hrla::{AnySampler, AnySchedule, Builder, Chain, Gaussian, Rastrigin};
 use wasm_bindgen::prelude::*;
 
 pub use settings::{Settings, SettingsError, Temperature, parse_sampler};
 
-/// Capacity in chains (the page offers up to 1024).
+/// The most chains a run may have (the page offers up to 1024): more is
+/// refused with [`hrla::Error::Count`].
 pub const MAX_CHAINS: usize = 1024;
 
-/// The kernel's optimiser as the page runs it.
-pub type Kernel = hrla::Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, 2, MAX_CHAINS>;
+/// The chain storage: on the heap, as many chains as the run has.
+pub type Chains = Vec<Chain<f64, 2>>;
+
+/// The kernel's optimiser as the page runs it, owning its chains.
+pub type Kernel = hrla::Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, Chains, 2>;
 
 /// Slots of the summary buffer ([`Optimizer::summary_ptr`]), all f64.
 #[wasm_bindgen]
@@ -71,12 +76,11 @@ pub enum Summary {
     Len = 7,
 }
 
-/// One run of Algorithm 1 on 2-D Rastrigin, with its generator and the
+/// One run of Algorithm 1 on 2-D Rastrigin, with its chains and the
 /// buffers that JavaScript views.
 #[wasm_bindgen]
 pub struct Optimizer {
     kernel: Kernel,
-    rng: Xoshiro256PlusPlus,
     seed: u64,
     /// `x` of chain `c` at `2c`, `2c + 1`.
     positions: Vec<f64>,
@@ -90,26 +94,30 @@ pub struct Optimizer {
 // Rust side: used by the exports below and by native code (the bit-identity
 // trace).
 impl Optimizer {
-    /// Draws the initial points and evaluates them, as the kernel does.
+    /// Makes the chains, draws their initial points and evaluates them, as
+    /// the kernel does.
     pub fn from_settings(settings: &Settings) -> Result<Self, SettingsError> {
         let schedule = settings.temperature.schedule()?;
         let sampler = AnySampler::paper(settings.sampler, settings.h)?;
-        let mut start = Gaussian::new(settings.centre, settings.spread)?;
-        let mut rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed);
+        let start = Gaussian::new(settings.centre, settings.spread)?;
+        let n = settings.chains;
+        if !(1..=MAX_CHAINS).contains(&n) {
+            return Err(hrla::Error::Count {
+                name: "chains",
+                value: n,
+                max: MAX_CHAINS,
+            }
+            .into());
+        }
+        let chains: Chains = (0..n).map(|_| Chain::new()).collect();
+        // No stopping rule: the page steps the run itself, without end.
         // Takes the sampler's kernel at a_0: a bad first temperature is
         // caught here.
-        let kernel = Kernel::new(
-            Rastrigin,
-            sampler,
-            schedule,
-            settings.chains,
-            &mut start,
-            &mut rng,
-        )?;
-        let n = settings.chains;
+        let kernel = Builder::new(Rastrigin, sampler, schedule, start)
+            .seed(settings.seed)
+            .build(chains)?;
         let mut this = Self {
             kernel,
-            rng,
             seed: settings.seed,
             positions: vec![0.0; 2 * n],
             velocities: vec![0.0; 2 * n],
@@ -120,9 +128,12 @@ impl Optimizer {
         Ok(this)
     }
 
-    /// Advances every chain by `steps` steps (fewer only on error).
+    /// Advances every live chain by `steps` steps (fewer only on error:
+    /// [`hrla::Error::AllDiverged`] once every chain has diverged, or the
+    /// sampler's refusal of a temperature). The buffers show the state
+    /// reached either way.
     pub fn step_n(&mut self, steps: u32) -> Result<(), hrla::Error> {
-        let result = (0..steps).try_for_each(|_| self.kernel.step(&mut self.rng).map(drop));
+        let result = (0..steps).try_for_each(|_| self.kernel.step());
         self.publish();
         result
     }
@@ -162,7 +173,6 @@ impl Optimizer {
             self.values[c] = chain.value();
         }
         let best = self.kernel.best();
-        let report = self.kernel.report();
         self.summary = [
             self.kernel.iteration() as f64,
             best.x[0],
@@ -170,7 +180,7 @@ impl Optimizer {
             best.value,
             best.iteration as f64,
             self.kernel.kernel().inverse_temperature(),
-            report.diverged_chains as f64,
+            self.kernel.diverged_chains() as f64,
         ];
     }
 }
@@ -187,8 +197,11 @@ impl Optimizer {
             .map_err(|e| JsError::new(&e.to_string()))
     }
 
-    /// Advances every chain by `steps` steps and refreshes the buffers.
-    /// Throws only if annealing reaches a temperature the sampler refuses.
+    /// Advances every live chain by `steps` steps and refreshes the
+    /// buffers. Throws an `Error` with the kernel's message once every
+    /// chain has diverged (`all N chains diverged ...`, again on every
+    /// later call), or if annealing reaches a temperature the sampler
+    /// refuses; the buffers then show the state reached.
     pub fn advance(&mut self, steps: u32) -> Result<(), JsError> {
         self.step_n(steps).map_err(|e| JsError::new(&e.to_string()))
     }
@@ -335,5 +348,51 @@ mod tests {
         assert_eq!(a.positions(), b.positions());
         assert_eq!(a.summary(), b.summary());
         assert_eq!(a.summary()[Summary::A as usize], 4.0);
+    }
+
+    /// Each chain has its own stream: chain `c` of a run is the same
+    /// whatever the number of chains beside it.
+    #[test]
+    fn a_chain_does_not_depend_on_the_others() {
+        let settings = Settings {
+            chains: 3,
+            seed: 9,
+            ..Settings::default()
+        };
+        let mut few = Optimizer::from_settings(&settings).unwrap();
+        let mut many = Optimizer::from_settings(&Settings {
+            chains: 40,
+            ..settings
+        })
+        .unwrap();
+        few.step_n(300).unwrap();
+        many.step_n(300).unwrap();
+        assert_eq!(few.positions(), &many.positions()[..6]);
+        assert_eq!(few.values(), &many.values()[..3]);
+    }
+
+    /// A step far too long for Rastrigin: every chain overflows, and the
+    /// run ends with the kernel's `AllDiverged`, then keeps refusing.
+    #[test]
+    fn all_diverged_is_an_error_with_the_state_published() {
+        let settings = Settings {
+            sampler: hrla::SamplerKind::Ola,
+            h: 50.0,
+            chains: 10,
+            ..Settings::default()
+        };
+        let mut opt = Optimizer::from_settings(&settings).unwrap();
+        let err = opt.step_n(1000).unwrap_err();
+        assert_eq!(err, hrla::Error::AllDiverged { chains: 10 });
+        assert_eq!(
+            err.to_string(),
+            "all 10 chains diverged (non-finite position, potential or gradient): try a smaller step h"
+        );
+        let s = *opt.summary();
+        assert_eq!(s[Summary::Diverged as usize], 10.0);
+        assert!(s[Summary::Iteration as usize] > 0.0 && s[Summary::Iteration as usize] < 1000.0);
+        assert!(s[Summary::BestValue as usize].is_finite());
+        assert_eq!(opt.step_n(1), Err(hrla::Error::AllDiverged { chains: 10 }));
+        assert_eq!(opt.summary(), &s);
     }
 }

@@ -61,8 +61,8 @@ pub struct Settings {
     pub centre: [f64; 2],
     /// Standard deviation of the Gaussian initial law (per coordinate).
     pub spread: f64,
-    /// Seed of the `Xoshiro256PlusPlus` generator
-    /// (`seed_from_u64`).
+    /// The run's seed: chain `c` draws from its own generator,
+    /// `Xoshiro256PlusPlus::seed_from_u64(hrla::chain_seed(seed, c))`.
     pub seed: u64,
 }
 

@@ -87,6 +87,8 @@ function showError(message) {
   const name = /^`([a-z_]+)`/.exec(message)?.[1];
   for (const id of NAMED_INPUTS[name] ?? []) $(id).setAttribute("aria-invalid", "true");
   if (/group size/.test(message)) $("group").setAttribute("aria-invalid", "true");
+  // The kernel's AllDiverged: "all N chains diverged (...): try a smaller step h".
+  if (/^all \d+ chains diverged/.test(message)) $("h").setAttribute("aria-invalid", "true");
 }
 
 function clearError() {
@@ -169,7 +171,9 @@ function render() {
   if (!run) {
     // No run (refused settings): nothing stale may remain on screen.
     for (const c of [canvas, $("plot-best"), $("plot-prob")]) c.getContext("2d").clearRect(0, 0, c.width, c.height);
-    for (const id of ["out-iteration", "out-best", "out-best-x", "out-best-at", "out-a", "out-prob"]) setOutput(id, "–");
+    for (const id of ["out-iteration", "out-best", "out-best-x", "out-best-at", "out-a", "out-diverged", "out-prob"]) {
+      setOutput(id, "–");
+    }
     return;
   }
   const s = run.s;
@@ -191,6 +195,7 @@ function render() {
   setOutput("out-best-x", `(${coordinate(s[Summary.BestX0])}, ${coordinate(s[Summary.BestX1])})`);
   setOutput("out-best-at", String(s[Summary.BestIteration]), s[Summary.BestIteration]);
   setOutput("out-a", s[Summary.A].toPrecision(4), s[Summary.A]);
+  setOutput("out-diverged", `${s[Summary.Diverged]} of ${run.n}`, s[Summary.Diverged]);
   const p = run.fractionWithin(eps);
   setOutput("out-prob", Number.isFinite(p) ? `${p.toFixed(2)} of ${run.groups}` : "–", p);
 }

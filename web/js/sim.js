@@ -51,13 +51,24 @@ export class Run {
     this.s = new Float64Array(buffer, this.opt.summary_ptr(), Summary.Len);
   }
 
-  /** `steps` more steps of every chain; throws on a refused temperature. */
+  /**
+   * `steps` more steps of every live chain. Throws the kernel's Error once
+   * every chain has diverged (and on every later call), or on a refused
+   * temperature; the state reached is recorded first, so what the page
+   * draws is where the run stopped.
+   */
   advance(steps) {
-    this.opt.advance(steps);
+    let failure = null;
+    try {
+      this.opt.advance(steps);
+    } catch (e) {
+      failure = e;
+    }
     // A grown memory detaches the old buffer: its views read as empty.
     if (this.s.length === 0) this.bind();
     this.trails.push(this.x);
     this.record();
+    if (failure) throw failure;
   }
 
   get iteration() {

@@ -120,10 +120,11 @@ test("opened without settings, the page plays whole frames of steps until paused
   assert.equal(await readout("out-iteration"), paused);
 });
 
-// 10 chains started at (3, 3) with spread 1 (every U above 1 at the start for
-// every seed tried): with seed 1 the best falls below 1 after 500 steps and
-// near 0 after 1500; the 3000 stepped here leave a margin (the slowest of
-// 2000 seeds took 1300).
+// 10 chains started at (3, 3) with spread 1: every start's best U is above 1
+// for seeds 0..1999 (the lowest, 1.14), 15.0 for seed 1. With seed 1 (one
+// stream per chain, hrla::chain_seed) the best falls below 1 within 500 steps
+// and to 2e-3 by 1000; the 3000 stepped here leave a margin (the slowest of
+// seeds 0..1999 took 1450, the median 300).
 const DESCENT = { sampler: "hrla", a: 4, h: 0.01, chains: 10, cx: 3, cy: 3, spread: 1, seed: 1, spf: 100 };
 
 test("the iteration counter advances and HRLA's running best falls below 1", async () => {
@@ -180,6 +181,43 @@ test("an invalid h shows the kernel's message and the page recovers", async () =
   assert.equal(await page.getAttribute("#h", "aria-invalid"), null);
   await page.click("#step");
   assert.equal(await readout("out-iteration"), 100);
+});
+
+// h = 5 is far too long a step for Rastrigin at a = 4: the drift alone
+// (not the noise) makes every chain's position overflow, at iteration 142
+// to 144 for each of seeds 0..499, so one press of 1000 steps ends the run.
+test("a run whose chains all diverge shows the kernel's message, and the page recovers", async () => {
+  const message = "all 10 chains diverged (non-finite position, potential or gradient): try a smaller step h";
+  await openPaused({ h: 5, chains: 10, spf: 1000 });
+  assert.equal(await readout("out-diverged"), 0);
+  await page.click("#step");
+  assert.equal(await page.textContent("#error"), message);
+  assert.equal(await page.getAttribute("#h", "aria-invalid"), "true");
+  assert.equal(await page.getAttribute("#play", "aria-pressed"), "false");
+  assert.equal(await readout("out-diverged"), 10);
+  const stopped = await readout("out-iteration");
+  assert.ok(stopped > 0 && stopped < 1000, `stopped at iteration ${stopped}`);
+  assert.ok(Number.isFinite(await readout("out-best")), "the running best of the live iterates stays shown");
+  // Stepping again: the same message, and the run stays where it stopped.
+  await page.click("#step");
+  assert.equal(await page.textContent("#error"), message);
+  assert.equal(await readout("out-iteration"), stopped);
+  // Playing: the first frame meets the error and pauses again.
+  await page.click("#play");
+  await page.waitForFunction(() => document.getElementById("play").getAttribute("aria-pressed") === "false", null, {
+    timeout: 30_000,
+  });
+  assert.equal(await page.textContent("#error"), message);
+  assert.equal(await readout("out-iteration"), stopped);
+  // A good h restarts the run from the seed, without the error.
+  await setControl("h", 0.01);
+  assert.equal(await page.textContent("#error"), "");
+  assert.equal(await page.getAttribute("#h", "aria-invalid"), null);
+  assert.equal(await readout("out-iteration"), 0);
+  await page.click("#step");
+  assert.equal(await readout("out-iteration"), 1000);
+  assert.equal(await readout("out-diverged"), 0);
+  assert.equal(await page.textContent("#error"), "");
 });
 
 test("the same seed gives the same best value after the same number of steps", async () => {

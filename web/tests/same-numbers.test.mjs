@@ -125,6 +125,22 @@ test("bad settings throw an Error with the kernel's message, and the module stil
   opt.free();
 });
 
+test("a run whose chains all diverge throws the kernel's message, and keeps refusing", () => {
+  // h = 5 is far too long a step for Rastrigin at a = 4: every chain overflows
+  // within about 150 steps.
+  const opt = new wasm.Optimizer({ sampler: "hrla", a: 4, h: 5, chains: 10, centre: [3, 3], spread: 3, seed: 1 });
+  const message = "all 10 chains diverged (non-finite position, potential or gradient): try a smaller step h";
+  const s = () => new Float64Array(wasm.wasm_memory().buffer, opt.summary_ptr(), wasm.Summary.Len);
+  assert.throws(() => opt.advance(1000), (e) => e instanceof Error && e.message === message);
+  const stopped = s()[wasm.Summary.Iteration];
+  assert.ok(stopped > 0 && stopped < 1000, `stopped at iteration ${stopped}`);
+  assert.equal(s()[wasm.Summary.Diverged], 10);
+  assert.ok(Number.isFinite(s()[wasm.Summary.BestValue]));
+  assert.throws(() => opt.advance(1), (e) => e instanceof Error && e.message === message);
+  assert.equal(s()[wasm.Summary.Iteration], stopped);
+  opt.free();
+});
+
 test("random seeds are BigInts and differ", () => {
   const a = wasm.random_seed();
   const b = wasm.random_seed();

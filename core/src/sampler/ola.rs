@@ -4,7 +4,7 @@
 use rand_core::Rng;
 
 use super::traits::{Kernel, Sampler, StepMoments};
-use crate::error::{Error, positive};
+use crate::error::{Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
 
 /// Parameters of [`Ola`]: rate `alpha` and step `h`.
@@ -60,6 +60,7 @@ impl<F: Float> Sampler<F> for Ola<F> {
 
     fn at(&self, a: F) -> Result<OlaKernel<F>, Error> {
         let a = positive("a", a)?;
+        in_range("a", a, INVERSE_TEMPERATURE)?;
         let noise = (F::TWO * self.drift / a).sqrt();
         if !noise.is_finite() {
             return Err(Error::DegenerateCoefficients);

@@ -45,7 +45,7 @@
 use rand_core::Rng;
 
 use super::traits::{Kernel, StepMoments};
-use crate::error::{Error, positive};
+use crate::error::{ALPHA_H, Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
 
 /// Terms of the series `A(s)` and `S(s)`: for `s <= 4` the first omitted
@@ -170,6 +170,7 @@ impl<F: Float> OuKernel<F> {
             });
         }
         let u = alpha * h;
+        in_range("alpha h", u, ALPHA_H)?;
         let sy2 = alpha / b;
         let p1 = phi1(u);
         let p1_2u = phi1(u + u);
@@ -217,6 +218,7 @@ impl<F: Float> OuKernel<F> {
     #[inline]
     pub(crate) fn at(mut self, a: F) -> Result<Self, Error> {
         let a = positive("a", a)?;
+        in_range("a", a, INVERSE_TEMPERATURE)?;
         let c_xg = self.beta_h + a * self.h2_phi2_over_b;
         let c_yg = a * self.h_phi1_over_b;
         let l_xx = (self.two_beta_h / a + self.schur_y).sqrt();
@@ -284,13 +286,47 @@ impl<F: Float> Kernel<F> for OuKernel<F> {
         grad: &[F; D],
         rng: &mut R,
     ) {
-        // All the draws first, then the update: the update's loop then has no
-        // branch and vectorises across coordinates (same stream either way).
-        let mut z = [(F::ZERO, F::ZERO); D];
-        for zi in &mut z {
+        // One block of all D coordinates when it is small (fixed sizes the
+        // compiler unrolls); blocks of 64 beyond, so that the draws' buffer
+        // stays small whatever D is. Two functions, so that even an
+        // unoptimised build reserves only the buffer of the path it takes.
+        if D <= BLOCK {
+            self.step_block::<R, D>(x, y, grad, rng);
+        } else {
+            for ((xb, yb), gb) in x
+                .chunks_mut(BLOCK)
+                .zip(y.chunks_mut(BLOCK))
+                .zip(grad.chunks(BLOCK))
+            {
+                self.step_block::<R, BLOCK>(xb, yb, gb, rng);
+            }
+        }
+    }
+}
+
+/// Coordinates stepped together: all of a block's draws first, then its
+/// update, so that the update's loop has no branch and vectorises (the
+/// stream is the same either way).
+const BLOCK: usize = 64;
+
+impl<F: Float> OuKernel<F> {
+    /// One block of at most `B` coordinates. (`#[inline]`, not `always`:
+    /// unoptimised builds keep it out of line, so that its buffer's frame
+    /// is reserved only when it runs.)
+    #[inline]
+    fn step_block<R: Rng + ?Sized, const B: usize>(
+        &self,
+        x: &mut [F],
+        y: &mut [F],
+        grad: &[F],
+        rng: &mut R,
+    ) {
+        let mut z = [(F::ZERO, F::ZERO); B];
+        let z = &mut z[..x.len()];
+        for zi in z.iter_mut() {
             *zi = F::standard_normal_pair(rng);
         }
-        for (((xi, yi), &gi), &(z1, z2)) in x.iter_mut().zip(y.iter_mut()).zip(grad).zip(&z) {
+        for (((xi, yi), &gi), &(z1, z2)) in x.iter_mut().zip(y.iter_mut()).zip(grad).zip(&*z) {
             self.apply(xi, yi, gi, z1, z2);
         }
     }

@@ -1,20 +1,23 @@
-//! The run loop: one run of one configuration, the kernel's optimisers
-//! driven step by step, with the best chain value handed to a [`Tracker`].
+//! The run loop: one run of one configuration, one kernel optimiser over
+//! all its chains driven step by step, with the best chain value handed to
+//! a [`Tracker`].
+//!
+//! The loop calls [`Optimizer::step`] itself rather than
+//! [`Optimizer::run_with`]: the tracker needs `min_c U(x_k^c)` (the best
+//! chain *now*, not the running best) at every iterate on the stride or the
+//! curve grid, which the observer's [`Progress`](hrla::Progress) does not
+//! carry and which it would only see every `every` steps; stepping by hand
+//! reads [`Optimizer::current_best`] at exactly the iterates wanted, and
+//! the progress bar is a counter in the same loop.
 
 use hrla::rand_core::Rng;
-use hrla::{AnySampler, AnySchedule, Gaussian, Optimizer, Point, Rastrigin, Start};
+use hrla::{
+    AnySampler, AnySchedule, Builder, Chain, Gaussian, Optimizer, Point, Rastrigin, Start, Stop,
+};
 
 use crate::config::{RunSpec, StartSpec};
 use crate::error::ReproError;
 use crate::stats::Tracker;
-
-/// Chains per kernel optimiser. A run of `N` chains is split into
-/// `ceil(N / CHUNK)` optimisers stepped in order with one generator, which
-/// draws exactly the numbers one optimiser of `N` chains would (initial
-/// points chain after chain, then each step chain after chain; tested), but
-/// keeps every optimiser small enough to build on a worker thread's stack
-/// before it is boxed (`CHUNK (4D + 2) 8` bytes, 100 KiB at `D = 100`).
-pub const CHUNK: usize = 32;
 
 /// Gaussian or fixed-point start behind one type.
 #[derive(Clone, Copy, Debug)]
@@ -35,75 +38,56 @@ impl<const D: usize> AnyStart<D> {
 }
 
 impl<const D: usize> Start<f64, D> for AnyStart<D> {
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R) -> [f64; D] {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64; D]) {
         match self {
-            AnyStart::Gaussian(s) => s.initial_point(chain, rng),
-            AnyStart::Point(s) => s.initial_point(chain, rng),
+            AnyStart::Gaussian(s) => s.initial_point(chain, rng, x),
+            AnyStart::Point(s) => s.initial_point(chain, rng, x),
         }
     }
 }
 
-type Part<const D: usize> = Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, D, CHUNK>;
+/// The kernel optimiser of one run: its `N` chains in one `Vec` it owns
+/// (on the heap, so T2's 10 000 chains never touch a worker's stack).
+pub type RunOptimizer<const D: usize> =
+    Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, Vec<Chain<f64, D>>, D>;
 
-/// `N` chains as a list of boxed kernel optimisers of at most [`CHUNK`]
-/// chains each, stepped in order with one generator.
-pub struct Swarm<const D: usize> {
-    parts: Vec<Box<Part<D>>>,
+/// Builds the optimiser of one run of `spec` seeded with `seed` (see
+/// [`run_seed`](crate::seed::run_seed)): `spec.chains` chains, chain `c`
+/// drawing its start and its steps from its own generator
+/// (`hrla::chain_seed(seed, c)`), a step budget of `K = spec.steps` (which
+/// a linear schedule's length equals; the builder checks) and the
+/// kernel's running best on the tool's stride.
+pub fn optimizer<const D: usize>(
+    spec: &RunSpec,
+    seed: u64,
+) -> Result<RunOptimizer<D>, hrla::Error> {
+    let (schedule, sampler) = spec.kernel_setup()?;
+    let chains = (0..spec.chains).map(|_| Chain::new()).collect::<Vec<_>>();
+    Builder::new(
+        Rastrigin,
+        sampler,
+        schedule,
+        AnyStart::<D>::new(spec.start)?,
+    )
+    .seed(seed)
+    .stride(spec.stride)
+    .stop(Stop::new().steps(spec.steps))
+    .build(chains)
 }
 
-impl<const D: usize> Swarm<D> {
-    /// Draws the initial points of `spec.chains` chains, chunk after chunk.
-    pub fn new<R: Rng + ?Sized>(spec: &RunSpec, rng: &mut R) -> Result<Self, hrla::Error> {
-        let (schedule, sampler) = spec.kernel_setup()?;
-        let mut start = AnyStart::<D>::new(spec.start)?;
-        let mut parts = Vec::with_capacity(spec.chains.div_ceil(CHUNK));
-        let mut left = spec.chains;
-        while left > 0 {
-            let n = left.min(CHUNK);
-            let part = Optimizer::new(Rastrigin, sampler, schedule, n, &mut start, rng)?;
-            parts.push(Box::new(part));
-            left -= n;
-        }
-        Ok(Self { parts })
-    }
+/// `min_c U(x_k^c)` over the live chains at the current iterate (`+inf`
+/// when every chain has diverged).
+pub fn best_now<const D: usize>(opt: &RunOptimizer<D>) -> f64 {
+    opt.current_best().map_or(f64::INFINITY, |(_, v)| v)
+}
 
-    /// One step of every chain.
-    pub fn step<R: Rng + ?Sized>(&mut self, rng: &mut R) -> Result<(), hrla::Error> {
-        for part in &mut self.parts {
-            part.step(rng)?;
-        }
-        Ok(())
-    }
-
-    /// `min_c U(x_k^c)` over the live chains at the current iterate
-    /// (`+inf` when every chain has diverged).
-    pub fn best_now(&self) -> f64 {
-        self.parts
-            .iter()
-            .filter_map(|p| p.current_best())
-            .map(|(_, v)| v)
-            .fold(f64::INFINITY, f64::min)
-    }
-
-    /// The kernel's own global running best (over `k = 0, s, 2s, ...` of
-    /// each optimiser's stride, so including the initial points).
-    pub fn kernel_best(&self) -> f64 {
-        self.parts
-            .iter()
-            .map(|p| p.best().value)
-            .fold(f64::INFINITY, f64::min)
-    }
-
-    /// Chains that diverged (non-finite potential or gradient).
-    pub fn diverged(&self) -> usize {
-        self.parts.iter().map(|p| p.report().diverged_chains).sum()
-    }
-
-    /// Current positions of every chain, in order (for tests).
-    pub fn positions(&self) -> impl Iterator<Item = &[f64; D]> {
-        self.parts
-            .iter()
-            .flat_map(|p| p.chains().iter().map(|c| c.x()))
+/// One step of every live chain. A run whose chains have all diverged is
+/// not an error for the tool: its remaining iterates have no best chain
+/// (`+inf`, within no tolerance), as before the kernel made it one.
+fn step<const D: usize>(opt: &mut RunOptimizer<D>) -> Result<(), hrla::Error> {
+    match opt.step() {
+        Ok(()) | Err(hrla::Error::AllDiverged { .. }) => Ok(()),
+        Err(e) => Err(e),
     }
 }
 
@@ -119,34 +103,35 @@ pub struct RunOutcome {
 /// How many iterates a run does between two progress reports.
 const PROGRESS_EVERY: u64 = 1024;
 
-/// Runs one configuration once with `rng`, adding its probability counts
-/// into `counts` (length [`RunSpec::count_len`]) and calling `progress`
-/// with chain-steps done every 1024 iterates and at the end.
-pub fn run_once<R: Rng + ?Sized>(
+/// Runs one configuration once with the run seed `seed`, adding its
+/// probability counts into `counts` (length [`RunSpec::count_len`]) and
+/// calling `progress` with chain-steps done every 1024 iterates and at the
+/// end.
+pub fn run_once(
     spec: &RunSpec,
-    rng: &mut R,
+    seed: u64,
     counts: &mut [u32],
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RunOutcome, ReproError> {
     match spec.d {
-        1 => run_d::<1, R>(spec, rng, counts, progress),
-        2 => run_d::<2, R>(spec, rng, counts, progress),
-        5 => run_d::<5, R>(spec, rng, counts, progress),
-        10 => run_d::<10, R>(spec, rng, counts, progress),
-        20 => run_d::<20, R>(spec, rng, counts, progress),
-        50 => run_d::<50, R>(spec, rng, counts, progress),
-        100 => run_d::<100, R>(spec, rng, counts, progress),
+        1 => run_d::<1>(spec, seed, counts, progress),
+        2 => run_d::<2>(spec, seed, counts, progress),
+        5 => run_d::<5>(spec, seed, counts, progress),
+        10 => run_d::<10>(spec, seed, counts, progress),
+        20 => run_d::<20>(spec, seed, counts, progress),
+        50 => run_d::<50>(spec, seed, counts, progress),
+        100 => run_d::<100>(spec, seed, counts, progress),
         d => Err(ReproError::Dimension(d)),
     }
 }
 
-fn run_d<const D: usize, R: Rng + ?Sized>(
+fn run_d<const D: usize>(
     spec: &RunSpec,
-    rng: &mut R,
+    seed: u64,
     counts: &mut [u32],
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RunOutcome, ReproError> {
-    let mut swarm = Swarm::<D>::new(spec, rng)?;
+    let mut opt = optimizer::<D>(spec, seed)?;
     // Rastrigin's global minimum U* = 0.
     let mut tracker = Tracker::new(
         spec.steps,
@@ -158,13 +143,13 @@ fn run_d<const D: usize, R: Rng + ?Sized>(
         counts,
     );
     if tracker.wants(0) {
-        tracker.observe(0, swarm.best_now());
+        tracker.observe(0, best_now(&opt));
     }
     let n = spec.chains as u64;
     for k in 1..=spec.steps {
-        swarm.step(rng)?;
+        step(&mut opt)?;
         if tracker.wants(k) {
-            tracker.observe(k, swarm.best_now());
+            tracker.observe(k, best_now(&opt));
         }
         if k % PROGRESS_EVERY == 0 {
             progress(PROGRESS_EVERY * n);
@@ -173,7 +158,7 @@ fn run_d<const D: usize, R: Rng + ?Sized>(
     progress((spec.steps % PROGRESS_EVERY) * n);
     Ok(RunOutcome {
         running_best: tracker.at_checkpoints().to_vec(),
-        diverged: swarm.diverged(),
+        diverged: opt.diverged_chains(),
     })
 }
 
@@ -181,7 +166,7 @@ fn run_d<const D: usize, R: Rng + ?Sized>(
 mod tests {
     use super::*;
     use crate::config::Temperature;
-    use crate::seed::run_rng;
+    use crate::seed::run_seed;
     use hrla::SamplerKind;
 
     fn spec(chains: usize, temperature: Temperature) -> RunSpec {
@@ -203,11 +188,17 @@ mod tests {
         }
     }
 
-    /// A swarm split into chunks draws the same numbers as one optimiser of
-    /// all its chains, so the split is invisible in the results.
+    fn positions<const D: usize>(opt: &RunOptimizer<D>) -> Vec<[f64; D]> {
+        opt.chains().iter().map(|c| *c.x()).collect()
+    }
+
+    /// Chain `c` of a run draws from a stream of `(run seed, c)` alone: the
+    /// first chains of a run of 5 follow exactly the trajectories of the
+    /// first 5 of a run of 69 with the same seed, at constant `a` and
+    /// annealing. So the chain count neither shifts any chain's stream
+    /// (nor could the order in which the kernel steps them).
     #[test]
-    fn split_swarm_equals_one_optimiser() {
-        const N: usize = 2 * CHUNK + 5;
+    fn a_chain_does_not_depend_on_how_many_run_beside_it() {
         for temperature in [
             Temperature::Constant(3.0),
             Temperature::Linear {
@@ -215,25 +206,17 @@ mod tests {
                 high: 4.0,
             },
         ] {
-            let s = spec(N, temperature);
-            let mut rng_a = run_rng(11, 0);
-            let mut swarm = Swarm::<10>::new(&s, &mut rng_a).unwrap();
-            let mut rng_b = run_rng(11, 0);
-            let (schedule, sampler) = s.kernel_setup().unwrap();
-            let mut start = AnyStart::<10>::new(s.start).unwrap();
-            let mut whole: Box<
-                Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, 10, N>,
-            > = Box::new(
-                Optimizer::new(Rastrigin, sampler, schedule, N, &mut start, &mut rng_b).unwrap(),
-            );
-            for _ in 0..s.steps {
-                swarm.step(&mut rng_a).unwrap();
-                whole.step(&mut rng_b).unwrap();
+            let seed = run_seed(11, 0);
+            let mut many = optimizer::<10>(&spec(69, temperature), seed).unwrap();
+            let mut few = optimizer::<10>(&spec(5, temperature), seed).unwrap();
+            assert_eq!(positions(&many)[..5], positions(&few)[..]);
+            for _ in 0..50 {
+                many.step().unwrap();
+                few.step().unwrap();
             }
-            let split: Vec<[f64; 10]> = swarm.positions().copied().collect();
-            let one: Vec<[f64; 10]> = whole.chains().iter().map(|c| *c.x()).collect();
-            assert_eq!(split, one);
-            assert_eq!(swarm.best_now(), whole.current_best().unwrap().1);
+            assert_eq!(positions(&many)[..5], positions(&few)[..]);
+            let other = optimizer::<10>(&spec(5, temperature), run_seed(11, 1)).unwrap();
+            assert_ne!(positions(&other), positions(&few)[..5]);
         }
     }
 
@@ -246,18 +229,17 @@ mod tests {
         let mut s = spec(40, Temperature::Constant(3.0));
         s.steps = 300;
         s.checkpoints = vec![300];
-        let mut rng = run_rng(3, 0);
-        let mut swarm = Swarm::<10>::new(&s, &mut rng).unwrap();
-        let start_best = swarm.best_now();
+        let mut opt = optimizer::<10>(&s, run_seed(3, 0)).unwrap();
+        let start_best = best_now(&opt);
         let mut none = [];
         let mut tracker = Tracker::new(s.steps, 1, None, &s.checkpoints, &[], 0.0, &mut none);
         for k in 1..=s.steps {
-            swarm.step(&mut rng).unwrap();
-            tracker.observe(k, swarm.best_now());
+            opt.step().unwrap();
+            tracker.observe(k, best_now(&opt));
         }
         let ours = tracker.at_checkpoints()[0];
         assert!(ours < start_best);
-        assert_eq!(ours, swarm.kernel_best());
+        assert_eq!(ours, opt.best().value);
     }
 
     #[test]
@@ -267,11 +249,33 @@ mod tests {
         s.curve_every = Some(5);
         let mut c1 = vec![0; s.count_len()];
         let mut c2 = vec![0; s.count_len()];
-        let r1 = run_once(&s, &mut run_rng(5, 9), &mut c1, &|_| {}).unwrap();
-        let r2 = run_once(&s, &mut run_rng(5, 9), &mut c2, &|_| {}).unwrap();
+        let mut c3 = vec![0; s.count_len()];
+        let r1 = run_once(&s, run_seed(5, 9), &mut c1, &|_| {}).unwrap();
+        let r2 = run_once(&s, run_seed(5, 9), &mut c2, &|_| {}).unwrap();
+        let r3 = run_once(&s, run_seed(5, 10), &mut c3, &|_| {}).unwrap();
         assert_eq!(r1, r2);
         assert_eq!(c1, c2);
+        assert_ne!(r1, r3);
         assert!(r1.running_best[0].is_finite());
+    }
+
+    /// A run whose chains all diverge (ULA with a step far beyond
+    /// stability) still finishes: the kernel's `AllDiverged` ends no
+    /// protocol, and after it no iterate has a best chain.
+    #[test]
+    fn a_run_whose_chains_all_diverge_completes() {
+        let mut s = spec(3, Temperature::Constant(1.0));
+        s.sampler = SamplerKind::Ula;
+        s.h = 40.0;
+        s.steps = 400;
+        s.checkpoints = vec![400];
+        s.eps = vec![1e9];
+        s.curve_every = Some(400);
+        let mut counts = vec![0; s.count_len()];
+        let out = run_once(&s, run_seed(1, 0), &mut counts, &|_| {}).unwrap();
+        assert_eq!(out.diverged, 3);
+        // Within 1e9 at k = 0 (the start), not at k = 400 (no chain left).
+        assert_eq!(counts, [1, 0]);
     }
 
     #[test]
@@ -281,7 +285,7 @@ mod tests {
         s.steps = 2500;
         s.checkpoints = vec![2500];
         let done = AtomicU64::new(0);
-        run_once(&s, &mut run_rng(1, 1), &mut [], &|n| {
+        run_once(&s, run_seed(1, 1), &mut [], &|n| {
             done.fetch_add(n, Ordering::Relaxed);
         })
         .unwrap();
@@ -297,7 +301,7 @@ mod tests {
             s.d = d;
             s.steps = 2;
             s.checkpoints = vec![2];
-            assert!(run_once(&s, &mut run_rng(0, 0), &mut [], &|_| {}).is_ok());
+            assert!(run_once(&s, run_seed(0, 0), &mut [], &|_| {}).is_ok());
         }
     }
 
@@ -307,7 +311,7 @@ mod tests {
         s.d = 3;
         assert!(matches!(s.validate(), Err(ReproError::Dimension(3))));
         assert!(matches!(
-            run_once(&s, &mut run_rng(0, 0), &mut [], &|_| {}),
+            run_once(&s, run_seed(0, 0), &mut [], &|_| {}),
             Err(ReproError::Dimension(3))
         ));
     }

@@ -12,7 +12,7 @@ use crate::config::RunSpec;
 use crate::engine::run_once;
 use crate::error::ReproError;
 use crate::protocol::Plan;
-use crate::seed::run_rng;
+use crate::seed::run_seed;
 use crate::stats::{Summary, grid_points};
 
 /// The running best of every run at one checkpoint.
@@ -112,8 +112,8 @@ impl Partial {
 }
 
 /// Runs every configuration `plan.runs` times on the current rayon pool.
-/// Run `i` of every configuration uses [`run_rng`]`(seed, i)`; counts are
-/// integers and the summaries are taken in run order, so the result does
+/// Run `i` of every configuration is seeded with [`run_seed`]`(seed, i)`
+/// (each of its chains then has its own stream); counts are integers and the summaries are taken in run order, so the result does
 /// not depend on the number of threads. `bar` advances by chain-steps.
 pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResult, ReproError> {
     let started = Instant::now();
@@ -131,8 +131,12 @@ pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResu
             || Partial::new(plan),
             |mut acc, &(c, i)| {
                 let spec = &plan.configs[c];
-                let mut rng = run_rng(seed, i as u64);
-                let out = run_once(spec, &mut rng, &mut acc.counts[c], &progress)?;
+                let out = run_once(
+                    spec,
+                    run_seed(seed, i as u64),
+                    &mut acc.counts[c],
+                    &progress,
+                )?;
                 acc.values[c].push((i, out.running_best));
                 acc.diverged[c] += out.diverged;
                 Ok::<_, ReproError>(acc)

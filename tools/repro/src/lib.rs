@@ -9,12 +9,13 @@
 //!   [`Plan`](protocol::Plan) of configurations.
 //! - [`config`]: one configuration of a protocol ([`RunSpec`](config::RunSpec))
 //!   and its validation.
-//! - [`engine`]: the run loop: one run of one configuration, the kernel's
-//!   optimisers driven step by step.
+//! - [`engine`]: the run loop: one run of one configuration, one kernel
+//!   optimiser over all its chains (in a `Vec`) driven step by step.
 //! - [`stats`]: the paper's running best (over the stride, without iterate
 //!   0) and empirical probability (not running), streamed; the summary
 //!   statistics and their conventions.
-//! - [`seed`]: one random stream per run index, from one base seed.
+//! - [`seed`]: one seed per run index, from one base seed (the kernel then
+//!   gives each chain its own stream).
 //! - [`exec`]: every run of a plan in parallel (rayon).
 //! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures.
 //! - [`error`]: the error type they all return.

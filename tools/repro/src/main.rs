@@ -23,9 +23,10 @@ use hrla_repro::protocol::{Overrides, ProtocolId, plan};
 /// best at K, or at each checkpoint: mean, median, sample SD, SE over the M runs), meta.txt (wall
 /// time, chain-steps, command), and for E1-E5 curves.csv and `ID.svg` (the
 /// empirical probability that the best chain at iterate k is within eps of
-/// U*). Run i of every configuration uses the generator
-/// Xoshiro256PlusPlus::seed_from_u64(seed ^ splitmix64(i)), so results do
-/// not depend on the thread count.
+/// U*). Run i of every configuration is seeded with seed ^ splitmix64(i),
+/// and chain c of that run draws from its own generator,
+/// Xoshiro256PlusPlus::seed_from_u64(chain_seed(seed ^ splitmix64(i), c)),
+/// so results do not depend on the thread count.
 #[derive(Debug, Parser)]
 #[command(name = "repro", version)]
 struct Cli {

@@ -1,50 +1,39 @@
-//! One random stream per run, derived from the base seed and the run index.
+//! One seed per run, derived from the base seed and the run index.
 
-use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
+use hrla::splitmix64;
 
-/// SplitMix64's output function (Steele, Lea and Flood 2014): a bijection of
-/// `u64` that scatters consecutive integers over the whole range.
-pub fn splitmix64(x: u64) -> u64 {
-    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-/// The generator of run `run`: `Xoshiro256PlusPlus::seed_from_u64(base ^
-/// splitmix64(run))`.
+/// The seed of run `run`: `base ^ splitmix64(run)`, passed to
+/// [`Builder::seed`](hrla::Builder::seed). The kernel derives each chain's
+/// generator from it: chain `c` of run `run` draws from
+/// `Xoshiro256PlusPlus::seed_from_u64(hrla::chain_seed(base ^
+/// splitmix64(run), c))`, its start and every step's normals alike.
 ///
-/// A run's stream depends on nothing but `(base, run)`, so results do not
+/// A run's streams depend on nothing but `(base, run)`, so results do not
 /// depend on the number of threads or the order in which runs finish. The
-/// index is hashed before the xor because `seed_from_u64` expands its
-/// argument with SplitMix64 itself: seeds `base + i` would give streams that
-/// are shifts of one another for some pairs of runs.
+/// index is hashed before the xor so that the runs' seeds are scattered
+/// over the whole range rather than `base`'s neighbours (the kernel hashes
+/// again before mixing in the chain index).
 ///
-/// Every configuration of a protocol uses the same stream for run `i`
-/// (common random numbers): with the same `d` and `N`, run `i` starts from
-/// the same initial points for every `a`, `h` and sampler, so differences
-/// between configurations are not blurred by different starts.
-pub fn run_rng(base: u64, run: u64) -> Xoshiro256PlusPlus {
-    Xoshiro256PlusPlus::seed_from_u64(base ^ splitmix64(run))
+/// Every configuration of a protocol uses the same seed for run `i`
+/// (common random numbers): with the same `d`, chain `c` of run `i` starts
+/// from the same initial point for every `a`, `h`, `N` and sampler, so
+/// differences between configurations are not blurred by different starts.
+pub fn run_seed(base: u64, run: u64) -> u64 {
+    base ^ splitmix64(run)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rand_xoshiro::rand_core::Rng;
 
     #[test]
-    fn splitmix64_matches_the_reference_first_output() {
-        // First output of the reference SplitMix64 seeded with 0.
+    fn seeds_depend_on_base_and_index_only() {
+        let a = run_seed(7, 3);
+        assert_eq!(a, run_seed(7, 3));
+        assert_ne!(a, run_seed(7, 4));
+        assert_ne!(a, run_seed(8, 3));
+        // The kernel's SplitMix64 is the reference one (first output from 0),
+        // as this tool's own copy was: the run seeds did not change with it.
         assert_eq!(splitmix64(0), 0xE220_A839_7B1D_CDAF);
-    }
-
-    #[test]
-    fn streams_depend_on_base_and_index_only() {
-        let a = run_rng(7, 3).next_u64();
-        assert_eq!(a, run_rng(7, 3).next_u64());
-        assert_ne!(a, run_rng(7, 4).next_u64());
-        assert_ne!(a, run_rng(8, 3).next_u64());
     }
 }

@@ -2,7 +2,9 @@
 //! firmware for QEMU's `lm3s6965evb`.
 //!
 //! It runs [`hrla_embedded::run`] in f32 and/or f64 (cargo features `f32`,
-//! `f64`), prints the result lines of [`hrla_embedded::report`] through
+//! `f64`) over 16 chains kept in a `static` (an `hrla::heapless::Vec`, so
+//! in `.bss`: their RAM is known at link time and off the stack), prints
+//! the result lines of [`hrla_embedded::report`] through
 //! semihosting (the host prints the same lines; `scripts/test-firmware.sh`
 //! compares them byte for byte), then `#` diagnostic lines, and exits
 //! through semihosting with status 0. A panic exits non-zero
@@ -31,7 +33,8 @@ use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m_rt::{entry, exception};
 use cortex_m_semihosting::{debug, hio};
 use hrla::Float;
-use hrla_embedded::Sink;
+use hrla::heapless::Vec;
+use hrla_embedded::{DemoChain, N, Sink};
 use panic_semihosting as _;
 
 /// Semihosting stdout as a byte sink.
@@ -122,24 +125,28 @@ fn stack_peak() -> u64 {
     (top - p) as u64
 }
 
-/// Runs the example in `F`, writes its result lines, its tick count and the
-/// instructions these ticks stand for under `-icount shift=0`.
-fn run_one<F: Float>(host: &mut Host, calibration: u64) {
+/// Runs the example in `F` over the chains in `storage` (filled to its
+/// capacity, [`N`], with empty chains first), writes its result lines, its
+/// tick count and the instructions these ticks stand for under
+/// `-icount shift=0`.
+fn run_one<F: Float>(host: &mut Host, calibration: u64, storage: &mut Vec<DemoChain<F>, N>) {
     let (name, _) = hrla_embedded::float_name::<F>();
+    // One chain at a time: no array of chains is ever built on the stack.
+    while storage.push(DemoChain::default()).is_ok() {}
     let t0 = ticks();
-    let result = hrla_embedded::run::<F>(hrla_embedded::SEED, hrla_embedded::STEPS);
+    let result = hrla_embedded::run::<F>(storage, hrla_embedded::SEED, hrla_embedded::STEPS);
     let t1 = ticks();
-    let Ok((opt, report)) = result else {
+    let Ok((opt, _)) = result else {
         host.write(name);
         host.write(b" error\n");
         fail();
     };
-    hrla_embedded::report(&opt, &report, host);
+    hrla_embedded::report(&opt, host);
     #[cfg(feature = "fmt")]
     {
         use core::fmt::Write;
         // Only here to measure what float formatting costs in flash.
-        let b = &report.best;
+        let b = opt.best();
         let _ = writeln!(host.0, "# fmt best {:?} at {:?}", b.value, b.x);
     }
     let mut label = [0u8; 16];
@@ -152,6 +159,14 @@ fn run_one<F: Float>(host: &mut Host, calibration: u64) {
 
 #[entry]
 fn main() -> ! {
+    // The chains, in `.bss`: cortex-m-rt hands `main` a `&'static mut` to
+    // each `static mut` declared here (safe: `main` runs once). Empty
+    // `heapless::Vec`s are const, so nothing is built at start-up.
+    #[cfg(feature = "f32")]
+    static mut CHAINS_F32: Vec<DemoChain<f32>, N> = Vec::new();
+    #[cfg(feature = "f64")]
+    static mut CHAINS_F64: Vec<DemoChain<f64>, N> = Vec::new();
+
     let Some(mut cp) = cortex_m::Peripherals::take() else {
         fail();
     };
@@ -175,9 +190,9 @@ fn main() -> ! {
     host.diagnostic(b"calibration", calibration);
 
     #[cfg(feature = "f32")]
-    run_one::<f32>(&mut host, calibration);
+    run_one::<f32>(&mut host, calibration, CHAINS_F32);
     #[cfg(feature = "f64")]
-    run_one::<f64>(&mut host, calibration);
+    run_one::<f64>(&mut host, calibration, CHAINS_F64);
 
     host.diagnostic(b"stack.peak", stack_peak());
     host.diagnostic(b"stack.size", {

@@ -290,8 +290,10 @@ fn seeds() {
     fn one<F: Float>() {
         let mut vals: Vec<f64> = (0..64)
             .map(|seed| {
-                let (_, report) = hrla_embedded::run::<F>(seed, STEPS).expect("valid setting");
-                let x = report.best.x.map(Float::to_f64);
+                let mut chains = hrla_embedded::chains::<F>();
+                let (opt, _) =
+                    hrla_embedded::run::<F>(&mut chains, seed, STEPS).expect("valid setting");
+                let x = opt.best().x.map(Float::to_f64);
                 Rastrigin.value(&x)
             })
             .collect();
@@ -323,8 +325,9 @@ fn speed() {
     fn one<F: Float>() {
         let mut times: Vec<f64> = (0..101)
             .map(|_| {
+                let mut chains = hrla_embedded::chains::<F>();
                 let t = Instant::now();
-                let r = hrla_embedded::run::<F>(black_box(SEED), black_box(STEPS));
+                let r = hrla_embedded::run::<F>(&mut chains, black_box(SEED), black_box(STEPS));
                 black_box(r.expect("valid setting"));
                 t.elapsed().as_secs_f64()
             })

@@ -5,8 +5,12 @@
 //!
 //! [`run`] performs Algorithm 1 on 2-D Rastrigin with HRLA, N = 16 chains,
 //! the paper's parameters (`a = 4`, `b = 10`, `alpha = beta = 1`,
-//! `h = 0.01`), starting from `N(3·1, 10 I)`, for [`STEPS`] steps with a
-//! `Xoshiro128PlusPlus` seeded by [`SEED`]. [`report`] writes its result as
+//! `h = 0.01`), starting from `N(3·1, 10 I)`, for [`STEPS`] steps, each
+//! chain drawing from its own `Xoshiro128PlusPlus`, seeded from [`SEED`]
+//! and its index (`hrla::chain_seed`). The chains live in storage the caller
+//! owns, without allocation: [`chains`] makes an array of them (on the
+//! stack, as the host and wasm do), and the firmware keeps them in a
+//! `static` `hrla::heapless::Vec`. [`report`] writes its result as
 //! hexadecimal IEEE bit patterns through a byte [`Sink`], with a formatter
 //! written here rather than `core::fmt`: formatting floats with `core::fmt`
 //! costs kilobytes of flash (measured in `docs/EMBEDDED.md`), and bit
@@ -32,9 +36,8 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
-use hrla::{Error, Float, Gaussian, Hrla, Optimizer, Rastrigin, Report};
+use hrla::{Builder, Chain, Error, Float, Gaussian, Hrla, Optimizer, Rastrigin, Report, Stop};
 use rand_xoshiro::Xoshiro128PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
 
 /// The dimension of the Rastrigin potential.
 pub const D: usize = 2;
@@ -42,11 +45,24 @@ pub const D: usize = 2;
 pub const N: usize = 16;
 /// The number of HRLA steps.
 pub const STEPS: u64 = 2_000;
-/// The seed of the random number generator.
+/// The seed of the run: chain `c` draws from
+/// `Xoshiro128PlusPlus::seed_from_u64(hrla::chain_seed(SEED, c))`.
 pub const SEED: u64 = 2025;
 
-/// The optimiser the example runs.
-pub type Demo<F> = Optimizer<F, Rastrigin, Hrla<F>, F, D, N>;
+/// One chain of the example: 2-D, with a 32-bit generator (the f32
+/// sampler's `next_u64` for a pair of normals is two `next_u32` there).
+pub type DemoChain<F> = Chain<F, D, Xoshiro128PlusPlus>;
+
+/// The optimiser the example runs, over chains it borrows from the caller
+/// (it holds no array of chains itself).
+pub type Demo<'a, F> =
+    Optimizer<F, Rastrigin, Hrla<F>, F, &'a mut [DemoChain<F>], D, Xoshiro128PlusPlus>;
+
+/// [`N`] empty chains in an array, to be filled by [`run`]: storage without
+/// allocation, wherever the caller puts it.
+pub fn chains<F: Float>() -> [DemoChain<F>; N] {
+    core::array::from_fn(|_| Chain::default())
+}
 
 /// Where [`report`] writes its lines: semihosting on the firmware, stdout on
 /// the host.
@@ -55,23 +71,31 @@ pub trait Sink {
     fn write(&mut self, bytes: &[u8]);
 }
 
-/// Builds the optimiser for `seed` and runs `steps` steps of Algorithm 1.
+/// Builds the optimiser over `chains` (the example uses [`N`] of them; their
+/// contents are overwritten) for `seed` and runs `steps` steps of
+/// Algorithm 1.
 ///
 /// Generic over the float type so that the f32 and f64 runs are the same
 /// code; the seed is a parameter so that tests can try several.
-pub fn run<F: Float>(seed: u64, steps: u64) -> Result<(Demo<F>, Report<F, D>), Error> {
-    let mut rng = Xoshiro128PlusPlus::seed_from_u64(seed);
+pub fn run<F: Float>(
+    chains: &mut [DemoChain<F>],
+    seed: u64,
+    steps: u64,
+) -> Result<(Demo<'_, F>, Report<F>), Error> {
     let sampler = Hrla::paper(F::from_f64(0.01))?;
-    let mut start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10.0).sqrt())?;
+    let start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10.0).sqrt())?;
     let a = F::from_f64(4.0);
-    let mut opt: Demo<F> = Optimizer::new(Rastrigin, sampler, a, N, &mut start, &mut rng)?;
-    let report = opt.run(steps, &mut rng)?;
+    let mut opt = Builder::new(Rastrigin, sampler, a, start)
+        .seed(seed)
+        .stop(Stop::new().steps(steps))
+        .build(chains)?;
+    let report = opt.run()?;
     Ok((opt, report))
 }
 
 /// 64-bit FNV-1a of the final chain states (see the crate docs for the
 /// exact byte sequence).
-pub fn checksum<F: Float>(opt: &Demo<F>) -> u64 {
+pub fn checksum<F: Float>(opt: &Demo<'_, F>) -> u64 {
     const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
     const PRIME: u64 = 0x0000_0100_0000_01b3;
     let mut h = OFFSET;
@@ -131,7 +155,7 @@ pub fn float_name<F: Float>() -> (&'static [u8], usize) {
 }
 
 /// Writes the four lines of the run (see the crate docs) to `out`.
-pub fn report<F: Float>(opt: &Demo<F>, report: &Report<F, D>, out: &mut impl Sink) {
+pub fn report<F: Float>(opt: &Demo<'_, F>, out: &mut impl Sink) {
     let (name, digits) = float_name::<F>();
     let mut field = |label: &[u8], values: &[(u64, usize)]| {
         out.write(name);
@@ -144,7 +168,7 @@ pub fn report<F: Float>(opt: &Demo<F>, report: &Report<F, D>, out: &mut impl Sin
         }
         out.write(b"\n");
     };
-    let best = &report.best;
+    let best = opt.best();
     field(b"best.value", &[(best.value.to_bits_u64(), digits)]);
     field(
         b"best.x",
@@ -157,11 +181,13 @@ pub fn report<F: Float>(opt: &Demo<F>, report: &Report<F, D>, out: &mut impl Sin
     field(b"chains.fnv1a", &[(checksum(opt), 16)]);
 }
 
-/// Runs the example at [`SEED`] for [`STEPS`] steps and writes its report;
-/// an error (impossible with these constants) is written as a line.
+/// Runs the example at [`SEED`] for [`STEPS`] steps, its [`N`] chains in
+/// an array on the stack, and writes its report; an error (impossible with
+/// these constants) is written as a line.
 pub fn run_and_report<F: Float>(out: &mut impl Sink) {
-    match run::<F>(SEED, STEPS) {
-        Ok((opt, rep)) => report(&opt, &rep, out),
+    let mut chains = chains::<F>();
+    match run::<F>(&mut chains, SEED, STEPS) {
+        Ok((opt, _)) => report(&opt, out),
         Err(_) => {
             let (name, _) = float_name::<F>();
             out.write(name);

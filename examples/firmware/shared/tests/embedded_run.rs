@@ -1,20 +1,25 @@
 //! The firmware's computation on the host, in whichever build this is (the
 //! test script runs these with and without the `micromath` feature).
 
-use hrla::{Float, Hrla, Kernel, Potential, Rastrigin, Sampler};
-use hrla_embedded::{N, STEPS, checksum, run};
+use hrla::{Float, Hrla, Kernel, Potential, Rastrigin, Sampler, Termination};
+use hrla_embedded::{N, STEPS, Sink, chains, checksum, run};
 
 /// Seeds 0..64 in the firmware's setting: the best point, re-evaluated in
 /// f64 so that an approximate `U` cannot flatter it, is within 0.01 of the
-/// global minimum for at least 60 seeds (observed: 63 or 64, see
-/// docs/EMBEDDED.md; a miss is a chain set stuck near a local minimum at an
-/// integer point, U ≈ 1).
+/// global minimum for at least 60 seeds (observed with the per-chain
+/// streams: 64 in f32 and f64, with and without micromath; with the single
+/// stream of earlier kernels, 63 or 64: see docs/EMBEDDED.md. A miss is a
+/// chain set stuck near a local minimum at an integer point, U ≈ 1).
 fn finds_the_minimum<F: Float>() {
     let mut good = 0;
     for seed in 0..64 {
-        let (opt, report) = run::<F>(seed, STEPS).expect("valid setting");
+        let mut storage = chains::<F>();
+        let (opt, report) = run::<F>(&mut storage, seed, STEPS).expect("valid setting");
         assert_eq!(opt.chains().len(), N);
-        let x = report.best.x.map(Float::to_f64);
+        assert_eq!(report.termination, Termination::Steps);
+        assert_eq!(report.iterations, STEPS);
+        assert_eq!(report.value, opt.best().value);
+        let x = opt.best().x.map(Float::to_f64);
         let u = Rastrigin.value(&x);
         assert!(u < 1.5, "seed {seed}: U(best) = {u}");
         if u < 0.01 {
@@ -36,11 +41,72 @@ fn f64_run_finds_the_minimum() {
 
 #[test]
 fn a_run_is_a_function_of_its_seed() {
-    let (a, _) = run::<f32>(3, 200).expect("valid setting");
-    let (b, _) = run::<f32>(3, 200).expect("valid setting");
-    let (c, _) = run::<f32>(4, 200).expect("valid setting");
+    let (mut sa, mut sb, mut sc) = (chains::<f32>(), chains::<f32>(), chains::<f32>());
+    let (a, _) = run::<f32>(&mut sa, 3, 200).expect("valid setting");
+    let (b, _) = run::<f32>(&mut sb, 3, 200).expect("valid setting");
+    let (c, _) = run::<f32>(&mut sc, 4, 200).expect("valid setting");
     assert_eq!(checksum(&a), checksum(&b));
     assert_ne!(checksum(&a), checksum(&c));
+}
+
+/// Each chain has its own stream (`hrla::chain_seed(seed, c)`): chain `c`
+/// of the firmware's 16 is the same in a run of fewer chains, and storage
+/// that held another run is overwritten, not continued.
+fn chain_streams_are_independent<F: Float>() {
+    let mut all = chains::<F>();
+    let mut few = chains::<F>();
+    // A different run first, so that the storage is dirty.
+    run::<F>(&mut few[..5], 99, 50).expect("valid setting");
+    let (whole, _) = run::<F>(&mut all, 7, 300).expect("valid setting");
+    let (part, _) = run::<F>(&mut few[..5], 7, 300).expect("valid setting");
+    assert_eq!(whole.chains()[..5], part.chains()[..]);
+}
+
+#[test]
+fn f32_chain_streams_are_independent() {
+    chain_streams_are_independent::<f32>();
+}
+
+#[test]
+fn f64_chain_streams_are_independent() {
+    chain_streams_are_independent::<f64>();
+}
+
+struct Lines(Vec<u8>);
+
+impl Sink for Lines {
+    fn write(&mut self, bytes: &[u8]) {
+        self.0.extend_from_slice(bytes);
+    }
+}
+
+/// Golden values of the per-chain streams: the report of the firmware's run
+/// (`SEED`, `STEPS`), as docs/EMBEDDED.md quotes it. Any change to the
+/// kernel's random streams, normals or arithmetic changes them (and then
+/// the firmware, the host and wasm must still agree with each other:
+/// `scripts/test-firmware.sh` and `web/tests/embedded.test.mjs`). With
+/// micromath only the f32 checksum differs: the best point is the same.
+#[test]
+fn report_matches_the_docs() {
+    let mut out = Lines(Vec::new());
+    hrla_embedded::run_and_report::<f32>(&mut out);
+    hrla_embedded::run_and_report::<f64>(&mut out);
+    let f32_checksum = if cfg!(feature = "micromath") {
+        "4787aa7661fdc47e"
+    } else {
+        "63cb662c9c1531aa"
+    };
+    let expected = format!(
+        "f32 best.value 37dcbda6\n\
+         f32 best.x ba8aeb80 39c7fb00\n\
+         f32 best.iteration 00000000000004f8\n\
+         f32 chains.fnv1a {f32_checksum}\n\
+         f64 best.value 3f4b288035776ded\n\
+         f64 best.x 3f77a5f7da8850b0 bf65193a977c5c20\n\
+         f64 best.iteration 000000000000057f\n\
+         f64 chains.fnv1a bc4c54c02217ecdd\n"
+    );
+    assert_eq!(String::from_utf8(out.0).unwrap(), expected);
 }
 
 /// The OU step's coefficients never go through micromath: their f32 bits
@@ -98,13 +164,20 @@ fn rastrigin_does_not_depend_on_micromath() {
     assert_eq!(h, 0xcf3c_0210_5cc2_0167);
 }
 
-/// The optimiser's size, quoted in docs/EMBEDDED.md to explain the
-/// firmware's peak stack (it lives on the stack there).
+/// The sizes quoted in docs/EMBEDDED.md to explain the firmware's memory:
+/// its 16 chains (in a `static` there, so in static RAM) and the optimiser
+/// that borrows them (on the stack).
 #[test]
-fn optimiser_sizes_match_the_docs() {
-    let f32_size = std::mem::size_of::<hrla_embedded::Demo<f32>>();
-    let f64_size = std::mem::size_of::<hrla_embedded::Demo<f64>>();
-    println!("Demo<f32>: {f32_size} bytes; Demo<f64>: {f64_size} bytes");
-    assert_eq!(f32_size, 1112);
-    assert_eq!(f64_size, 1904);
+fn sizes_match_the_docs() {
+    use hrla_embedded::{Demo, DemoChain};
+    use std::mem::size_of;
+    let chain = (size_of::<DemoChain<f32>>(), size_of::<DemoChain<f64>>());
+    let demo = (size_of::<Demo<'_, f32>>(), size_of::<Demo<'_, f64>>());
+    println!(
+        "DemoChain<f32>: {} bytes, DemoChain<f64>: {}",
+        chain.0, chain.1
+    );
+    println!("Demo<f32>: {} bytes, Demo<f64>: {}", demo.0, demo.1);
+    assert_eq!(chain, (72, 112));
+    assert_eq!(demo, (320, 472));
 }

@@ -1,0 +1,376 @@
+//! The optimiser: chains stepped by a sampler's kernel at the schedule's
+//! inverse temperature, the running best, and the stopping rules.
+
+use core::marker::PhantomData;
+use core::ops::ControlFlow;
+
+use rand_core::Rng;
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+use super::chain::{Best, Chain};
+use super::report::{Progress, Report};
+use super::stop::{Stop, Termination};
+use crate::error::Error;
+use crate::float::Float;
+use crate::potential::Potential;
+use crate::sampler::{Kernel, Sampler};
+use crate::schedule::Schedule;
+
+/// Algorithm 1 of the paper with running best: independent chains of a
+/// [`Sampler`] on a [`Potential`], at the inverse temperatures of a
+/// [`Schedule`], in chain storage `St` that the caller owns (any
+/// `AsMut<[Chain]>`: an array, a slice, a `heapless::Vec`, a `Vec`).
+/// Built by [`Builder`](crate::Builder).
+///
+/// Iterate `k` of a chain is its state after `k` steps; the step from `k`
+/// to `k + 1` runs at `a_k`. The running best (per chain and global) is the
+/// minimum of `U` over the iterates `k = 0, s, 2s, ...` of the stride `s`
+/// (default 1); it includes the initial points: they were evaluated, and an
+/// optimiser never returns worse than its start.
+///
+/// Every chain draws from its own generator, so a run is a pure function of
+/// the seed, whatever mix of [`step`](Optimizer::step) and
+/// [`run`](Optimizer::run) drives it, and chain `c` is the same in any run
+/// of the same seed.
+#[derive(Clone, Debug)]
+pub struct Optimizer<F: Float, P, S: Sampler<F>, C, St, const D: usize, R = Xoshiro256PlusPlus> {
+    potential: P,
+    sampler: S,
+    kernel: S::Kernel,
+    schedule: C,
+    chains: St,
+    best: usize,
+    iteration: u64,
+    evaluations: u64,
+    stride: u64,
+    stop: Stop<F>,
+    diverged: usize,
+    stall_value: F,
+    stall_since: u64,
+    /// The error that ended the run, returned again by every later step:
+    /// a failed run stays failed.
+    failed: Option<Error>,
+    rng: PhantomData<fn() -> R>,
+}
+
+/// What a step found out.
+enum Stepped {
+    Improved,
+    Unchanged,
+}
+
+impl<F, P, S, C, St, const D: usize, R> Optimizer<F, P, S, C, St, D, R>
+where
+    F: Float,
+    P: Potential<F, D>,
+    S: Sampler<F>,
+    C: Schedule<F>,
+    St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
+    R: Rng,
+{
+    /// The optimiser over chains the builder has initialised, with `best`
+    /// the index of the chain with the lowest initial value.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn assemble(
+        potential: P,
+        sampler: S,
+        kernel: S::Kernel,
+        schedule: C,
+        chains: St,
+        best: usize,
+        stride: u64,
+        stop: Stop<F>,
+    ) -> Self {
+        let evaluations = chains.as_ref().len() as u64;
+        let stall_value = chains.as_ref()[best].best.value;
+        Self {
+            potential,
+            sampler,
+            kernel,
+            schedule,
+            chains,
+            best,
+            iteration: 0,
+            evaluations,
+            stride,
+            stop,
+            diverged: 0,
+            stall_value,
+            stall_since: 0,
+            failed: None,
+            rng: PhantomData,
+        }
+    }
+
+    /// Advances every live chain by one step, then evaluates `U` and `∇U` at
+    /// the new points and updates the running bests. Stopping rules are
+    /// not consulted: that is [`run`](Optimizer::run)'s job.
+    ///
+    /// Errors: the sampler's, if it refuses the schedule's `a_k` (the state
+    /// is then unchanged); [`Error::UnboundedBelow`] if a chain's potential
+    /// fell to `-inf` or below `-sqrt(F::MAX)`; [`Error::AllDiverged`] once
+    /// every chain has diverged. After either, every later call returns
+    /// the same error: a failed run never turns into a report.
+    pub fn step(&mut self) -> Result<(), Error> {
+        self.advance().map(drop)
+    }
+
+    fn advance(&mut self) -> Result<Stepped, Error> {
+        if let Some(e) = self.failed {
+            return Err(e);
+        }
+        let result = self.advance_live();
+        if let Err(e @ (Error::UnboundedBelow { .. } | Error::AllDiverged { .. })) = result {
+            self.failed = Some(e);
+        }
+        result
+    }
+
+    fn advance_live(&mut self) -> Result<Stepped, Error> {
+        let n = self.chains.as_ref().len();
+        let a = self.schedule.inverse_temperature(self.iteration);
+        if a != self.kernel.inverse_temperature() {
+            self.kernel = self.sampler.at(a)?;
+        }
+        let k = self.iteration + 1;
+        let record = k % self.stride == 0;
+        let floor = -(F::MAX.sqrt());
+        let mut best = self.best;
+        let before = self.chains.as_ref()[best].best.value;
+        let mut best_value = before;
+        let mut unbounded = None;
+        let mut evaluated = 0;
+        for (c, chain) in self.chains.as_mut().iter_mut().enumerate() {
+            if chain.diverged {
+                continue;
+            }
+            self.kernel
+                .step(&mut chain.x, &mut chain.y, &chain.grad, &mut chain.rng);
+            let value = self.potential.value_and_gradient(&chain.x, &mut chain.grad);
+            evaluated += 1;
+            chain.value = value;
+            if value < floor {
+                // Frozen like a diverged chain, so that its value never
+                // becomes the best.
+                unbounded.get_or_insert((c, value));
+                chain.diverged = true;
+                self.diverged += 1;
+                continue;
+            }
+            if !(value.is_finite() && all_finite(&chain.grad) && all_finite(&chain.x)) {
+                chain.diverged = true;
+                self.diverged += 1;
+                continue;
+            }
+            if record && value < chain.best.value {
+                // Field by field: a whole `Best` would be built on the
+                // stack first, `D` floats of it.
+                chain.best.x = chain.x;
+                chain.best.value = value;
+                chain.best.iteration = k;
+                if value < best_value {
+                    best = c;
+                    best_value = value;
+                }
+            }
+        }
+        self.evaluations += evaluated;
+        self.iteration = k;
+        let improved = best_value < before;
+        self.best = best;
+        if let Some((chain, value)) = unbounded {
+            return Err(Error::UnboundedBelow {
+                chain,
+                value: value.to_f64(),
+            });
+        }
+        if self.diverged == n {
+            return Err(Error::AllDiverged { chains: n });
+        }
+        if let Some((_, tolerance)) = self.stop.stall {
+            if best_value < self.stall_value - tolerance {
+                self.stall_value = best_value;
+                self.stall_since = k;
+            }
+        }
+        Ok(if improved {
+            Stepped::Improved
+        } else {
+            Stepped::Unchanged
+        })
+    }
+
+    /// The first stopping rule that holds now, if any.
+    pub fn termination(&self) -> Option<Termination> {
+        let stop = &self.stop;
+        let live = (self.chains.as_ref().len() - self.diverged) as u64;
+        if stop.target.is_some_and(|t| self.best().value <= t) {
+            Some(Termination::Target)
+        } else if stop.steps.is_some_and(|k| self.iteration >= k) {
+            Some(Termination::Steps)
+        } else if stop
+            .evaluations
+            .is_some_and(|b| self.evaluations.saturating_add(live) > b)
+        {
+            Some(Termination::Evaluations)
+        } else if stop
+            .stall
+            .is_some_and(|(window, _)| self.iteration - self.stall_since >= window)
+        {
+            Some(Termination::Stalled)
+        } else {
+            None
+        }
+    }
+
+    /// Steps until a stopping rule holds, and reports why.
+    ///
+    /// Errors: [`Error::NoStoppingRule`] when the run has none (no
+    /// [`Stop`] rule and a schedule without a length), and those of
+    /// [`step`](Optimizer::step).
+    pub fn run(&mut self) -> Result<Report<F>, Error> {
+        if self.stop.is_empty() {
+            return Err(Error::NoStoppingRule);
+        }
+        self.run_with(0, |_| ControlFlow::Continue(()))
+    }
+
+    /// [`run`](Optimizer::run) with an observer, called after every
+    /// `every`-th step (never when `every = 0`) and after every step that
+    /// improves the running best; returning `ControlFlow::Break(())` ends
+    /// the run with [`Termination::Observer`]. Without a stopping rule,
+    /// only the observer ends the run.
+    ///
+    /// ```
+    /// use core::ops::ControlFlow;
+    /// use hrla::{Builder, Chain, Gaussian, Hrla, Rastrigin, Stop};
+    ///
+    /// let mut chains: Vec<Chain<f64, 2>> = (0..8).map(|_| Chain::new()).collect();
+    /// let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01)?, 4.0, Gaussian::new([3.0; 2], 1.0)?)
+    ///     .stop(Stop::new().steps(5_000))
+    ///     .build(&mut chains)?;
+    /// let mut improvements = 0;
+    /// let report = opt.run_with(1_000, |p| {
+    ///     improvements += usize::from(p.improved);
+    ///     // A time budget, a progress bar or a plot would go here.
+    ///     if p.best.value < 1e-3 { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
+    /// })?;
+    /// println!("{report} ({improvements} improvements)");
+    /// # Ok::<(), hrla::Error>(())
+    /// ```
+    pub fn run_with<O>(&mut self, every: u64, mut observer: O) -> Result<Report<F>, Error>
+    where
+        O: FnMut(&Progress<'_, F, D>) -> ControlFlow<()>,
+    {
+        loop {
+            if let Some(termination) = self.termination() {
+                return Ok(self.report(termination));
+            }
+            let stepped = self.advance()?;
+            let improved = matches!(stepped, Stepped::Improved);
+            if improved || (every > 0 && self.iteration % every == 0) {
+                let progress = Progress {
+                    iteration: self.iteration,
+                    evaluations: self.evaluations,
+                    best: self.best(),
+                    improved,
+                    inverse_temperature: self.kernel.inverse_temperature(),
+                    diverged_chains: self.diverged,
+                };
+                if observer(&progress).is_break() {
+                    return Ok(self.report(Termination::Observer));
+                }
+            }
+        }
+    }
+
+    fn report(&self, termination: Termination) -> Report<F> {
+        let best = self.best();
+        Report {
+            value: best.value,
+            chain: self.best,
+            found_at: best.iteration,
+            iterations: self.iteration,
+            evaluations: self.evaluations,
+            diverged_chains: self.diverged,
+            chains: self.chains.as_ref().len(),
+            termination,
+        }
+    }
+
+    /// The global running best.
+    pub fn best(&self) -> &Best<F, D> {
+        &self.chains.as_ref()[self.best].best
+    }
+
+    /// The index and current value of the live chain with the lowest `U(x_k)`
+    /// (the paper's "best chain at iterate k", not running); `None` when
+    /// every chain has diverged.
+    pub fn current_best(&self) -> Option<(usize, F)> {
+        let mut best: Option<(usize, F)> = None;
+        for (i, c) in self.chains.as_ref().iter().enumerate() {
+            if !c.diverged && best.is_none_or(|(_, v)| c.value < v) {
+                best = Some((i, c.value));
+            }
+        }
+        best
+    }
+
+    /// The chains, in order.
+    pub fn chains(&self) -> &[Chain<F, D, R>] {
+        self.chains.as_ref()
+    }
+
+    /// Gives the chain storage back.
+    pub fn into_chains(self) -> St {
+        self.chains
+    }
+
+    /// Steps done so far (the current iterate index `k`).
+    pub fn iteration(&self) -> u64 {
+        self.iteration
+    }
+
+    /// Potential-and-gradient evaluations so far.
+    pub fn evaluations(&self) -> u64 {
+        self.evaluations
+    }
+
+    /// Chains diverged so far.
+    pub fn diverged_chains(&self) -> usize {
+        self.diverged
+    }
+
+    /// The potential.
+    pub fn potential(&self) -> &P {
+        &self.potential
+    }
+
+    /// The sampler.
+    pub fn sampler(&self) -> &S {
+        &self.sampler
+    }
+
+    /// The sampler's kernel at the inverse temperature of the last step
+    /// (`a_0` before the first).
+    pub fn kernel(&self) -> &S::Kernel {
+        &self.kernel
+    }
+
+    /// The schedule.
+    pub fn schedule(&self) -> &C {
+        &self.schedule
+    }
+
+    /// The stopping rules, with the step budget a schedule's length gave.
+    pub fn stop(&self) -> &Stop<F> {
+        &self.stop
+    }
+}
+
+/// Without short-circuit, so that the checks vectorise: this runs on every
+/// chain at every step, and a chain is almost always finite.
+#[inline(always)]
+pub(crate) fn all_finite<F: Float, const D: usize>(v: &[F; D]) -> bool {
+    v.iter().fold(true, |ok, x| ok & x.is_finite())
+}
