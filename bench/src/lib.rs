@@ -1,6 +1,8 @@
 //! Workloads shared by the criterion benchmarks (`benches/kernel.rs`) and
 //! the peer comparison (`peers/`): the exact loops whose time is reported.
 
+pub mod problems;
+
 use hrla::rand_core::Rng;
 use hrla::{
     AnyKernel, AnySampler, Builder, Chain, Float, Gaussian, Kernel, Linear, Optimizer, Potential,

@@ -168,21 +168,25 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+mod domain;
 mod error;
 mod float;
 mod lanes;
 mod normal;
 mod optimizer;
+mod polish;
 mod potential;
 mod sampler;
 mod schedule;
 mod start;
 mod ziggurat_tables;
 
+pub use domain::{Domain, Interval, Unbounded};
 pub use error::Error;
 pub use float::Float;
 pub use normal::StandardNormal;
 pub use optimizer::*;
+pub use polish::{Lbfgs, PolishEnd, PolishSettings, Polished};
 pub use potential::*;
 pub use sampler::*;
 pub use schedule::{AnySchedule, Constant, FnSchedule, Geometric, Linear, Schedule};

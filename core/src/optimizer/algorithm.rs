@@ -10,8 +10,10 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use super::chain::{Best, Chain};
 use super::report::{Progress, Report};
 use super::stop::{Stop, Termination};
+use crate::domain::{Domain, Unbounded};
 use crate::error::Error;
 use crate::float::Float;
+use crate::polish::{Lbfgs, PolishEnd, PolishSettings, Polished};
 use crate::potential::Potential;
 use crate::sampler::{Kernel, Sampler};
 use crate::schedule::Schedule;
@@ -33,8 +35,18 @@ use crate::schedule::Schedule;
 /// [`run`](Optimizer::run) drives it, and chain `c` is the same in any run
 /// of the same seed.
 #[derive(Clone, Debug)]
-pub struct Optimizer<F: Float, P, S: Sampler<F>, C, St, const D: usize, R = Xoshiro256PlusPlus> {
+pub struct Optimizer<
+    F: Float,
+    P,
+    S: Sampler<F>,
+    C,
+    St,
+    const D: usize,
+    R = Xoshiro256PlusPlus,
+    B = Unbounded,
+> {
     potential: P,
+    domain: B,
     sampler: S,
     kernel: S::Kernel,
     schedule: C,
@@ -59,7 +71,7 @@ enum Stepped {
     Unchanged,
 }
 
-impl<F, P, S, C, St, const D: usize, R> Optimizer<F, P, S, C, St, D, R>
+impl<F, P, S, C, St, const D: usize, R, B> Optimizer<F, P, S, C, St, D, R, B>
 where
     F: Float,
     P: Potential<F, D>,
@@ -67,12 +79,14 @@ where
     C: Schedule<F>,
     St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
     R: Rng,
+    B: Domain<F, D>,
 {
     /// The optimiser over chains the builder has initialised, with `best`
     /// the index of the chain with the lowest initial value.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn assemble(
         potential: P,
+        domain: B,
         sampler: S,
         kernel: S::Kernel,
         schedule: C,
@@ -85,6 +99,7 @@ where
         let stall_value = chains.as_ref()[best].best.value;
         Self {
             potential,
+            domain,
             sampler,
             kernel,
             schedule,
@@ -146,6 +161,7 @@ where
             }
             self.kernel
                 .step(&mut chain.x, &mut chain.y, &chain.grad, &mut chain.rng);
+            self.domain.confine(&mut chain.x, &mut chain.y);
             let value = self.potential.value_and_gradient(&chain.x, &mut chain.grad);
             evaluated += 1;
             chain.value = value;
@@ -298,6 +314,88 @@ where
         }
     }
 
+    /// Polishes chain `chain`'s best point with L-BFGS ([`Lbfgs`]): the
+    /// point it polishes to replaces that best when it is lower (at the
+    /// current iteration), and so the global best when it is lowest. The
+    /// chain's state `(x, y)` is untouched, so sampling goes on as if no
+    /// polish had run. Its evaluations count in the run's, and it never
+    /// exceeds what remains of the evaluation budget (none left: a polish
+    /// of no evaluation that ends with [`PolishEnd::Budget`]).
+    ///
+    /// ```
+    /// use hrla::{Builder, Chain, Gaussian, Hrla, Lbfgs, PolishSettings, Rastrigin, Stop};
+    ///
+    /// let mut chains: Vec<Chain<f64, 10>> = (0..10).map(|_| Chain::new()).collect();
+    /// let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01)?, 4.0, Gaussian::new([3.0; 10], 3.0)?)
+    ///     .stop(Stop::new().evaluations(100_000))
+    ///     .build(&mut chains)?;
+    /// let sampled = opt.run()?;
+    /// let mut lbfgs: Lbfgs<f64, 10, 8> = Lbfgs::new();
+    /// let polished = opt.polish(opt.best_chain(), &mut lbfgs, PolishSettings::new(1_000))?;
+    /// assert!(polished.value <= sampled.value);
+    /// assert!(opt.evaluations() <= 100_000);
+    /// # Ok::<(), hrla::Error>(())
+    /// ```
+    ///
+    /// Errors: [`Error::Count`] for a chain index out of range, and those of
+    /// [`Lbfgs::minimize`].
+    pub fn polish<const M: usize>(
+        &mut self,
+        chain: usize,
+        lbfgs: &mut Lbfgs<F, D, M>,
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
+        let n = self.chains.as_ref().len();
+        let Some(start) = self.chains.as_ref().get(chain) else {
+            return Err(Error::Count {
+                name: "chain",
+                value: chain,
+                max: n - 1,
+            });
+        };
+        let left = self
+            .stop
+            .evaluations
+            .map_or(u64::MAX, |b| b.saturating_sub(self.evaluations));
+        let budget = settings.evaluations.min(left);
+        if budget == 0 {
+            return Ok(Polished {
+                value: start.best.value,
+                evaluations: 0,
+                iterations: 0,
+                end: PolishEnd::Budget,
+            });
+        }
+        let mut x = start.best.x;
+        let before = start.best.value;
+        let done = lbfgs.minimize_in(
+            &self.potential,
+            &self.domain,
+            &mut x,
+            PolishSettings {
+                evaluations: budget,
+                ..settings
+            },
+        )?;
+        self.evaluations += done.evaluations;
+        if done.value < before {
+            let k = self.iteration;
+            let target = &mut self.chains.as_mut()[chain].best;
+            target.x = x;
+            target.value = done.value;
+            target.iteration = k;
+            if done.value < self.best().value {
+                self.best = chain;
+            }
+        }
+        Ok(done)
+    }
+
+    /// The chain that holds the global running best.
+    pub fn best_chain(&self) -> usize {
+        self.best
+    }
+
     /// The global running best.
     pub fn best(&self) -> &Best<F, D> {
         &self.chains.as_ref()[self.best].best
@@ -344,6 +442,11 @@ where
     /// The potential.
     pub fn potential(&self) -> &P {
         &self.potential
+    }
+
+    /// The domain of the chains.
+    pub fn domain(&self) -> &B {
+        &self.domain
     }
 
     /// The sampler.

@@ -7,6 +7,7 @@ use super::algorithm::{Optimizer, all_finite};
 use super::chain::Chain;
 use super::stop::Stop;
 use super::stream::chain_seed;
+use crate::domain::{Domain, Unbounded};
 use crate::error::Error;
 use crate::float::Float;
 use crate::potential::Potential;
@@ -38,8 +39,9 @@ use crate::start::Start;
 /// # Ok::<(), hrla::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Builder<F, P, S, C, St> {
+pub struct Builder<F, P, S, C, St, B = Unbounded> {
     potential: P,
+    domain: B,
     sampler: S,
     schedule: C,
     start: St,
@@ -49,11 +51,12 @@ pub struct Builder<F, P, S, C, St> {
 }
 
 impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St> Builder<F, P, S, C, St> {
-    /// The required pieces; seed 0, stride 1, no stopping rule (a schedule
-    /// with a length still gives a step budget).
+    /// The required pieces; all of `R^D`, seed 0, stride 1, no stopping
+    /// rule (a schedule with a length still gives a step budget).
     pub fn new(potential: P, sampler: S, schedule: C, start: St) -> Self {
         Self {
             potential,
+            domain: Unbounded,
             sampler,
             schedule,
             start,
@@ -63,6 +66,24 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St> Builder<F, P, S, C, St> {
         }
     }
 
+    /// Confines the chains to a domain, such as a box
+    /// ([`Interval`](crate::Interval)): initial points and steps are
+    /// reflected into it, and the polish stays in it.
+    pub fn domain<B2>(self, domain: B2) -> Builder<F, P, S, C, St, B2> {
+        Builder {
+            potential: self.potential,
+            domain,
+            sampler: self.sampler,
+            schedule: self.schedule,
+            start: self.start,
+            seed: self.seed,
+            stride: self.stride,
+            stop: self.stop,
+        }
+    }
+}
+
+impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, B> {
     /// The run's seed: chain `c` draws from
     /// `R::seed_from_u64(chain_seed(seed, c))`.
     pub fn seed(mut self, seed: u64) -> Self {
@@ -93,12 +114,14 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St> Builder<F, P, S, C, St> {
     /// for a step budget that would cut the schedule short; the sampler's
     /// error if it refuses `a_0`; [`Error::NonFiniteStart`] if an initial
     /// point, its value or its gradient is not finite.
+    #[allow(clippy::type_complexity)] // the optimiser's own parameters, all inferred
     pub fn build<Store, const D: usize, R>(
         mut self,
         mut chains: Store,
-    ) -> Result<Optimizer<F, P, S, C, Store, D, R>, Error>
+    ) -> Result<Optimizer<F, P, S, C, Store, D, R, B>, Error>
     where
         P: Potential<F, D>,
+        B: Domain<F, D>,
         St: Start<F, D>,
         Store: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
         R: Rng + SeedableRng,
@@ -139,6 +162,7 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St> Builder<F, P, S, C, St> {
             chain.rng = R::seed_from_u64(chain_seed(self.seed, c as u64));
             self.start.initial_point(c, &mut chain.rng, &mut chain.x);
             chain.y = [F::ZERO; D];
+            self.domain.confine(&mut chain.x, &mut chain.y);
             let value = self.potential.value_and_gradient(&chain.x, &mut chain.grad);
             let what = if !all_finite(&chain.x) {
                 Some("position")
@@ -165,6 +189,7 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St> Builder<F, P, S, C, St> {
         }
         Ok(Optimizer::assemble(
             self.potential,
+            self.domain,
             self.sampler,
             kernel,
             self.schedule,

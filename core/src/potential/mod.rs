@@ -15,7 +15,7 @@ mod levy;
 mod quadratic;
 mod rastrigin;
 mod styblinski_tang;
-mod traits;
+pub(crate) mod traits;
 
 pub use ackley::Ackley;
 pub use check::{GradientCheck, check_gradient};

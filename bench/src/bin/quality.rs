@@ -1,0 +1,263 @@
+//! The crate's side of the quality benchmark (`bench/quality/`): the best
+//! `U` among the first `B` evaluations of each strategy, per problem and
+//! seed, in the CSV format of `bench/quality/peers.py`.
+//!
+//! ```text
+//! cargo run --release -p hrla-bench --bin quality -- --out target/quality/hrla.csv
+//!     [--problems a,b] [--d 2,10] [--seeds 20] [--budgets 10000,125000] [--strategies s1,s2]
+//! ```
+//!
+//! Strategies: `hrla-paper` (the paper's settings), `hrla-paper-polish`
+//! (the same with 5% of the budget kept for an L-BFGS polish of the best
+//! point), `hrla-hop` (a candidate default, see [`hop`]; its constants can
+//! be varied through the environment variables `HOP_H`, `HOP_A`,
+//! `HOP_RATIO`, `HOP_ROUND`, `HOP_POLISH` while a default is being chosen).
+//! Every run is confined to the problem's box and starts uniform in it.
+
+use std::fmt::Write as _;
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+use hrla::{Builder, Chain, Error, Hrla, Interval, Lbfgs, Linear, PolishSettings, Potential, Stop};
+use hrla_bench::problems;
+
+/// One run's outcome, as the peers' CSV has it.
+struct Outcome {
+    best_gap: f64,
+    to_1e3: Option<u64>,
+    evaluations: u64,
+}
+
+/// The problem's box: the chains' domain, and a uniform start in it.
+fn boxed((lo, hi): (f64, f64)) -> Interval<f64> {
+    Interval::new(lo, hi).expect("a valid box")
+}
+
+/// The paper's sampler and schedule (h = 0.01, linear 0.1 -> 4, N = 250,
+/// K steps), with `polish` of the budget kept for an L-BFGS polish of the
+/// best point at the end.
+fn paper<const D: usize>(
+    p: &dyn Potential<f64, D>,
+    minimum: f64,
+    bounds: (f64, f64),
+    budget: u64,
+    seed: u64,
+    polish: f64,
+) -> Result<Outcome, Error> {
+    let n = 250u64.min(budget / 4);
+    let sampling = ((budget as f64) * (1.0 - polish)) as u64;
+    let k = (sampling / n).saturating_sub(1).max(1);
+    let mut chains: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
+    let mut opt = Builder::new(
+        p,
+        Hrla::paper(0.01)?,
+        Linear::new(0.1, 4.0, k)?,
+        boxed(bounds),
+    )
+    .domain(boxed(bounds))
+    .seed(seed)
+    .stop(Stop::new().steps(k).evaluations(budget))
+    .build(&mut chains)?;
+    let mut to_1e3 = (opt.best().value - minimum < 1e-3).then_some(n);
+    let run = opt.run_with(0, |pr| {
+        if to_1e3.is_none() && pr.best.value - minimum < 1e-3 {
+            to_1e3 = Some(pr.evaluations);
+        }
+        ControlFlow::Continue(())
+    });
+    match run {
+        Ok(_) | Err(Error::AllDiverged { .. }) => {}
+        Err(e) => return Err(e),
+    }
+    if polish > 0.0 && opt.evaluations() < budget {
+        let mut lbfgs: Lbfgs<f64, D, 8> = Lbfgs::new();
+        let before = opt.evaluations();
+        let chain = opt.best_chain();
+        let done = opt.polish(chain, &mut lbfgs, PolishSettings::new(budget - before))?;
+        if to_1e3.is_none() && done.value - minimum < 1e-3 {
+            // Within the polish: counted at its end (an upper bound).
+            to_1e3 = Some(opt.evaluations());
+        }
+    }
+    Ok(Outcome {
+        best_gap: opt.best().value - minimum,
+        to_1e3,
+        evaluations: opt.evaluations(),
+    })
+}
+
+/// A candidate default with no per-problem setting: the step size and the
+/// temperature from the problem's own scales, measured at the starts, and
+/// rounds of sampling each followed by an L-BFGS polish of every chain's
+/// best (a Langevin cousin of basin hopping).
+///
+/// - `h` such that the first step moves a chain by about `1e-3` of the box
+///   width along the median gradient: `h = 1e-3 w / median |∇U|`, clamped
+///   into the kernel's range;
+/// - `a` from the spread of `U` over the starts: `a_high = 20 / IQR(U)`
+///   (so that a typical difference of `U` between starts is 20 units of
+///   temperature at the end of a round), annealed from `a_high / 100`;
+/// - 16 chains, rounds of 500 steps, each chain's best polished with up to
+///   300 evaluations after every round.
+fn hop<const D: usize>(
+    p: &dyn Potential<f64, D>,
+    minimum: f64,
+    bounds: (f64, f64),
+    budget: u64,
+    seed: u64,
+) -> Result<Outcome, Error> {
+    let n = 16usize;
+    let width = bounds.1 - bounds.0;
+    // Scales from the starts (the optimiser's own initial points).
+    let mut probe: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
+    let start = Builder::new(p, Hrla::paper(0.01)?, 1.0, boxed(bounds))
+        .domain(boxed(bounds))
+        .seed(seed)
+        .build(&mut probe)?;
+    let mut u: Vec<f64> = start.chains().iter().map(|c| c.value()).collect();
+    let mut gnorm: Vec<f64> = start
+        .chains()
+        .iter()
+        .map(|c| c.gradient().iter().map(|g| g * g).sum::<f64>().sqrt())
+        .collect();
+    u.sort_by(f64::total_cmp);
+    gnorm.sort_by(f64::total_cmp);
+    let iqr = (u[3 * n / 4] - u[n / 4]).max(1e-12);
+    let g = gnorm[n / 2].max(1e-12);
+    let env = |k: &str, d: f64| {
+        std::env::var(k)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(d)
+    };
+    let h = (env("HOP_H", 1e-3) * width / g).clamp(1e-7, 1.0);
+    let a_high = (env("HOP_A", 20.0) / iqr).clamp(1e-4, 1e6);
+    let ratio = env("HOP_RATIO", 0.01);
+    let rounds_steps = env("HOP_ROUND", 500.0) as u64;
+    let polish_budget = env("HOP_POLISH", 300.0) as u64;
+    let mut chains: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
+    // The schedule repeats every round: a_k from a_high/100 to a_high.
+    let schedule = hrla::FnSchedule(move |k: u64| {
+        let t = (k % rounds_steps) as f64 / rounds_steps as f64;
+        a_high * ratio.powf(1.0 - t)
+    });
+    let mut opt = Builder::new(p, Hrla::paper(h)?, schedule, boxed(bounds))
+        .domain(boxed(bounds))
+        .seed(seed)
+        .stop(Stop::new().evaluations(budget))
+        .build(&mut chains)?;
+    let mut to_1e3 = (opt.best().value - minimum < 1e-3).then_some(n as u64);
+    let mut lbfgs: Lbfgs<f64, D, 8> = Lbfgs::new();
+    'rounds: loop {
+        for _ in 0..rounds_steps {
+            if opt.termination().is_some() {
+                break 'rounds;
+            }
+            match opt.step() {
+                Ok(()) => {}
+                Err(Error::AllDiverged { .. }) => break 'rounds,
+                Err(e) => return Err(e),
+            }
+            if to_1e3.is_none() && opt.best().value - minimum < 1e-3 {
+                to_1e3 = Some(opt.evaluations());
+            }
+        }
+        for c in 0..n {
+            if opt.chains()[c].is_diverged() {
+                continue;
+            }
+            let done = opt.polish(c, &mut lbfgs, PolishSettings::new(polish_budget))?;
+            if to_1e3.is_none() && opt.best().value - minimum < 1e-3 {
+                to_1e3 = Some(opt.evaluations());
+            }
+            if done.evaluations == 0 {
+                break 'rounds;
+            }
+        }
+    }
+    Ok(Outcome {
+        best_gap: opt.best().value - minimum,
+        to_1e3,
+        evaluations: opt.evaluations(),
+    })
+}
+
+fn list<T: std::str::FromStr>(args: &[String], flag: &str, default: &str) -> Vec<T> {
+    let v = args
+        .windows(2)
+        .find(|w| w[0] == flag)
+        .map_or(default.to_string(), |w| w[1].clone());
+    v.split(',')
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            s.parse()
+                .ok()
+                .unwrap_or_else(|| panic!("bad {flag} value {s}"))
+        })
+        .collect()
+}
+
+fn run_d<const D: usize>(args: &[String], out: &mut String) {
+    let problems: Vec<String> = list(args, "--problems", "");
+    let seeds: Vec<u64> = list(args, "--seeds", "20");
+    let budgets: Vec<u64> = list(args, "--budgets", "10000,125000");
+    let strategies: Vec<String> = list(args, "--strategies", "hrla-paper,hrla-paper-polish");
+    let keep = |name: &str| problems.is_empty() || problems.iter().any(|p| p == name);
+    problems::for_each::<D>(&keep, &mut |name, p, minimum, bounds| {
+        for strategy in &strategies {
+            for &budget in &budgets {
+                for seed in 0..seeds[0] {
+                    let t = Instant::now();
+                    let polish = if strategy.ends_with("polish") {
+                        0.05
+                    } else {
+                        0.0
+                    };
+                    let r = if strategy == "hrla-hop" {
+                        hop::<D>(p, minimum, bounds, budget, seed)
+                    } else {
+                        paper::<D>(p, minimum, bounds, budget, seed, polish)
+                    };
+                    let wall = t.elapsed().as_secs_f64();
+                    let (gap, to, evals) = match r {
+                        Ok(o) => (o.best_gap, o.to_1e3, o.evaluations),
+                        Err(e) => {
+                            eprintln!("{name} d={D} {strategy} B={budget} seed={seed}: {e}");
+                            (f64::INFINITY, None, 0)
+                        }
+                    };
+                    let to = to.map_or(String::new(), |v| v.to_string());
+                    writeln!(
+                        out,
+                        "{name},{D},{strategy},{budget},{seed},{gap:e},{to},{evals},{wall:.4}"
+                    )
+                    .unwrap();
+                }
+            }
+        }
+    });
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let path = args
+        .windows(2)
+        .find(|w| w[0] == "--out")
+        .map_or("target/quality/hrla.csv".to_string(), |w| w[1].clone());
+    let dims: Vec<usize> = list(&args, "--d", "2,10");
+    let mut out = String::from(
+        "problem,d,method,budget,seed,best_gap,evals_to_1e-3,evaluations,wall_seconds\n",
+    );
+    for d in dims {
+        match d {
+            2 => run_d::<2>(&args, &mut out),
+            10 => run_d::<10>(&args, &mut out),
+            _ => panic!("dimension {d} is not compiled in (2, 10)"),
+        }
+    }
+    if let Some(dir) = std::path::Path::new(&path).parent() {
+        std::fs::create_dir_all(dir).unwrap();
+    }
+    std::fs::write(&path, out).unwrap();
+    eprintln!("wrote {path}");
+}

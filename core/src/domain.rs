@@ -1,0 +1,227 @@
+//! Where the chains may go: all of `R^D`, or a box.
+//!
+//! A box keeps the sampler well defined by reflection: a step that leaves
+//! `[lo, hi]` in a coordinate is folded back into it, mirror-wise, and that
+//! coordinate's velocity changes sign (specular reflection, which leaves
+//! the restriction of the invariant law to the box unchanged for the
+//! dynamics' continuous-time limit). The polish projects onto the box
+//! instead (a point on a face is a valid minimiser there).
+
+use rand_core::Rng;
+
+use crate::error::{Error, finite};
+use crate::float::Float;
+use crate::start::Start;
+
+/// A domain for the chains.
+pub trait Domain<F: Float, const D: usize> {
+    /// Brings a position just moved by a step back into the domain,
+    /// adjusting the velocity to match.
+    fn confine(&self, x: &mut [F; D], y: &mut [F; D]);
+    /// The nearest point of the domain (for the polish's trial points).
+    fn project(&self, x: &mut [F; D]);
+    /// Zeroes the components of a search direction `d` that would leave
+    /// the domain at once from `x` (coordinates on a face, pointing out),
+    /// so that the polish searches along the faces it touches.
+    fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]);
+}
+
+/// All of `R^D`: no constraint (the default).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Unbounded;
+
+impl<F: Float, const D: usize> Domain<F, D> for Unbounded {
+    #[inline(always)]
+    fn confine(&self, _x: &mut [F; D], _y: &mut [F; D]) {}
+    #[inline(always)]
+    fn project(&self, _x: &mut [F; D]) {}
+    #[inline(always)]
+    fn feasible_direction(&self, _x: &[F; D], _d: &mut [F; D]) {}
+}
+
+/// A domain behind a reference is the same domain (for large boxes kept
+/// elsewhere).
+impl<F: Float, const D: usize, B: Domain<F, D> + ?Sized> Domain<F, D> for &B {
+    #[inline(always)]
+    fn confine(&self, x: &mut [F; D], y: &mut [F; D]) {
+        (**self).confine(x, y);
+    }
+    #[inline(always)]
+    fn project(&self, x: &mut [F; D]) {
+        (**self).project(x);
+    }
+    #[inline(always)]
+    fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]) {
+        (**self).feasible_direction(x, d);
+    }
+}
+
+/// The box `[lo, hi]^D`, the same interval in every coordinate; also a
+/// [`Start`]: uniform in the box, from each chain's own generator.
+///
+/// ```
+/// use hrla::{Builder, Chain, Interval, Hrla, Rastrigin, Stop};
+///
+/// let mut chains: Vec<Chain<f64, 10>> = (0..50).map(|_| Chain::new()).collect();
+/// let domain = Interval::new(-5.12, 5.12)?;
+/// let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01)?, 4.0, domain)
+///     .domain(domain)
+///     .stop(Stop::new().steps(1_000))
+///     .build(&mut chains)?;
+/// opt.run()?;
+/// assert!(opt.chains().iter().all(|c| c.x().iter().all(|v| v.abs() <= 5.12)));
+/// # Ok::<(), hrla::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interval<F> {
+    lo: F,
+    hi: F,
+}
+
+impl<F: Float> Interval<F> {
+    /// `lo < hi`, both finite.
+    pub fn new(lo: F, hi: F) -> Result<Self, Error> {
+        finite("lo", lo)?;
+        finite("hi", hi)?;
+        if !(hi - lo > F::ZERO && (hi - lo).is_finite()) {
+            return Err(Error::NotPositive {
+                name: "hi - lo",
+                value: (hi - lo).to_f64(),
+            });
+        }
+        Ok(Self { lo, hi })
+    }
+
+    /// The lower end.
+    pub fn lo(&self) -> F {
+        self.lo
+    }
+
+    /// The upper end.
+    pub fn hi(&self) -> F {
+        self.hi
+    }
+}
+
+/// Folds `v` into `[lo, hi]` by reflection at the ends; `true` when an odd
+/// number of reflections reversed the direction. Non-finite `v` is left
+/// alone (the chain then diverges as it would without a box).
+#[inline(always)]
+fn reflect<F: Float>(v: F, lo: F, hi: F) -> (F, bool) {
+    if (v >= lo && v <= hi) || !v.is_finite() {
+        return (v, false);
+    }
+    let w = hi - lo;
+    // Position in the unfolded line, in periods of 2w.
+    let t = v - lo;
+    let periods = floor(t / (w + w));
+    let r = t - periods * (w + w);
+    let (out, flipped) = if r <= w {
+        (lo + r, false)
+    } else {
+        (hi - (r - w), true)
+    };
+    // Rounding may leave the result a hair outside: clamp.
+    (clamp(out, lo, hi), flipped)
+}
+
+#[inline(always)]
+fn clamp<F: Float>(v: F, lo: F, hi: F) -> F {
+    if v < lo {
+        lo
+    } else if v > hi {
+        hi
+    } else {
+        v
+    }
+}
+
+/// `floor` through the float trait's operations (exact for the values
+/// reflection meets: below `2^52` periods).
+#[inline(always)]
+fn floor<F: Float>(v: F) -> F {
+    let magic = F::from_f64((1u64 << (F::MANTISSA_DIGITS - 1)) as f64);
+    if v.abs() >= magic {
+        return v;
+    }
+    let r = if v >= F::ZERO {
+        (v + magic) - magic
+    } else {
+        -((-v + magic) - magic)
+    };
+    if r > v { r - F::ONE } else { r }
+}
+
+impl<F: Float, const D: usize> Domain<F, D> for Interval<F> {
+    #[inline]
+    fn confine(&self, x: &mut [F; D], y: &mut [F; D]) {
+        for (xi, yi) in x.iter_mut().zip(y.iter_mut()) {
+            let (v, flipped) = reflect(*xi, self.lo, self.hi);
+            *xi = v;
+            if flipped {
+                *yi = -*yi;
+            }
+        }
+    }
+
+    #[inline]
+    fn project(&self, x: &mut [F; D]) {
+        for xi in x.iter_mut() {
+            if xi.is_finite() {
+                *xi = clamp(*xi, self.lo, self.hi);
+            }
+        }
+    }
+
+    fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]) {
+        for (&xi, di) in x.iter().zip(d.iter_mut()) {
+            if (xi <= self.lo && *di < F::ZERO) || (xi >= self.hi && *di > F::ZERO) {
+                *di = F::ZERO;
+            }
+        }
+    }
+}
+
+impl<F: Float, const D: usize> Start<F, D> for Interval<F> {
+    /// Uniform in the box: `lo + (hi - lo) u`, `u` from the top 53 (f64) or
+    /// 24 (f32) bits of one `next_u64` per coordinate.
+    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F; D]) {
+        let bits = F::MANTISSA_DIGITS;
+        let scale = F::from_f64(1.0 / (1u64 << bits) as f64);
+        for xi in x.iter_mut() {
+            let u = F::from_u64(rng.next_u64() >> (64 - bits)) * scale;
+            *xi = clamp(self.lo + (self.hi - self.lo) * u, self.lo, self.hi);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reflection_folds_into_the_box() {
+        let (lo, hi) = (-1.0f64, 3.0);
+        // (input, output, flipped)
+        for (v, want, flip) in [
+            (0.5, 0.5, false),
+            (3.5, 2.5, true),
+            (-1.5, -0.5, true),
+            (7.5, -0.5, false),
+            (11.5, 2.5, true),
+            (-9.5, -0.5, true),
+        ] {
+            let (got, flipped) = reflect(v, lo, hi);
+            assert!((got - want).abs() < 1e-12, "{v}: {got} != {want}");
+            assert_eq!(flipped, flip, "{v}");
+        }
+        assert!(reflect(f64::NAN, lo, hi).0.is_nan());
+    }
+
+    #[test]
+    fn floor_matches_libm() {
+        for v in [-3.5f64, -3.0, -0.2, 0.0, 0.2, 2.0, 2.7, 1e15, -1e15] {
+            assert_eq!(floor(v), libm::floor(v), "{v}");
+        }
+    }
+}

@@ -1,0 +1,444 @@
+//! L-BFGS with a strong-Wolfe line search: the local minimiser that polishes
+//! a point the chains found, to the precision of the float type.
+//!
+//! Limited-memory BFGS (Nocedal and Wright, *Numerical Optimization*,
+//! algorithms 7.4 and 7.5) keeps the last `M` pairs `s = x' - x`,
+//! `y = ∇U(x') - ∇U(x)` and applies the inverse-Hessian approximation they
+//! define by the two-loop recursion, with the initial scaling
+//! `s'y / y'y` of the latest pair. Steps come from a line search that
+//! satisfies the strong Wolfe conditions (algorithms 3.5 and 3.6, with
+//! safeguarded cubic interpolation), so every accepted pair has `s'y > 0`
+//! and the approximation stays positive definite. All storage is the
+//! [`Lbfgs`] value, which the caller owns: `2 M + 3` arrays of `D` floats.
+
+use crate::domain::{Domain, Unbounded};
+use crate::error::{Error, finite};
+use crate::float::Float;
+use crate::potential::traits::Potential;
+
+/// Sufficient decrease (Armijo) constant of the line search.
+const C1: f64 = 1e-4;
+/// Curvature constant of the strong Wolfe conditions (0.9: the usual
+/// choice for quasi-Newton directions, few evaluations per iteration).
+const C2: f64 = 0.9;
+/// Trial steps of the bracketing phase before giving up.
+const BRACKET_TRIALS: usize = 40;
+/// Trial steps of the zoom phase before giving up.
+const ZOOM_TRIALS: usize = 40;
+
+/// When [`Lbfgs::minimize`] stops.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PolishSettings<F> {
+    /// At most this many potential-and-gradient evaluations (the one at the
+    /// start included).
+    pub evaluations: u64,
+    /// Converged when `max_j |dU/dx_j| <= gradient_tolerance`.
+    pub gradient_tolerance: F,
+    /// Converged when an iteration lowers `U` by no more than
+    /// `value_tolerance * max(1, |U|)`.
+    pub value_tolerance: F,
+}
+
+impl<F: Float> PolishSettings<F> {
+    /// A budget of `evaluations`, and tolerances at the float type's
+    /// precision: gradient `0` (never the reason alone), value
+    /// `4 eps` (`eps` the machine epsilon), so that the polish ends when
+    /// `U` stops falling in its last bits.
+    pub fn new(evaluations: u64) -> Self {
+        let eps = F::from_f64(if F::MANTISSA_DIGITS > 24 {
+            f64::EPSILON
+        } else {
+            f32::EPSILON as f64
+        });
+        Self {
+            evaluations,
+            gradient_tolerance: F::ZERO,
+            value_tolerance: F::from_f64(4.0) * eps,
+        }
+    }
+}
+
+/// Why a polish ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PolishEnd {
+    /// The gradient fell within its tolerance.
+    Gradient,
+    /// An iteration lowered `U` by no more than the value tolerance.
+    Value,
+    /// The evaluation budget was spent.
+    Budget,
+    /// The line search found no step that lowers `U` enough: at the
+    /// precision of the float type, the point is a local minimum (or the
+    /// gradient is inconsistent with the value).
+    LineSearch,
+}
+
+/// The outcome of a polish: the point itself is the `x` it was given,
+/// updated in place.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Polished<F> {
+    /// `U` at the final point.
+    pub value: F,
+    /// Evaluations used.
+    pub evaluations: u64,
+    /// Iterations (accepted steps).
+    pub iterations: u64,
+    /// Why it ended.
+    pub end: PolishEnd,
+}
+
+/// L-BFGS with memory `M` in dimension `D`, and its working storage.
+///
+/// ```
+/// use hrla::{Lbfgs, PolishEnd, PolishSettings, Rastrigin};
+///
+/// // From a point in the global basin of 10-D Rastrigin to its minimum.
+/// let mut lbfgs: Lbfgs<f64, 10, 8> = Lbfgs::new();
+/// let mut x = [0.3; 10];
+/// let done = lbfgs.minimize(&Rastrigin, &mut x, PolishSettings::new(200))?;
+/// assert!(done.value < 1e-20 && done.evaluations <= 20);
+/// assert_ne!(done.end, PolishEnd::Budget);
+/// # Ok::<(), hrla::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Lbfgs<F, const D: usize, const M: usize> {
+    s: [[F; D]; M],
+    y: [[F; D]; M],
+    rho: [F; M],
+    /// Pairs stored (up to `M`) and the slot of the next one.
+    len: usize,
+    next: usize,
+    direction: [F; D],
+    trial: [F; D],
+    trial_grad: [F; D],
+}
+
+impl<F: Float, const D: usize, const M: usize> Default for Lbfgs<F, D, M> {
+    fn default() -> Self {
+        Self {
+            s: [[F::ZERO; D]; M],
+            y: [[F::ZERO; D]; M],
+            rho: [F::ZERO; M],
+            len: 0,
+            next: 0,
+            direction: [F::ZERO; D],
+            trial: [F::ZERO; D],
+            trial_grad: [F::ZERO; D],
+        }
+    }
+}
+
+fn dot<F: Float>(a: &[F], b: &[F]) -> F {
+    a.iter().zip(b).fold(F::ZERO, |acc, (&p, &q)| acc + p * q)
+}
+
+fn max_abs<F: Float>(v: &[F]) -> F {
+    v.iter()
+        .fold(F::ZERO, |m, &x| if x.abs() > m { x.abs() } else { m })
+}
+
+/// The minimiser of the cubic through `(a, fa, da)` and `(b, fb, db)`,
+/// kept within the middle 80% of `[a, b]` (bisection when the cubic has no
+/// usable minimiser there).
+fn cubic_step<F: Float>(a: F, fa: F, da: F, b: F, fb: F, db: F) -> F {
+    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+    let margin = F::from_f64(0.1) * (hi - lo);
+    let d1 = da + db - F::from_f64(3.0) * (fa - fb) / (a - b);
+    let disc = d1 * d1 - da * db;
+    let mut t = (a + b) * F::HALF;
+    if disc >= F::ZERO && disc.is_finite() {
+        let d2 = disc.sqrt() * if b > a { F::ONE } else { -F::ONE };
+        let denom = db - da + F::TWO * d2;
+        if denom != F::ZERO {
+            let c = b - (b - a) * ((db + d2 - d1) / denom);
+            if c.is_finite() {
+                t = c;
+            }
+        }
+    }
+    if t < lo + margin {
+        lo + margin
+    } else if t > hi - margin {
+        hi - margin
+    } else {
+        t
+    }
+}
+
+/// A point of the line: step, value, directional derivative.
+#[derive(Clone, Copy)]
+struct LinePoint<F> {
+    step: F,
+    value: F,
+    slope: F,
+}
+
+impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
+    /// Empty memory.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Forgets the stored pairs (for a new start point).
+    pub fn reset(&mut self) {
+        self.len = 0;
+        self.next = 0;
+    }
+
+    /// `direction = -H grad` by the two-loop recursion.
+    fn direction(&mut self, grad: &[F; D]) {
+        let mut alpha = [F::ZERO; M];
+        let q = &mut self.direction;
+        for (qi, &gi) in q.iter_mut().zip(grad) {
+            *qi = -gi;
+        }
+        // Newest to oldest.
+        for i in 0..self.len {
+            let k = (self.next + M - 1 - i) % M;
+            alpha[k] = self.rho[k] * dot(&self.s[k], q);
+            for (qj, &yj) in q.iter_mut().zip(&self.y[k]) {
+                *qj -= alpha[k] * yj;
+            }
+        }
+        if self.len > 0 {
+            let k = (self.next + M - 1) % M;
+            let gamma = dot(&self.s[k], &self.y[k]) / dot(&self.y[k], &self.y[k]);
+            for qj in q.iter_mut() {
+                *qj *= gamma;
+            }
+        }
+        // Oldest to newest.
+        for i in (0..self.len).rev() {
+            let k = (self.next + M - 1 - i) % M;
+            let beta = self.rho[k] * dot(&self.y[k], q);
+            for (qj, &sj) in q.iter_mut().zip(&self.s[k]) {
+                *qj += (alpha[k] - beta) * sj;
+            }
+        }
+    }
+
+    /// Evaluates `U` and its slope along the direction at `x + step d`, into
+    /// the trial buffers; a non-finite value counts as `+inf`.
+    fn probe<P: Potential<F, D> + ?Sized, B: Domain<F, D> + ?Sized>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &[F; D],
+        step: F,
+    ) -> LinePoint<F> {
+        for ((t, &xi), &di) in self.trial.iter_mut().zip(x).zip(&self.direction) {
+            *t = xi + step * di;
+        }
+        domain.project(&mut self.trial);
+        let value = potential.value_and_gradient(&self.trial, &mut self.trial_grad);
+        // Along the path actually taken (the projection may have shortened
+        // the step in some coordinates): the derivative in the direction.
+        let slope = dot(&self.trial_grad, &self.direction);
+        if value.is_finite() && slope.is_finite() {
+            LinePoint { step, value, slope }
+        } else {
+            LinePoint {
+                step,
+                value: F::INFINITY,
+                slope: F::INFINITY,
+            }
+        }
+    }
+
+    /// A step satisfying the strong Wolfe conditions from `(0, f0, d0)`,
+    /// with the trial buffers holding its point and gradient; `None` when
+    /// none was found within the trials or the budget.
+    #[allow(clippy::too_many_arguments)]
+    fn line_search<P: Potential<F, D> + ?Sized, B: Domain<F, D> + ?Sized>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &[F; D],
+        f0: F,
+        d0: F,
+        first: F,
+        budget: &mut u64,
+    ) -> Option<LinePoint<F>> {
+        let (c1, c2) = (F::from_f64(C1), F::from_f64(C2));
+        let armijo = |p: &LinePoint<F>| p.value <= f0 + c1 * p.step * d0;
+        let curvature = |p: &LinePoint<F>| p.slope.abs() <= -c2 * d0;
+        let mut prev = LinePoint {
+            step: F::ZERO,
+            value: f0,
+            slope: d0,
+        };
+        let mut step = first;
+        let (mut lo, mut hi) = (None, None);
+        for i in 0..BRACKET_TRIALS {
+            if *budget == 0 {
+                return None;
+            }
+            *budget -= 1;
+            let p = self.probe(potential, domain, x, step);
+            if !armijo(&p) || (i > 0 && p.value >= prev.value) {
+                (lo, hi) = (Some(prev), Some(p));
+                break;
+            }
+            if curvature(&p) {
+                return Some(p);
+            }
+            if p.slope >= F::ZERO {
+                (lo, hi) = (Some(p), Some(prev));
+                break;
+            }
+            prev = p;
+            step *= F::TWO;
+        }
+        let (mut lo, mut hi) = (lo?, hi?);
+        for _ in 0..ZOOM_TRIALS {
+            if *budget == 0 {
+                return None;
+            }
+            let step = if hi.value.is_finite() {
+                cubic_step(lo.step, lo.value, lo.slope, hi.step, hi.value, hi.slope)
+            } else {
+                (lo.step + hi.step) * F::HALF
+            };
+            if step == lo.step || step == hi.step {
+                break;
+            }
+            *budget -= 1;
+            let p = self.probe(potential, domain, x, step);
+            if !armijo(&p) || p.value >= lo.value {
+                hi = p;
+            } else {
+                if curvature(&p) {
+                    return Some(p);
+                }
+                if p.slope * (hi.step - lo.step) >= F::ZERO {
+                    hi = lo;
+                }
+                lo = p;
+            }
+        }
+        // The bracket collapsed: accept the best point found if it lowers
+        // U enough (its pair may still have s'y > 0), else fail.
+        if lo.step > F::ZERO && *budget > 0 {
+            *budget -= 1;
+            let p = self.probe(potential, domain, x, lo.step);
+            if armijo(&p) {
+                return Some(p);
+            }
+        }
+        None
+    }
+
+    /// Minimises `U` from `x`, which ends at the best point found (never
+    /// worse than the start): L-BFGS steps until a tolerance holds, the
+    /// line search fails or the budget is spent.
+    ///
+    /// Errors: [`Error::Zero`] for a zero budget, [`Error::NotFinite`] if
+    /// `x`, `U(x)` or `∇U(x)` is not finite.
+    pub fn minimize<P: Potential<F, D> + ?Sized>(
+        &mut self,
+        potential: &P,
+        x: &mut [F; D],
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
+        self.minimize_in(potential, &Unbounded, x, settings)
+    }
+
+    /// [`minimize`](Lbfgs::minimize) within a domain: every trial point is
+    /// projected onto it (so `x` is first projected too), which ends on a
+    /// face where the minimum of the box lies there.
+    pub fn minimize_in<P: Potential<F, D> + ?Sized, B: Domain<F, D> + ?Sized>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &mut [F; D],
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
+        if settings.evaluations == 0 {
+            return Err(Error::Zero {
+                name: "polish budget",
+            });
+        }
+        for &v in x.iter() {
+            finite("x", v)?;
+        }
+        domain.project(x);
+        self.reset();
+        let mut grad = [F::ZERO; D];
+        let mut value = finite("U(x)", potential.value_and_gradient(x, &mut grad))?;
+        for &g in &grad {
+            finite("gradient", g)?;
+        }
+        let mut budget = settings.evaluations - 1;
+        let mut iterations = 0;
+        let end = loop {
+            if max_abs(&grad) <= settings.gradient_tolerance {
+                break PolishEnd::Gradient;
+            }
+            if budget == 0 {
+                break PolishEnd::Budget;
+            }
+            self.direction(&grad);
+            domain.feasible_direction(x, &mut self.direction);
+            let mut slope = dot(&grad, &self.direction);
+            if slope >= F::ZERO || !slope.is_finite() {
+                // Not a descent direction (rounding in a stale memory, or
+                // one the domain's faces cut): restart from steepest
+                // descent.
+                self.reset();
+                self.direction(&grad);
+                domain.feasible_direction(x, &mut self.direction);
+                slope = dot(&grad, &self.direction);
+                if slope >= F::ZERO || !slope.is_finite() {
+                    break PolishEnd::Gradient;
+                }
+            }
+            // Unit steps for quasi-Newton directions; the first, along
+            // -grad, is scaled to move x by at most 1 in any coordinate.
+            let first = if self.len == 0 {
+                let m = max_abs(&self.direction);
+                if m > F::ONE { F::ONE / m } else { F::ONE }
+            } else {
+                F::ONE
+            };
+            let Some(p) = self.line_search(potential, domain, x, value, slope, first, &mut budget)
+            else {
+                break if budget == 0 {
+                    PolishEnd::Budget
+                } else {
+                    PolishEnd::LineSearch
+                };
+            };
+            // The new pair, kept when its curvature is positive.
+            let k = self.next;
+            for j in 0..D {
+                self.s[k][j] = self.trial[j] - x[j];
+                self.y[k][j] = self.trial_grad[j] - grad[j];
+            }
+            let sy = dot(&self.s[k], &self.y[k]);
+            if sy > F::ZERO && sy.is_finite() {
+                self.rho[k] = F::ONE / sy;
+                self.next = (k + 1) % M;
+                self.len = (self.len + 1).min(M);
+            }
+            let drop = value - p.value;
+            *x = self.trial;
+            grad = self.trial_grad;
+            value = p.value;
+            iterations += 1;
+            let scale = if value.abs() > F::ONE {
+                value.abs()
+            } else {
+                F::ONE
+            };
+            if drop <= settings.value_tolerance * scale {
+                break PolishEnd::Value;
+            }
+        };
+        Ok(Polished {
+            value,
+            evaluations: settings.evaluations - budget,
+            iterations,
+            end,
+        })
+    }
+}
