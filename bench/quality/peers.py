@@ -240,6 +240,8 @@ def main(argv=None):
     ap.add_argument("--seeds", default="0-19", help="e.g. 0-19, 0..4 or 1,3 (default %(default)s)")
     ap.add_argument("--budgets", default="10000,125000", help="evaluation budgets B (default %(default)s)")
     ap.add_argument("--methods", default=",".join(METHODS), help="comma list (default: %(default)s)")
+    ap.add_argument("--append", action="store_true",
+                    help="add rows to --out (header written only if it is new or empty)")
     ap.add_argument("--jobs", type=int, default=1,
                     help="runs in parallel processes (default 1; wall times then share the cores)")
     args = ap.parse_args(argv)
@@ -268,9 +270,16 @@ def main(argv=None):
           f"scipy {scipy.__version__}, cma {cma.__version__}; jobs {args.jobs}", file=sys.stderr)
     t0 = time.perf_counter()
     failures = 0
-    with open(out, "w", newline="") as fh:
+    fresh = not (args.append and out.exists() and out.stat().st_size > 0)
+    if not fresh:
+        with open(out, newline="") as fh:
+            header = next(csv.reader(fh), None)
+        if header != COLUMNS:
+            raise SystemExit(f"--append: {out} has columns {header}, not {COLUMNS}")
+    with open(out, "w" if fresh else "a", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=COLUMNS)
-        w.writeheader()
+        if fresh:
+            w.writeheader()
         fh.flush()
         if args.jobs > 1:
             import multiprocessing as mp

@@ -141,3 +141,10 @@ pub fn for_each<const D: usize>(keep: &dyn Fn(&str) -> bool, f: &mut Visit<'_, D
         (-5.0, 10.0)
     );
 }
+
+/// The problems of dimension 21: the Lennard-Jones cluster of 7 atoms.
+pub fn for_each_21(keep: &dyn Fn(&str) -> bool, f: &mut Visit<'_, 21>) {
+    if keep("lj7") {
+        f("lj7", &FnPotential::new(lj7), -16.505_384, (-1.5, 1.5));
+    }
+}

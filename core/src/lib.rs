@@ -168,6 +168,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+mod auto;
 mod domain;
 mod error;
 mod float;
@@ -181,6 +182,7 @@ mod schedule;
 mod start;
 mod ziggurat_tables;
 
+pub use auto::{Auto, Solution, Tempering};
 pub use domain::{Domain, Interval, Unbounded};
 pub use error::Error;
 pub use float::Float;

@@ -7,12 +7,11 @@
 //!     [--problems a,b] [--d 2,10] [--seeds 20] [--budgets 10000,125000] [--strategies s1,s2]
 //! ```
 //!
-//! Strategies: `hrla-paper` (the paper's settings), `hrla-paper-polish`
-//! (the same with 5% of the budget kept for an L-BFGS polish of the best
-//! point), `hrla-hop` (a candidate default, see [`hop`]; its constants can
-//! be varied through the environment variables `HOP_H`, `HOP_A`,
-//! `HOP_RATIO`, `HOP_ROUND`, `HOP_POLISH` while a default is being chosen).
-//! Every run is confined to the problem's box and starts uniform in it.
+//! Strategies: `hrla-default` (the kernel's [`hrla::Auto`] with 32
+//! chains), `hrla-paper` (the paper's settings: h = 0.01, linear annealing
+//! 0.1 -> 4, 250 chains), `hrla-paper-polish` (the same with 5% of the
+//! budget kept for an L-BFGS polish of the best point). Every run is
+//! confined to the problem's box and starts uniform in it.
 
 use std::fmt::Write as _;
 use std::ops::ControlFlow;
@@ -86,99 +85,34 @@ fn paper<const D: usize>(
     })
 }
 
-/// A candidate default with no per-problem setting: the step size and the
-/// temperature from the problem's own scales, measured at the starts, and
-/// rounds of sampling each followed by an L-BFGS polish of every chain's
-/// best (a Langevin cousin of basin hopping).
-///
-/// - `h` such that the first step moves a chain by about `1e-3` of the box
-///   width along the median gradient: `h = 1e-3 w / median |∇U|`, clamped
-///   into the kernel's range;
-/// - `a` from the spread of `U` over the starts: `a_high = 20 / IQR(U)`
-///   (so that a typical difference of `U` between starts is 20 units of
-///   temperature at the end of a round), annealed from `a_high / 100`;
-/// - 16 chains, rounds of 500 steps, each chain's best polished with up to
-///   300 evaluations after every round.
-fn hop<const D: usize>(
+/// The kernel's default solver, [`hrla::Auto`], with 32 chains.
+fn default<const D: usize>(
     p: &dyn Potential<f64, D>,
     minimum: f64,
     bounds: (f64, f64),
     budget: u64,
     seed: u64,
 ) -> Result<Outcome, Error> {
-    let n = 16usize;
-    let width = bounds.1 - bounds.0;
-    // Scales from the starts (the optimiser's own initial points).
-    let mut probe: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
-    let start = Builder::new(p, Hrla::paper(0.01)?, 1.0, boxed(bounds))
-        .domain(boxed(bounds))
-        .seed(seed)
-        .build(&mut probe)?;
-    let mut u: Vec<f64> = start.chains().iter().map(|c| c.value()).collect();
-    let mut gnorm: Vec<f64> = start
-        .chains()
-        .iter()
-        .map(|c| c.gradient().iter().map(|g| g * g).sum::<f64>().sqrt())
-        .collect();
-    u.sort_by(f64::total_cmp);
-    gnorm.sort_by(f64::total_cmp);
-    let iqr = (u[3 * n / 4] - u[n / 4]).max(1e-12);
-    let g = gnorm[n / 2].max(1e-12);
-    let env = |k: &str, d: f64| {
-        std::env::var(k)
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(d)
-    };
-    let h = (env("HOP_H", 1e-3) * width / g).clamp(1e-7, 1.0);
-    let a_high = (env("HOP_A", 20.0) / iqr).clamp(1e-4, 1e6);
-    let ratio = env("HOP_RATIO", 0.01);
-    let rounds_steps = env("HOP_ROUND", 500.0) as u64;
-    let polish_budget = env("HOP_POLISH", 300.0) as u64;
-    let mut chains: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
-    // The schedule repeats every round: a_k from a_high/100 to a_high.
-    let schedule = hrla::FnSchedule(move |k: u64| {
-        let t = (k % rounds_steps) as f64 / rounds_steps as f64;
-        a_high * ratio.powf(1.0 - t)
-    });
-    let mut opt = Builder::new(p, Hrla::paper(h)?, schedule, boxed(bounds))
-        .domain(boxed(bounds))
-        .seed(seed)
-        .stop(Stop::new().evaluations(budget))
-        .build(&mut chains)?;
-    let mut to_1e3 = (opt.best().value - minimum < 1e-3).then_some(n as u64);
+    let mut chains: Vec<Chain<f64, D>> = (0..32).map(|_| Chain::new()).collect();
     let mut lbfgs: Lbfgs<f64, D, 8> = Lbfgs::new();
-    'rounds: loop {
-        for _ in 0..rounds_steps {
-            if opt.termination().is_some() {
-                break 'rounds;
+    let mut to_1e3 = None;
+    let found = hrla::Auto::default().minimize_with(
+        p,
+        boxed(bounds),
+        budget,
+        seed,
+        &mut chains,
+        &mut lbfgs,
+        |evaluations, value| {
+            if to_1e3.is_none() && value - minimum < 1e-3 {
+                to_1e3 = Some(evaluations);
             }
-            match opt.step() {
-                Ok(()) => {}
-                Err(Error::AllDiverged { .. }) => break 'rounds,
-                Err(e) => return Err(e),
-            }
-            if to_1e3.is_none() && opt.best().value - minimum < 1e-3 {
-                to_1e3 = Some(opt.evaluations());
-            }
-        }
-        for c in 0..n {
-            if opt.chains()[c].is_diverged() {
-                continue;
-            }
-            let done = opt.polish(c, &mut lbfgs, PolishSettings::new(polish_budget))?;
-            if to_1e3.is_none() && opt.best().value - minimum < 1e-3 {
-                to_1e3 = Some(opt.evaluations());
-            }
-            if done.evaluations == 0 {
-                break 'rounds;
-            }
-        }
-    }
+        },
+    )?;
     Ok(Outcome {
-        best_gap: opt.best().value - minimum,
+        best_gap: found.value - minimum,
         to_1e3,
-        evaluations: opt.evaluations(),
+        evaluations: found.evaluations,
     })
 }
 
@@ -198,12 +132,22 @@ fn list<T: std::str::FromStr>(args: &[String], flag: &str, default: &str) -> Vec
 }
 
 fn run_d<const D: usize>(args: &[String], out: &mut String) {
+    run_problems::<D>(args, out, &|keep, f| problems::for_each::<D>(keep, f));
+}
+
+type ForEach<'a, const D: usize> = dyn Fn(&dyn Fn(&str) -> bool, &mut problems::Visit<'_, D>) + 'a;
+
+fn run_problems<const D: usize>(args: &[String], out: &mut String, for_each: &ForEach<'_, D>) {
     let problems: Vec<String> = list(args, "--problems", "");
     let seeds: Vec<u64> = list(args, "--seeds", "20");
     let budgets: Vec<u64> = list(args, "--budgets", "10000,125000");
-    let strategies: Vec<String> = list(args, "--strategies", "hrla-paper,hrla-paper-polish");
+    let strategies: Vec<String> = list(
+        args,
+        "--strategies",
+        "hrla-default,hrla-paper,hrla-paper-polish",
+    );
     let keep = |name: &str| problems.is_empty() || problems.iter().any(|p| p == name);
-    problems::for_each::<D>(&keep, &mut |name, p, minimum, bounds| {
+    for_each(&keep, &mut |name, p, minimum, bounds| {
         for strategy in &strategies {
             for &budget in &budgets {
                 for seed in 0..seeds[0] {
@@ -213,8 +157,8 @@ fn run_d<const D: usize>(args: &[String], out: &mut String) {
                     } else {
                         0.0
                     };
-                    let r = if strategy == "hrla-hop" {
-                        hop::<D>(p, minimum, bounds, budget, seed)
+                    let r = if strategy == "hrla-default" {
+                        default::<D>(p, minimum, bounds, budget, seed)
                     } else {
                         paper::<D>(p, minimum, bounds, budget, seed, polish)
                     };
@@ -252,7 +196,8 @@ fn main() {
         match d {
             2 => run_d::<2>(&args, &mut out),
             10 => run_d::<10>(&args, &mut out),
-            _ => panic!("dimension {d} is not compiled in (2, 10)"),
+            21 => run_problems::<21>(&args, &mut out, &problems::for_each_21),
+            _ => panic!("dimension {d} is not compiled in (2, 10, 21)"),
         }
     }
     if let Some(dir) = std::path::Path::new(&path).parent() {

@@ -65,6 +65,13 @@ pub struct Optimizer<
     rng: PhantomData<fn() -> R>,
 }
 
+/// Where a local search starts: a chain's best point or its current one.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Origin {
+    Best,
+    Current,
+}
+
 /// What a step found out.
 enum Stepped {
     Improved,
@@ -345,29 +352,62 @@ where
         lbfgs: &mut Lbfgs<F, D, M>,
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
+        self.local_search(chain, Origin::Best, lbfgs, settings)
+    }
+
+    /// Quenches chain `chain`: polishes a copy of its current position
+    /// (not its best) with L-BFGS, to find the bottom of the basin it is
+    /// in. The chain's state is untouched; the point found becomes the
+    /// chain's best when lower (and so the global best when lowest), and
+    /// its evaluations count in the run's, within what is left of the
+    /// evaluation budget (as [`polish`](Optimizer::polish)).
+    ///
+    /// Errors: [`Error::Count`] for a chain index out of range; a diverged
+    /// chain gives a quench of no evaluation; those of
+    /// [`Lbfgs::minimize`].
+    pub fn quench<const M: usize>(
+        &mut self,
+        chain: usize,
+        lbfgs: &mut Lbfgs<F, D, M>,
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
+        self.local_search(chain, Origin::Current, lbfgs, settings)
+    }
+
+    /// L-BFGS from chain `chain`'s best or current point, within what is
+    /// left of the evaluation budget; records the result when lower.
+    fn local_search<const M: usize>(
+        &mut self,
+        chain: usize,
+        from: Origin,
+        lbfgs: &mut Lbfgs<F, D, M>,
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
         let n = self.chains.as_ref().len();
-        let Some(start) = self.chains.as_ref().get(chain) else {
+        let Some(c) = self.chains.as_ref().get(chain) else {
             return Err(Error::Count {
                 name: "chain",
                 value: chain,
                 max: n - 1,
             });
         };
+        let (mut x, value) = match from {
+            Origin::Best => (c.best.x, c.best.value),
+            Origin::Current => (c.x, c.value),
+        };
         let left = self
             .stop
             .evaluations
             .map_or(u64::MAX, |b| b.saturating_sub(self.evaluations));
         let budget = settings.evaluations.min(left);
-        if budget == 0 {
+        if budget == 0 || (from == Origin::Current && c.diverged) {
             return Ok(Polished {
-                value: start.best.value,
+                value,
                 evaluations: 0,
                 iterations: 0,
                 end: PolishEnd::Budget,
             });
         }
-        let mut x = start.best.x;
-        let before = start.best.value;
         let done = lbfgs.minimize_in(
             &self.potential,
             &self.domain,
@@ -378,17 +418,39 @@ where
             },
         )?;
         self.evaluations += done.evaluations;
-        if done.value < before {
+        self.record(chain, &x, done.value);
+        Ok(done)
+    }
+
+    /// Makes `(x, value)` chain `chain`'s best when lower, at the current
+    /// iteration, and the global best when lowest.
+    fn record(&mut self, chain: usize, x: &[F; D], value: F) {
+        if value < self.chains.as_ref()[chain].best.value {
             let k = self.iteration;
             let target = &mut self.chains.as_mut()[chain].best;
-            target.x = x;
-            target.value = done.value;
+            target.x = *x;
+            target.value = value;
             target.iteration = k;
-            if done.value < self.best().value {
+            if value < self.best().value {
                 self.best = chain;
             }
         }
-        Ok(done)
+    }
+
+    /// Replaces the sampler between steps (for a step size chosen once the
+    /// run has seen its initial points), taking its kernel at the current
+    /// inverse temperature. On error the optimiser is unchanged.
+    pub fn set_sampler(&mut self, sampler: S) -> Result<(), Error> {
+        let a = self.schedule.inverse_temperature(self.iteration);
+        self.kernel = sampler.at(a)?;
+        self.sampler = sampler;
+        Ok(())
+    }
+
+    /// The schedule, to change it between steps (for a schedule that
+    /// adapts to the run, such as [`Tempering`](crate::Tempering)).
+    pub fn schedule_mut(&mut self) -> &mut C {
+        &mut self.schedule
     }
 
     /// The chain that holds the global running best.

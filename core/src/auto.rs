@@ -1,0 +1,372 @@
+//! The default solver: adaptive tempering with quenches, no tuning.
+//!
+//! The paper leaves `a`, `h` and the cooling open, and its settings are
+//! Rastrigin's: `a = 4` means nothing on another function's scale, and
+//! `h = 0.01` is unstable on a stiff one. [`Auto`] measures both from the
+//! problem and adapts the temperature as it runs:
+//!
+//! - **`h` from the curvature.** At each initial point the gradient is
+//!   differenced along one coordinate (`j = c mod D` for chain `c`); with
+//!   `L` the median of `|Δ∂_j U| / δ`, `h = step_scale / L` (the position's
+//!   drift `-h ∇U` is then a stable gradient step on the typical
+//!   curvature).
+//! - **`a` adapted by the chains' moves between basins.** Sampling runs in
+//!   rounds; after each, every chain is quenched
+//!   ([`Optimizer::quench`]: an L-BFGS polish of a copy of its current
+//!   point), which names the basin it is in by the value at its bottom and
+//!   records that bottom as the chain's best. When fewer than
+//!   `low_rate` of the chains changed basin since the last round, `a` is
+//!   divided by `factor` (hotter, to cross barriers); when more than
+//!   `high_rate` did, multiplied (colder, to settle). It starts at
+//!   `1 / IQR(U)` over the initial points.
+//!
+//! Every quench is a polish, so the best point is always a local minimum
+//! found to the float type's precision, and the global minimum as soon as
+//! a chain visits its basin. The evaluation budget covers everything: the
+//! curvature probes, the initial points, the steps and the quenches. The
+//! constants of [`Auto::default`] were chosen on the quality benchmark
+//! (`bench/quality`, `docs/QUALITY.md`), the same for every function.
+
+use rand_core::{Rng, SeedableRng};
+
+use crate::domain::Interval;
+use crate::error::Error;
+use crate::float::Float;
+use crate::optimizer::{Builder, Chain, Stop, Termination};
+use crate::polish::{Lbfgs, PolishSettings};
+use crate::potential::traits::Potential;
+use crate::sampler::Hrla;
+use crate::schedule::Schedule;
+
+/// An inverse temperature that the caller changes between steps: the
+/// schedule of [`Auto`]'s adaptive tempering.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tempering<F>(pub F);
+
+impl<F: Float> Schedule<F> for Tempering<F> {
+    #[inline]
+    fn inverse_temperature(&self, _k: u64) -> F {
+        self.0
+    }
+}
+
+/// The default solver's constants (see the module docs of `auto` in the
+/// crate's source, and [`Auto::minimize`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Auto<F> {
+    /// Steps per round between quenches.
+    pub round: u64,
+    /// Evaluations per quench, at most.
+    pub quench: u64,
+    /// Heat when fewer than this fraction of chains changed basin in a
+    /// round.
+    pub low_rate: F,
+    /// Cool when more than this fraction did.
+    pub high_rate: F,
+    /// The factor by which `a` changes.
+    pub factor: F,
+    /// `h = step_scale / L`, `L` the typical curvature at the starts.
+    pub step_scale: F,
+}
+
+impl<F: Float> Default for Auto<F> {
+    /// Rounds of 200 steps, quenches of up to 100 evaluations, heat below
+    /// 20% of chains moving, cool above 50%, by 1.5; `h = 0.5 / L`.
+    fn default() -> Self {
+        Self {
+            round: 200,
+            quench: 100,
+            low_rate: F::from_f64(0.2),
+            high_rate: F::HALF,
+            factor: F::from_f64(1.5),
+            step_scale: F::HALF,
+        }
+    }
+}
+
+/// What [`Auto::minimize`] found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solution<F, const D: usize> {
+    /// The best point.
+    pub x: [F; D],
+    /// `U(x)`.
+    pub value: F,
+    /// Evaluations used, all included (at most the budget).
+    pub evaluations: u64,
+    /// Rounds of sampling done.
+    pub rounds: u64,
+    /// The step size chosen.
+    pub step: F,
+    /// The inverse temperature at the end.
+    pub inverse_temperature: F,
+}
+
+impl<F: Float> Auto<F> {
+    /// Minimises `potential` over the box `domain` within `budget`
+    /// evaluations, with as many chains as `chains` holds (32 is the
+    /// measured default) and L-BFGS storage `lbfgs`; chain `c` draws from
+    /// the generator of `(seed, c)`.
+    ///
+    /// ```
+    /// use hrla::{Auto, Chain, Interval, Lbfgs, Rastrigin};
+    ///
+    /// let mut chains: Vec<Chain<f64, 10>> = (0..32).map(|_| Chain::new()).collect();
+    /// let mut lbfgs: Lbfgs<f64, 10, 8> = Lbfgs::new();
+    /// let found = Auto::default().minimize(
+    ///     &Rastrigin,
+    ///     Interval::new(-5.12, 5.12)?,
+    ///     125_000,
+    ///     1,
+    ///     &mut chains,
+    ///     &mut lbfgs,
+    /// )?;
+    /// assert!(found.value < 1e-6, "{found:?}");
+    /// # Ok::<(), hrla::Error>(())
+    /// ```
+    ///
+    /// Errors: those of [`Builder::build`] (no chains, a budget below
+    /// twice the number of chains: [`Error::Budget`]), a bad constant
+    /// ([`Error::Zero`], [`Error::NotPositive`]), and a potential that is
+    /// unbounded below ([`Error::UnboundedBelow`]). Chains that all
+    /// diverge end the run with the best point found so far.
+    pub fn minimize<P, const D: usize, R, const M: usize>(
+        &self,
+        potential: &P,
+        domain: Interval<F>,
+        budget: u64,
+        seed: u64,
+        chains: &mut [Chain<F, D, R>],
+        lbfgs: &mut Lbfgs<F, D, M>,
+    ) -> Result<Solution<F, D>, Error>
+    where
+        P: Potential<F, D> + ?Sized,
+        R: Rng + SeedableRng,
+    {
+        self.minimize_with(potential, domain, budget, seed, chains, lbfgs, |_, _| {})
+    }
+
+    /// [`minimize`](Auto::minimize), calling `improved(evaluations, value)`
+    /// whenever the best value falls (after the step or quench that
+    /// lowered it, with every evaluation so far counted): for progress, or
+    /// to measure how fast a level is reached.
+    #[allow(clippy::too_many_arguments)]
+    pub fn minimize_with<P, const D: usize, R, const M: usize>(
+        &self,
+        potential: &P,
+        domain: Interval<F>,
+        budget: u64,
+        seed: u64,
+        chains: &mut [Chain<F, D, R>],
+        lbfgs: &mut Lbfgs<F, D, M>,
+        mut improved: impl FnMut(u64, F),
+    ) -> Result<Solution<F, D>, Error>
+    where
+        P: Potential<F, D> + ?Sized,
+        R: Rng + SeedableRng,
+    {
+        self.validate()?;
+        let n = chains.len();
+        if n == 0 {
+            return Err(Error::Zero { name: "chains" });
+        }
+        if budget < 2 * n as u64 {
+            return Err(Error::Budget {
+                budget,
+                chains: 2 * n,
+            });
+        }
+        // The initial points, then one probe each (of at most 64 chains,
+        // evenly spread: their median suffices) for the curvature.
+        let m = n.min(64);
+        let probes = m as u64;
+        let mut opt = Builder::new(
+            potential,
+            Hrla::paper(F::from_f64(0.01))?,
+            Tempering(F::ONE),
+            domain,
+        )
+        .domain(domain)
+        .seed(seed)
+        .stop(Stop::new().evaluations(budget - probes))
+        .build(&mut *chains)?;
+        let (l, iqr) = {
+            let delta = F::from_f64(1e-4) * (domain.hi() - domain.lo());
+            let mut curvature = [F::ZERO; 64];
+            let mut values = [F::ZERO; 64];
+            let mut probe = [F::ZERO; D];
+            let mut grad = [F::ZERO; D];
+            for (i, c) in (0..m).map(|i| (i, i * n / m)) {
+                let chain = &opt.chains()[c];
+                let j = c % D.max(1);
+                probe.copy_from_slice(chain.x());
+                probe[j] += if probe[j] + delta <= domain.hi() {
+                    delta
+                } else {
+                    -delta
+                };
+                potential.value_and_gradient(&probe, &mut grad);
+                let k = ((grad[j] - chain.gradient()[j]) / delta).abs();
+                curvature[i] = if k.is_finite() { k } else { F::INFINITY };
+                values[i] = chain.value();
+            }
+            (
+                median(&mut curvature[..m]),
+                quartile_spread(&mut values[..m]),
+            )
+        };
+        let (lo_h, hi_h) = (F::from_f64(1e-8), F::from_f64(50.0));
+        let h = clamp(self.step_scale / positive_or(l, F::ONE), lo_h, hi_h);
+        let a0 = clamp(
+            F::ONE / positive_or(iqr, F::ONE),
+            F::from_f64(1e-6),
+            F::from_f64(1e6),
+        );
+        opt.schedule_mut().0 = a0;
+        opt.set_sampler(Hrla::paper(h)?)?;
+        // Basins as the value at their bottom, equal within this relative
+        // tolerance (the quench's precision, with a margin).
+        let same = F::from_f64(if F::MANTISSA_DIGITS > 24 { 1e-6 } else { 1e-3 });
+        let mut basins = [F::INFINITY; 64];
+        let tracked = n.min(64);
+        let quench = PolishSettings::new(self.quench);
+        let mut rounds = 0;
+        let mut best = opt.best().value;
+        improved(opt.evaluations() + probes, best);
+        let mut report = |value: F, evaluations: u64| {
+            if value < best {
+                best = value;
+                improved(evaluations + probes, value);
+            }
+        };
+        // Quench first (the initial points' basins), then sample: on a
+        // problem with few minima the quenches alone find the answer.
+        let mut first = true;
+        'run: loop {
+            for _ in 0..if first { 0 } else { self.round } {
+                if opt.termination().is_some() {
+                    break 'run;
+                }
+                match opt.step() {
+                    Ok(()) => {}
+                    Err(Error::AllDiverged { .. }) => break 'run,
+                    Err(e) => return Err(e),
+                }
+                report(opt.best().value, opt.evaluations());
+            }
+            rounds += u64::from(!first);
+            first = false;
+            let (mut moved, mut live) = (0usize, 0usize);
+            #[allow(clippy::needless_range_loop)] // `c` indexes the optimiser's chains too
+            for c in 0..n {
+                if opt.chains()[c].is_diverged() {
+                    continue;
+                }
+                let done = opt.quench(c, lbfgs, quench)?;
+                if done.evaluations == 0 {
+                    break 'run;
+                }
+                report(opt.best().value, opt.evaluations());
+                if c < tracked {
+                    live += 1;
+                    let scale = if done.value.abs() > F::ONE {
+                        done.value.abs()
+                    } else {
+                        F::ONE
+                    };
+                    let stayed = (done.value - basins[c]).abs() <= same * scale;
+                    moved += usize::from(!stayed);
+                    basins[c] = done.value;
+                }
+            }
+            let rate = F::from_u64(moved as u64) / F::from_u64(live.max(1) as u64);
+            let a = opt.schedule().0;
+            let next = if rate < self.low_rate {
+                a / self.factor
+            } else if rate > self.high_rate {
+                a * self.factor
+            } else {
+                a
+            };
+            opt.schedule_mut().0 = clamp(next, F::from_f64(1e-6), F::from_f64(1e6));
+            if opt.termination() == Some(Termination::Evaluations) {
+                break;
+            }
+        }
+        let best = opt.best();
+        Ok(Solution {
+            x: best.x,
+            value: best.value,
+            evaluations: opt.evaluations() + probes,
+            rounds,
+            step: h,
+            inverse_temperature: opt.schedule().0,
+        })
+    }
+
+    fn validate(&self) -> Result<(), Error> {
+        if self.round == 0 {
+            return Err(Error::Zero { name: "round" });
+        }
+        if self.quench == 0 {
+            return Err(Error::Zero { name: "quench" });
+        }
+        for (name, v) in [
+            ("low_rate", self.low_rate),
+            ("high_rate", self.high_rate),
+            ("step_scale", self.step_scale),
+        ] {
+            if !(v.is_finite() && v > F::ZERO) {
+                return Err(Error::NotPositive {
+                    name,
+                    value: v.to_f64(),
+                });
+            }
+        }
+        if !(self.factor.is_finite() && self.factor > F::ONE) {
+            return Err(Error::NotPositive {
+                name: "factor - 1",
+                value: (self.factor - F::ONE).to_f64(),
+            });
+        }
+        Ok(())
+    }
+}
+
+fn clamp<F: Float>(v: F, lo: F, hi: F) -> F {
+    if v < lo {
+        lo
+    } else if v > hi {
+        hi
+    } else {
+        v
+    }
+}
+
+fn positive_or<F: Float>(v: F, fallback: F) -> F {
+    if v.is_finite() && v > F::ZERO {
+        v
+    } else {
+        fallback
+    }
+}
+
+/// Insertion sort: at most 64 values, no allocation.
+fn sort<F: Float>(v: &mut [F]) {
+    for i in 1..v.len() {
+        let mut j = i;
+        while j > 0 && v[j] < v[j - 1] {
+            v.swap(j, j - 1);
+            j -= 1;
+        }
+    }
+}
+
+fn median<F: Float>(v: &mut [F]) -> F {
+    sort(v);
+    v[v.len() / 2]
+}
+
+fn quartile_spread<F: Float>(v: &mut [F]) -> F {
+    sort(v);
+    v[3 * v.len() / 4] - v[v.len() / 4]
+}
