@@ -54,8 +54,10 @@ impl<F: Float> Schedule<F> for Tempering<F> {
 /// crate's source, and [`Auto::minimize`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Auto<F> {
-    /// Steps per round between quenches.
-    pub round: u64,
+    /// Rounds of sampling the budget is spread over: each round takes
+    /// `budget / (rounds N)` steps of the `N` chains (at least 10), then
+    /// quenches them.
+    pub rounds: u64,
     /// Evaluations per quench, at most.
     pub quench: u64,
     /// Heat when fewer than this fraction of chains changed basin in a
@@ -70,11 +72,11 @@ pub struct Auto<F> {
 }
 
 impl<F: Float> Default for Auto<F> {
-    /// Rounds of 200 steps, quenches of up to 100 evaluations, heat below
+    /// 20 rounds, quenches of up to 100 evaluations, heat below
     /// 20% of chains moving, cool above 50%, by 1.5; `h = 0.5 / L`.
     fn default() -> Self {
         Self {
-            round: 200,
+            rounds: 20,
             quench: 100,
             low_rate: F::from_f64(0.2),
             high_rate: F::HALF,
@@ -102,10 +104,24 @@ pub struct Solution<F, const D: usize> {
 }
 
 impl<F: Float> Auto<F> {
+    /// The number of chains measured best for an evaluation budget:
+    /// `budget / 4 000`, at least 8 and at most 32 (few chains, many
+    /// rounds each, on small budgets; 32 from `B = 128 000` on; see
+    /// `docs/QUALITY.md`).
+    ///
+    /// ```
+    /// assert_eq!(hrla::Auto::<f64>::chains_for(10_000), 8);
+    /// assert_eq!(hrla::Auto::<f64>::chains_for(125_000), 31);
+    /// assert_eq!(hrla::Auto::<f64>::chains_for(10_000_000), 32);
+    /// ```
+    pub fn chains_for(budget: u64) -> usize {
+        (budget / 4_000).clamp(8, 32) as usize
+    }
+
     /// Minimises `potential` over the box `domain` within `budget`
-    /// evaluations, with as many chains as `chains` holds (32 is the
-    /// measured default) and L-BFGS storage `lbfgs`; chain `c` draws from
-    /// the generator of `(seed, c)`.
+    /// evaluations, with as many chains as `chains` holds
+    /// ([`Auto::chains_for`] is the measured choice) and L-BFGS storage
+    /// `lbfgs`; chain `c` draws from the generator of `(seed, c)`.
     ///
     /// ```
     /// use hrla::{Auto, Chain, Interval, Lbfgs, Rastrigin};
@@ -229,6 +245,7 @@ impl<F: Float> Auto<F> {
         let mut basins = [F::INFINITY; 64];
         let tracked = n.min(64);
         let quench = PolishSettings::new(self.quench);
+        let round = (budget / (self.rounds * n as u64)).max(10);
         let mut rounds = 0;
         let mut best = opt.best().value;
         improved(opt.evaluations() + probes, best);
@@ -242,7 +259,7 @@ impl<F: Float> Auto<F> {
         // problem with few minima the quenches alone find the answer.
         let mut first = true;
         'run: loop {
-            for _ in 0..if first { 0 } else { self.round } {
+            for _ in 0..if first { 0 } else { round } {
                 if opt.termination().is_some() {
                     break 'run;
                 }
@@ -304,8 +321,8 @@ impl<F: Float> Auto<F> {
     }
 
     fn validate(&self) -> Result<(), Error> {
-        if self.round == 0 {
-            return Err(Error::Zero { name: "round" });
+        if self.rounds == 0 {
+            return Err(Error::Zero { name: "rounds" });
         }
         if self.quench == 0 {
             return Err(Error::Zero { name: "quench" });

@@ -122,8 +122,8 @@ fn bad_settings_are_refused() {
     };
     let d = Auto::default();
     assert!(matches!(
-        run(Auto { round: 0, ..d }, 1000, 4),
-        Err(Error::Zero { name: "round" })
+        run(Auto { rounds: 0, ..d }, 1000, 4),
+        Err(Error::Zero { name: "rounds" })
     ));
     assert!(matches!(
         run(Auto { quench: 0, ..d }, 1000, 4),

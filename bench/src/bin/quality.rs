@@ -7,8 +7,8 @@
 //!     [--problems a,b] [--d 2,10] [--seeds 20] [--budgets 10000,125000] [--strategies s1,s2]
 //! ```
 //!
-//! Strategies: `hrla-default` (the kernel's [`hrla::Auto`] with 32
-//! chains), `hrla-paper` (the paper's settings: h = 0.01, linear annealing
+//! Strategies: `hrla-default` (the kernel's [`hrla::Auto`] with
+//! `Auto::chains_for(B)` chains), `hrla-paper` (the paper's settings: h = 0.01, linear annealing
 //! 0.1 -> 4, 250 chains), `hrla-paper-polish` (the same with 5% of the
 //! budget kept for an L-BFGS polish of the best point). Every run is
 //! confined to the problem's box and starts uniform in it.
@@ -43,7 +43,13 @@ fn paper<const D: usize>(
     seed: u64,
     polish: f64,
 ) -> Result<Outcome, Error> {
-    let n = 250u64.min(budget / 4);
+    // N = 250 as in the paper's experiments, or $HRLA_PAPER_N (for the
+    // (N, K) split at a fixed budget in docs/QUALITY.md).
+    let n = std::env::var("HRLA_PAPER_N")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(250u64)
+        .min(budget / 4);
     let sampling = ((budget as f64) * (1.0 - polish)) as u64;
     let k = (sampling / n).saturating_sub(1).max(1);
     let mut chains: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
@@ -85,7 +91,9 @@ fn paper<const D: usize>(
     })
 }
 
-/// The kernel's default solver, [`hrla::Auto`], with 32 chains.
+/// The kernel's default solver, [`hrla::Auto`], with
+/// [`hrla::Auto::chains_for`] chains (or $HRLA_AUTO_N, for the chain
+/// count's rows in docs/QUALITY.md).
 fn default<const D: usize>(
     p: &dyn Potential<f64, D>,
     minimum: f64,
@@ -93,7 +101,11 @@ fn default<const D: usize>(
     budget: u64,
     seed: u64,
 ) -> Result<Outcome, Error> {
-    let mut chains: Vec<Chain<f64, D>> = (0..32).map(|_| Chain::new()).collect();
+    let n = std::env::var("HRLA_AUTO_N")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(hrla::Auto::<f64>::chains_for(budget));
+    let mut chains: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
     let mut lbfgs: Lbfgs<f64, D, 8> = Lbfgs::new();
     let mut to_1e3 = None;
     let found = hrla::Auto::default().minimize_with(
