@@ -16,6 +16,9 @@ Methods (all with the problem's analytic gradient where they can use one):
                   of the local search are what dual_annealing uses by itself
                   when no minimizer_kwargs are given; as soon as any are
                   given it passes neither, so they are restated here.
+  dual-annealing-plain  (not in the default set) the same with
+                  minimizer_kwargs = {method: L-BFGS-B, jac: grad} only:
+                  local searches unbounded, L-BFGS-B's maxiter 15000.
   basinhopping    scipy.optimize.basinhopping(f, x0 uniform in the box,
                   niter=10**9, rng=default_rng(seed), minimizer_kwargs=
                   {method: L-BFGS-B, jac: grad, bounds: box}); the rest its
@@ -61,6 +64,7 @@ import functions  # noqa: E402
 
 COLUMNS = ["problem", "d", "method", "budget", "seed", "best_gap", "evals_to_1e-3", "evaluations", "wall_seconds"]
 METHODS = ["dual-annealing", "basinhopping", "ipop-cma-es"]
+EXTRA_METHODS = ["dual-annealing-plain"]  # run only when named in --methods
 HIT = 1e-3
 
 
@@ -133,6 +137,22 @@ def run_dual_annealing(p, f, seed, budget):
     )
 
 
+def run_dual_annealing_plain(p, f, seed, budget):
+    """Not run by default: dual_annealing with minimizer_kwargs = {method,
+    jac} only, so its local searches run without bounds and with
+    L-BFGS-B's own maxiter (15000)."""
+    from scipy.optimize import dual_annealing
+
+    dual_annealing(
+        f.value,
+        bounds=p.bounds,
+        maxiter=10**9,
+        maxfun=budget,
+        rng=np.random.default_rng(seed),
+        minimizer_kwargs={"method": "L-BFGS-B", "jac": f.grad},
+    )
+
+
 def run_basinhopping(p, f, seed, budget):
     from scipy.optimize import basinhopping
 
@@ -171,6 +191,7 @@ RUNNERS = {
     "dual-annealing": run_dual_annealing,
     "basinhopping": run_basinhopping,
     "ipop-cma-es": run_ipop_cma_es,
+    "dual-annealing-plain": run_dual_annealing_plain,
 }
 
 
@@ -250,7 +271,7 @@ def main(argv=None):
     dims = _int_list(args.d)
     seeds = _int_list(args.seeds)
     budgets = _int_list(args.budgets)
-    methods = _str_list(args.methods, METHODS, "method")
+    methods = _str_list(args.methods, METHODS + EXTRA_METHODS, "method")
 
     tasks = []
     for budget in budgets:
