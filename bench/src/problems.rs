@@ -147,6 +147,11 @@ pub fn for_each<const D: usize>(keep: &dyn Fn(&str) -> bool, f: &mut Visit<'_, D
 /// The problems of dimension 21: the Lennard-Jones cluster of 7 atoms.
 pub fn for_each_21(keep: &dyn Fn(&str) -> bool, f: &mut Visit<'_, 21>) {
     if keep("lj7") {
-        f("lj7", &FnPotential::new(lj7), -16.505_384_168_012_217, (-1.5, 1.5));
+        f(
+            "lj7",
+            &FnPotential::new(lj7),
+            -16.505_384_168_012_217,
+            (-1.5, 1.5),
+        );
     }
 }
