@@ -1,30 +1,39 @@
-//! The default solver: adaptive tempering with quenches, no tuning.
+//! The default solver: rounds of Langevin sampling, quenches and
+//! one-coordinate restarts, with no setting to tune.
 //!
 //! The paper leaves `a`, `h` and the cooling open, and its settings are
 //! Rastrigin's: `a = 4` means nothing on another function's scale, and
-//! `h = 0.01` is unstable on a stiff one. [`Auto`] measures both from the
-//! problem and adapts the temperature as it runs:
+//! `h = 0.01` is unstable on a stiff one. [`Auto`] measures what it needs
+//! from the problem:
 //!
 //! - **`h` from the curvature.** At each initial point the gradient is
 //!   differenced along one coordinate (`j = c mod D` for chain `c`); with
 //!   `L` the median of `|Δ∂_j U| / δ`, `h = step_scale / L` (the position's
 //!   drift `-h ∇U` is then a stable gradient step on the typical
 //!   curvature).
-//! - **`a` adapted by the chains' moves between basins.** Sampling runs in
-//!   rounds; after each, every chain is quenched
-//!   ([`Optimizer::quench`]: an L-BFGS polish of a copy of its current
-//!   point), which names the basin it is in by the value at its bottom and
-//!   records that bottom as the chain's best. When fewer than
-//!   `low_rate` of the chains changed basin since the last round, `a` is
-//!   divided by `factor` (hotter, to cross barriers); when more than
-//!   `high_rate` did, multiplied (colder, to settle). It starts at
-//!   `1 / IQR(U)` over the initial points.
+//! - **Rounds.** The budget is spread over `rounds` rounds of HRLA steps of
+//!   every chain. After each, every chain is quenched
+//!   ([`Optimizer::quench`](crate::Optimizer::quench): an L-BFGS polish of
+//!   a copy of its current point, which records the bottom of its basin as
+//!   the chain's best), so the best point is always a local minimum to the
+//!   float type's precision.
+//! - **Restarts** (global moves). Then the `restarts` chains in the worst
+//!   basins start again from the best point with one coordinate redrawn
+//!   uniformly in the box: the next round explores from there and its
+//!   quench finds that point's basin. On separable landscapes this walks
+//!   coordinate by coordinate to the global basin, as dual annealing's
+//!   one-coordinate visits do.
+//! - **Temperature.** `a` starts at `1 / IQR(U)` over the initial points
+//!   and follows how many chains changed basin in a round: divided by
+//!   `factor` (hotter) when fewer than `low_rate` did, multiplied (colder)
+//!   when more than `high_rate` did. A restarted chain counts as having
+//!   changed basin, so with every chain restarted (the default) `a` rises
+//!   by `factor` each round, up to `1e6`: a geometric cooling whose start
+//!   is set by the problem's scale.
 //!
-//! Every quench is a polish, so the best point is always a local minimum
-//! found to the float type's precision, and the global minimum as soon as
-//! a chain visits its basin. The evaluation budget covers everything: the
-//! curvature probes, the initial points, the steps and the quenches. The
-//! constants of [`Auto::default`] were chosen on the quality benchmark
+//! The evaluation budget covers everything: the curvature probes, the
+//! initial points, the steps, the quenches and the restarts. The constants
+//! of [`Auto::default`] were chosen on the quality benchmark
 //! (`bench/quality`, `docs/QUALITY.md`), the same for every function.
 
 use rand_core::{Rng, SeedableRng};
@@ -69,19 +78,25 @@ pub struct Auto<F> {
     pub factor: F,
     /// `h = step_scale / L`, `L` the typical curvature at the starts.
     pub step_scale: F,
+    /// Chains that restart, after every round, from the best point with one
+    /// coordinate redrawn uniformly in the box: the ones in the worst basins
+    /// (at most the run's chains, and 64).
+    pub restarts: usize,
 }
 
 impl<F: Float> Default for Auto<F> {
-    /// 20 rounds, quenches of up to 100 evaluations, heat below
-    /// 20% of chains moving, cool above 50%, by 1.5; `h = 0.5 / L`.
+    /// 50 rounds, quenches of up to 100 evaluations, every chain restarted
+    /// after each round, heat below 20% of chains moving, cool above 50%,
+    /// by 1.5; `h = 0.5 / L`.
     fn default() -> Self {
         Self {
-            rounds: 20,
+            rounds: 50,
             quench: 100,
             low_rate: F::from_f64(0.2),
             high_rate: F::HALF,
             factor: F::from_f64(1.5),
             step_scale: F::HALF,
+            restarts: 64,
         }
     }
 }
@@ -293,6 +308,40 @@ impl<F: Float> Auto<F> {
                     let stayed = (done.value - basins[c]).abs() <= same * scale;
                     moved += usize::from(!stayed);
                     basins[c] = done.value;
+                }
+            }
+            // Global moves: the chains in the worst basins restart from the
+            // best point with one coordinate redrawn uniformly in the box
+            // (the next round's quench finds that point's basin).
+            let restarts = self.restarts.min(tracked);
+            if restarts > 0 {
+                let mut order = [0usize; 64];
+                let m = tracked;
+                for (i, o) in order.iter_mut().enumerate().take(m) {
+                    *o = i;
+                }
+                // Worst first.
+                for i in 1..m {
+                    let mut j = i;
+                    while j > 0 && basins[order[j]] > basins[order[j - 1]] {
+                        order.swap(j, j - 1);
+                        j -= 1;
+                    }
+                }
+                let best = opt.best().x;
+                for (r, &c) in order.iter().take(restarts).enumerate() {
+                    let h1 = crate::optimizer::splitmix64(
+                        seed ^ crate::optimizer::splitmix64(rounds * 64 + r as u64),
+                    );
+                    let h2 = crate::optimizer::splitmix64(h1);
+                    let j = (h1 % D.max(1) as u64) as usize;
+                    let u = F::from_u64(h2 >> 11) * F::from_f64(1.0 / (1u64 << 53) as f64);
+                    let mut x = best;
+                    x[j] = domain.lo() + (domain.hi() - domain.lo()) * u;
+                    if !opt.restart(c, &x) {
+                        break 'run;
+                    }
+                    basins[c] = F::INFINITY;
                 }
             }
             let rate = F::from_u64(moved as u64) / F::from_u64(live.max(1) as u64);

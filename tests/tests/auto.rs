@@ -198,3 +198,30 @@ fn bad_settings_are_refused() {
         Err(Error::NonFiniteStart { what: "value", .. })
     ));
 }
+
+/// `Optimizer::restart` moves a chain (confined to the domain, zero
+/// velocity), counts one evaluation within the budget, records a better
+/// point as the chain's best, and does nothing once the budget is spent.
+#[test]
+fn restart_moves_a_chain_within_the_budget() {
+    use hrla::{Builder, Hrla, Stop};
+    let domain = Interval::new(-5.12, 5.12).unwrap();
+    let mut ch = chains::<2>(4);
+    let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01).unwrap(), 4.0, domain)
+        .domain(domain)
+        .stop(Stop::new().evaluations(6))
+        .build(&mut ch)
+        .unwrap();
+    assert_eq!(opt.evaluations(), 4);
+    assert!(opt.restart(2, &[0.0, 9.0]));
+    assert_eq!(opt.evaluations(), 5);
+    // 9 reflects at 5.12 to 1.24 (up to rounding).
+    let x = opt.chains()[2].x();
+    assert!(x[0] == 0.0 && (x[1] - 1.24).abs() < 1e-12, "{x:?}");
+    assert_eq!(*opt.chains()[2].y(), [0.0, 0.0]);
+    assert!(opt.restart(1, &[0.0, 0.0]));
+    assert_eq!(opt.best().value, 0.0);
+    assert_eq!(opt.best_chain(), 1);
+    assert!(!opt.restart(0, &[1.0, 1.0]));
+    assert_eq!(opt.evaluations(), 6);
+}

@@ -108,7 +108,20 @@ fn default<const D: usize>(
     let mut chains: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
     let mut lbfgs: Lbfgs<f64, D, 8> = Lbfgs::new();
     let mut to_1e3 = None;
-    let found = hrla::Auto::default().minimize_with(
+    let restarts = std::env::var("HRLA_AUTO_RESTARTS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(hrla::Auto::<f64>::default().restarts);
+    let rounds = std::env::var("HRLA_AUTO_ROUNDS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(hrla::Auto::<f64>::default().rounds);
+    let auto = hrla::Auto {
+        restarts,
+        rounds,
+        ..hrla::Auto::default()
+    };
+    let found = auto.minimize_with(
         p,
         boxed(bounds),
         budget,

@@ -422,6 +422,40 @@ where
         Ok(done)
     }
 
+    /// Moves chain `chain` to `x` (confined to the domain) with zero
+    /// velocity and evaluates the potential there (one evaluation, within
+    /// the budget; none left: nothing happens and `false` is returned). A
+    /// non-finite result marks the chain diverged.
+    pub fn restart(&mut self, chain: usize, x: &[F; D]) -> bool {
+        let left = self
+            .stop
+            .evaluations
+            .map_or(u64::MAX, |b| b.saturating_sub(self.evaluations));
+        if left == 0 || chain >= self.chains.as_ref().len() {
+            return false;
+        }
+        let was_diverged = self.chains.as_ref()[chain].diverged;
+        let c = &mut self.chains.as_mut()[chain];
+        c.x = *x;
+        c.y = [F::ZERO; D];
+        self.domain.confine(&mut c.x, &mut c.y);
+        let value = self.potential.value_and_gradient(&c.x, &mut c.grad);
+        c.value = value;
+        let ok = value.is_finite() && all_finite(&c.grad);
+        c.diverged = !ok;
+        self.evaluations += 1;
+        match (was_diverged, ok) {
+            (true, true) => self.diverged -= 1,
+            (false, false) => self.diverged += 1,
+            _ => {}
+        }
+        if ok {
+            let x = self.chains.as_ref()[chain].x;
+            self.record(chain, &x, value);
+        }
+        true
+    }
+
     /// Makes `(x, value)` chain `chain`'s best when lower, at the current
     /// iteration, and the global best when lowest.
     fn record(&mut self, chain: usize, x: &[F; D], value: F) {
