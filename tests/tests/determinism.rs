@@ -19,8 +19,7 @@ use hrla::{
     Builder, Chain, Constant, Float, Gaussian, Hrla, Kernel, Linear, Ola, Optimizer, Rastrigin,
     Report, Sampler, Schedule, Stop, Termination, Ula,
 };
-use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::Rng;
+use hrla_tests::bits::chain_bits;
 use std::ops::ControlFlow;
 
 const D: usize = 3;
@@ -28,24 +27,6 @@ const N: usize = 5;
 const STEPS: u64 = 500;
 
 type Opt<F, S, C> = Optimizer<F, Rastrigin, S, C, Vec<Chain<F, D>>, D>;
-
-/// The next output of a copy of the generator: its state, without
-/// advancing it.
-fn peek(rng: &Xoshiro256PlusPlus) -> u64 {
-    rng.clone().next_u64()
-}
-
-fn chain_bits<F: Float, const DD: usize>(c: &Chain<F, DD>, out: &mut Vec<u64>) {
-    out.extend(c.x().iter().map(|v| v.to_bits_u64()));
-    out.extend(c.y().iter().map(|v| v.to_bits_u64()));
-    out.extend(c.gradient().iter().map(|v| v.to_bits_u64()));
-    out.push(c.value().to_bits_u64());
-    out.extend(c.best().x.iter().map(|v| v.to_bits_u64()));
-    out.push(c.best().value.to_bits_u64());
-    out.push(c.best().iteration);
-    out.push(u64::from(c.is_diverged()));
-    out.push(peek(c.rng()));
-}
 
 fn termination_code(t: Option<Termination>) -> u64 {
     match t {

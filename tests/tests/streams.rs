@@ -35,19 +35,10 @@ use rand_xoshiro::{Xoshiro128PlusPlus, Xoshiro256PlusPlus};
 const D: usize = 3;
 const STEPS: u64 = 200;
 
-/// One chain's observable state, as bits, with its generator's state (the
-/// next output of a copy).
+/// One chain's observable state, as bits, with its generator's state.
 fn chain_bits<F: Float, R: Rng + Clone>(c: &Chain<F, D, R>) -> Vec<u64> {
     let mut out = Vec::new();
-    out.extend(c.x().iter().map(|v| v.to_bits_u64()));
-    out.extend(c.y().iter().map(|v| v.to_bits_u64()));
-    out.extend(c.gradient().iter().map(|v| v.to_bits_u64()));
-    out.push(c.value().to_bits_u64());
-    out.extend(c.best().x.iter().map(|v| v.to_bits_u64()));
-    out.push(c.best().value.to_bits_u64());
-    out.push(c.best().iteration);
-    out.push(u64::from(c.is_diverged()));
-    out.push(c.rng().clone().next_u64());
+    hrla_tests::bits::chain_bits(c, &mut out);
     out
 }
 
