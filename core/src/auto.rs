@@ -171,7 +171,7 @@ impl<F: Float> Auto<F> {
     ) -> Result<Solution<F, D>, Error>
     where
         P: Potential<F, D> + ?Sized,
-        R: Rng + SeedableRng,
+        R: Rng + SeedableRng + 'static,
     {
         self.minimize_with(potential, domain, budget, seed, chains, lbfgs, |_, _| {})
     }
@@ -193,7 +193,7 @@ impl<F: Float> Auto<F> {
     ) -> Result<Solution<F, D>, Error>
     where
         P: Potential<F, D> + ?Sized,
-        R: Rng + SeedableRng,
+        R: Rng + SeedableRng + 'static,
     {
         self.validate()?;
         let n = chains.len();

@@ -17,7 +17,9 @@
 use rand_core::Rng;
 
 use crate::lanes;
+use crate::lockstep::{LANES, Xoshiro256Lanes};
 use crate::ziggurat_tables as zig;
+use wide::{f64x4, u64x4};
 
 /// A float type with an exact standard normal sampler: `f32` and `f64`.
 ///
@@ -41,6 +43,17 @@ pub trait StandardNormal: Sized {
     /// (see the module docs for the words they consume). Rejections draw
     /// more words as usual, the first normal's before the second's.
     fn standard_normal_pair<R: Rng + ?Sized>(rng: &mut R) -> (Self, Self);
+
+    /// One [`standard_normal`](Self::standard_normal) per lane of `rng`,
+    /// lane `l`'s from lane `l`'s stream, word for word as the lane's
+    /// `Xoshiro256PlusPlus` alone would give it: the fast path runs in all
+    /// lanes at once, the rare rejections lane by lane.
+    fn standard_normal_lanes(rng: &mut Xoshiro256Lanes) -> [Self; LANES];
+
+    /// One [`standard_normal_pair`](Self::standard_normal_pair) per lane of
+    /// `rng`, as [`standard_normal_lanes`](Self::standard_normal_lanes) does
+    /// for single draws.
+    fn standard_normal_pair_lanes(rng: &mut Xoshiro256Lanes) -> [(Self, Self); LANES];
 }
 
 /// What the Ziggurat needs of a float type: its tables, its margin, and the
@@ -142,15 +155,7 @@ impl StandardNormal for f64 {
     #[inline(always)]
     fn standard_normal<R: Rng + ?Sized>(rng: &mut R) -> Self {
         let first = split64(rng.next_u64());
-        ziggurat(
-            rng,
-            &zig::X,
-            &zig::F,
-            first,
-            |rng| split64(rng.next_u64()),
-            |rng| (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64),
-            |rng| ((rng.next_u64() >> 11) as f64 + 0.5) * (1.0 / (1u64 << 53) as f64),
-        )
+        ziggurat(rng, &zig::X, &zig::F, first, draw64, uniform64, open64)
     }
 
     #[inline(always)]
@@ -158,21 +163,120 @@ impl StandardNormal for f64 {
         let z1 = Self::standard_normal(rng);
         (z1, Self::standard_normal(rng))
     }
+
+    #[inline(always)]
+    fn standard_normal_lanes(rng: &mut Xoshiro256Lanes) -> [Self; LANES] {
+        // The fast path in vectors: the word, its uniform and the test; the
+        // layer's two edges are the only per-lane loads.
+        let words = rng.next_vector();
+        let layer = (words & u64x4::splat(0xff)).to_array().map(|i| i as usize);
+        let mantissa = (words >> 12) | u64x4::splat(0x4000_0000_0000_0000);
+        let u = f64x4::from_bits(mantissa) - f64x4::splat(3.0);
+        let x = u * f64x4::new(layer.map(|i| zig::X[i]));
+        let inside = x.abs().simd_lt(f64x4::new(layer.map(|i| zig::X[i + 1])));
+        let mut z = x.to_array();
+        if !inside.all() {
+            let (inside, u) = (inside.to_bitmask(), u.to_array());
+            for l in 0..LANES {
+                if inside & (1 << l) == 0 {
+                    let first = (layer[l], u[l], z[l]);
+                    z[l] = rng.with_lane(l, |g| {
+                        ziggurat_slow(g, &zig::X, &zig::F, first, draw64, uniform64, open64)
+                    });
+                }
+            }
+        }
+        z
+    }
+
+    #[inline(always)]
+    fn standard_normal_pair_lanes(rng: &mut Xoshiro256Lanes) -> [(Self, Self); LANES] {
+        let z1 = Self::standard_normal_lanes(rng);
+        let z2 = Self::standard_normal_lanes(rng);
+        core::array::from_fn(|l| (z1[l], z2[l]))
+    }
 }
 
 impl StandardNormal for f32 {
     #[inline(always)]
     fn standard_normal<R: Rng + ?Sized>(rng: &mut R) -> Self {
         let first = split32(rng.next_u32());
-        normal32(rng, first)
+        ziggurat(rng, &X32, &F32, first, draw32, uniform32, open32)
     }
 
     #[inline(always)]
     fn standard_normal_pair<R: Rng + ?Sized>(rng: &mut R) -> (Self, Self) {
         let bits = rng.next_u64();
-        let z1 = normal32(rng, split32(bits as u32));
-        (z1, normal32(rng, split32((bits >> 32) as u32)))
+        let z1 = ziggurat(
+            rng,
+            &X32,
+            &F32,
+            split32(bits as u32),
+            draw32,
+            uniform32,
+            open32,
+        );
+        let z2 = split32((bits >> 32) as u32);
+        (z1, ziggurat(rng, &X32, &F32, z2, draw32, uniform32, open32))
     }
+
+    #[inline(always)]
+    fn standard_normal_lanes(rng: &mut Xoshiro256Lanes) -> [Self; LANES] {
+        // `next_u32` of a 64-bit generator: the high half of its next word.
+        let words = rng.next_u64();
+        ziggurat_lanes(
+            words.map(|w| split32((w >> 32) as u32)),
+            &X32,
+            |l, first| rng.with_lane(l, |g| slow32(g, first)),
+        )
+    }
+
+    #[inline(always)]
+    fn standard_normal_pair_lanes(rng: &mut Xoshiro256Lanes) -> [(Self, Self); LANES] {
+        let words = rng.next_u64();
+        let z1 = ziggurat_lanes(words.map(|w| split32(w as u32)), &X32, |l, first| {
+            rng.with_lane(l, |g| slow32(g, first))
+        });
+        let z2 = ziggurat_lanes(
+            words.map(|w| split32((w >> 32) as u32)),
+            &X32,
+            |l, first| rng.with_lane(l, |g| slow32(g, first)),
+        );
+        core::array::from_fn(|l| (z1[l], z2[l]))
+    }
+}
+
+/// The fast path of the Ziggurat in every lane at once, from each lane's
+/// first word; the lanes it rejects then finish one by one in `slow`, in
+/// lane order. A lane's words are its own, so it draws exactly what the
+/// single-stream [`ziggurat`] draws from its generator.
+#[inline(always)]
+fn ziggurat_lanes<F: Real>(
+    firsts: [(usize, F); LANES],
+    x_tab: &[F; 257],
+    mut slow: impl FnMut(usize, (usize, F, F)) -> F,
+) -> [F; LANES] {
+    let mut z = [F::ZERO; LANES];
+    let mut edge = [F::ZERO; LANES];
+    for ((zl, el), &(i, u)) in z.iter_mut().zip(&mut edge).zip(&firsts) {
+        *zl = u * x_tab[i];
+        *el = x_tab[i + 1];
+    }
+    // One vector compare of all lanes, not a branch per lane.
+    let rejected = z.iter().zip(&edge).fold(0u32, |m, (x, e)| {
+        let inside = x.abs() < *e;
+        (m << 1) | u32::from(!inside)
+    });
+    if rejected != 0 {
+        for (l, (zl, &(i, u))) in z.iter_mut().zip(&firsts).enumerate() {
+            let x = *zl;
+            let inside = x.abs() < x_tab[i + 1];
+            if !inside {
+                *zl = slow(l, (i, u, x));
+            }
+        }
+    }
+    z
 }
 
 /// The ZIGNOR method, shared by both float widths: `first` is the first
@@ -313,18 +417,44 @@ fn split32(bits: u32) -> (usize, f32) {
     ((bits & 0xff) as usize, u)
 }
 
-/// An `f32` normal from its first word; any further words by `next_u32`.
+/// An `f32` normal's slow path, with any further words by `next_u32`.
+#[inline(never)]
+fn slow32<R: Rng + ?Sized>(rng: &mut R, first: (usize, f32, f32)) -> f32 {
+    ziggurat_slow(rng, &X32, &F32, first, draw32, uniform32, open32)
+}
+
+// The words of the rare branches: a further (layer, uniform on [-1, 1)),
+// a uniform on [0, 1) and one on (0, 1); f64 from `next_u64`, f32 from
+// `next_u32`.
+
 #[inline(always)]
-fn normal32<R: Rng + ?Sized>(rng: &mut R, first: (usize, f32)) -> f32 {
-    ziggurat(
-        rng,
-        &X32,
-        &F32,
-        first,
-        |rng| split32(rng.next_u32()),
-        |rng| (rng.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32),
-        |rng| ((rng.next_u32() >> 9) as f32 + 0.5) * (1.0 / (1u32 << 23) as f32),
-    )
+fn draw64<R: Rng + ?Sized>(rng: &mut R) -> (usize, f64) {
+    split64(rng.next_u64())
+}
+
+#[inline(always)]
+fn uniform64<R: Rng + ?Sized>(rng: &mut R) -> f64 {
+    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+#[inline(always)]
+fn open64<R: Rng + ?Sized>(rng: &mut R) -> f64 {
+    ((rng.next_u64() >> 11) as f64 + 0.5) * (1.0 / (1u64 << 53) as f64)
+}
+
+#[inline(always)]
+fn draw32<R: Rng + ?Sized>(rng: &mut R) -> (usize, f32) {
+    split32(rng.next_u32())
+}
+
+#[inline(always)]
+fn uniform32<R: Rng + ?Sized>(rng: &mut R) -> f32 {
+    (rng.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
+}
+
+#[inline(always)]
+fn open32<R: Rng + ?Sized>(rng: &mut R) -> f32 {
+    ((rng.next_u32() >> 9) as f32 + 0.5) * (1.0 / (1u32 << 23) as f32)
 }
 
 const fn narrow(t: &[f64; 257]) -> [f32; 257] {

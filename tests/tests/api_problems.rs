@@ -402,7 +402,8 @@ fn the_evaluation_budget_is_exact() {
 
     for budget in [50, 200, 1_000, 1_001] {
         let build = || {
-            let start = FromFn(|c: usize, _: &mut dyn Rng| if c % 2 == 0 { [0.0] } else { [4.5] });
+            let start =
+                FromFn(|c: usize, _: &mut dyn Rng| if c.is_multiple_of(2) { [0.0] } else { [4.5] });
             Builder::new(Cliff::NAN, Hrla::paper(0.01).unwrap(), 4.0, start)
                 .seed(12)
                 .stop(Stop::new().evaluations(budget))

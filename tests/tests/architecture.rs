@@ -132,10 +132,10 @@ fn edges(mods: &BTreeMap<String, PathBuf>) -> BTreeMap<String, BTreeSet<String>>
             }
         }
         for p in paths {
-            if let Some(t) = target(m, &p, mods) {
-                if &t != m {
-                    out.insert(t);
-                }
+            if let Some(t) = target(m, &p, mods)
+                && &t != m
+            {
+                out.insert(t);
             }
         }
         graph.insert(m.clone(), out);
@@ -175,10 +175,10 @@ fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>>
     }
     let mut state = BTreeMap::new();
     for v in graph.keys() {
-        if !state.contains_key(v.as_str()) {
-            if let Some(c) = visit(v, graph, &mut state, &mut Vec::new()) {
-                return Some(c);
-            }
+        if !state.contains_key(v.as_str())
+            && let Some(c) = visit(v, graph, &mut state, &mut Vec::new())
+        {
+            return Some(c);
         }
     }
     None

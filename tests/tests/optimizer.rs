@@ -323,7 +323,7 @@ fn rng_states<const D: usize>(chains: &[Chain<f64, D>]) -> Vec<u64> {
 /// the well's law is N(0, 1/4), and |x| = 3 is 6 standard deviations out).
 fn check_partial_divergence(cliff: Cliff) {
     const N: usize = 6;
-    let start = FromFn(|c: usize, _: &mut dyn Rng| if c % 2 == 0 { [0.0] } else { [4.5] });
+    let start = FromFn(|c: usize, _: &mut dyn Rng| if c.is_multiple_of(2) { [0.0] } else { [4.5] });
     let mut opt = Builder::new(cliff, paper_hrla(), 4.0, start)
         .seed(41)
         .stop(Stop::new().steps(500))
@@ -430,7 +430,7 @@ fn negative_infinity_value_beyond_radius_is_unbounded_below() {
         outside: f64::NEG_INFINITY,
         outside_grad: 0.0,
     };
-    let start = FromFn(|c: usize, _: &mut dyn Rng| if c % 2 == 0 { [0.0] } else { [4.5] });
+    let start = FromFn(|c: usize, _: &mut dyn Rng| if c.is_multiple_of(2) { [0.0] } else { [4.5] });
     let mut opt = Builder::new(cliff, paper_hrla(), 4.0, start)
         .seed(41)
         .stop(Stop::new().steps(500))

@@ -54,7 +54,7 @@ where
     F: Float,
     S: Sampler<F>,
     C: Schedule<F>,
-    R: Rng + SeedableRng + Clone,
+    R: Rng + SeedableRng + Clone + 'static,
 {
     let chains: Vec<Chain<F, D, R>> = (0..n).map(|_| Chain::default()).collect();
     let mut opt = Builder::new(Rastrigin, sampler, schedule, start())
@@ -79,7 +79,7 @@ where
     F: Float,
     S: Sampler<F> + Clone,
     C: Schedule<F> + Clone,
-    R: Rng + SeedableRng + Clone,
+    R: Rng + SeedableRng + Clone + 'static,
 {
     const N: usize = 8;
     let all = trajectories::<F, S, C, R>(sampler.clone(), schedule.clone(), seed, N);
@@ -119,6 +119,7 @@ fn chain_c_is_the_same_in_runs_of_any_size() {
     let linear32 = Linear::new(0.1f32, 4.0, STEPS).unwrap();
     check_independence::<f32, _, _, Xoshiro128PlusPlus>(Hrla::paper(0.01).unwrap(), linear32, 10);
     check_independence::<f32, _, _, Xoshiro256PlusPlus>(Ola::paper(0.01).unwrap(), 2.0f32, 11);
+    check_independence::<f32, _, _, Xoshiro256PlusPlus>(Hrla::paper(0.01).unwrap(), 2.0f32, 12);
 }
 
 /// Chain `c`, replayed by hand from the documented definition: a generator
@@ -130,7 +131,7 @@ where
     F: Float,
     S: Sampler<F> + Clone,
     C: Schedule<F> + Clone,
-    R: Rng + SeedableRng + Clone,
+    R: Rng + SeedableRng + Clone + 'static,
 {
     let run = trajectories::<F, S, C, R>(sampler.clone(), schedule.clone(), seed, 5);
     for (c, traj) in run.iter().enumerate() {

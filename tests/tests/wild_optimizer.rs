@@ -293,10 +293,10 @@ fn settings_error<S: Sampler<f64>>(sampler: &S, schedule: &AnySchedule, w: &Wild
     if let Some(budget) = w.evaluations.filter(|&b| b < n as u64) {
         return Some(Error::Budget { budget, chains: n });
     }
-    if let (Some(schedule), Some(steps)) = (schedule.length(), w.steps) {
-        if steps < schedule {
-            return Some(Error::ScheduleLongerThanRun { schedule, steps });
-        }
+    if let (Some(schedule), Some(steps)) = (schedule.length(), w.steps)
+        && steps < schedule
+    {
+        return Some(Error::ScheduleLongerThanRun { schedule, steps });
     }
     sampler.at(schedule.inverse_temperature(0)).err()
 }

@@ -8,8 +8,10 @@ use rand_core::Rng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use super::chain::{Best, Chain};
+use super::executor::Executor;
 use super::report::{Progress, Report};
 use super::stop::{Stop, Termination};
+use super::sweep::{Context, Sweep, all_finite, sweep};
 use crate::domain::{Domain, Unbounded};
 use crate::error::Error;
 use crate::float::Float;
@@ -85,7 +87,7 @@ where
     S: Sampler<F>,
     C: Schedule<F>,
     St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
-    R: Rng,
+    R: Rng + 'static,
     B: Domain<F, D>,
 {
     /// The optimiser over chains the builder has initialised, with `best`
@@ -138,70 +140,54 @@ where
     }
 
     fn advance(&mut self) -> Result<Stepped, Error> {
+        self.advance_by(|cx, chains| sweep(cx, chains, 0))
+    }
+
+    /// A step unless the run has failed, and the failure kept if it fails.
+    fn advance_by<T>(&mut self, step_chains: T) -> Result<Stepped, Error>
+    where
+        T: FnOnce(&Context<'_, S::Kernel, P, B, F>, &mut [Chain<F, D, R>]) -> Sweep<F>,
+    {
         if let Some(e) = self.failed {
             return Err(e);
         }
-        let result = self.advance_live();
+        let result = self.advance_live(step_chains);
         if let Err(e @ (Error::UnboundedBelow { .. } | Error::AllDiverged { .. })) = result {
             self.failed = Some(e);
         }
         result
     }
 
-    fn advance_live(&mut self) -> Result<Stepped, Error> {
+    /// One step, the chains stepped by `step_chains`.
+    fn advance_live<T>(&mut self, step_chains: T) -> Result<Stepped, Error>
+    where
+        T: FnOnce(&Context<'_, S::Kernel, P, B, F>, &mut [Chain<F, D, R>]) -> Sweep<F>,
+    {
         let n = self.chains.as_ref().len();
         let a = self.schedule.inverse_temperature(self.iteration);
         if a != self.kernel.inverse_temperature() {
             self.kernel = self.sampler.at(a)?;
         }
         let k = self.iteration + 1;
-        let record = k % self.stride == 0;
-        let floor = -(F::MAX.sqrt());
-        let mut best = self.best;
-        let before = self.chains.as_ref()[best].best.value;
-        let mut best_value = before;
-        let mut unbounded = None;
-        let mut evaluated = 0;
-        for (c, chain) in self.chains.as_mut().iter_mut().enumerate() {
-            if chain.diverged {
-                continue;
-            }
-            self.kernel
-                .step(&mut chain.x, &mut chain.y, &chain.grad, &mut chain.rng);
-            self.domain.confine(&mut chain.x, &mut chain.y);
-            let value = self.potential.value_and_gradient(&chain.x, &mut chain.grad);
-            evaluated += 1;
-            chain.value = value;
-            if value < floor {
-                // Frozen like a diverged chain, so that its value never
-                // becomes the best.
-                unbounded.get_or_insert((c, value));
-                chain.diverged = true;
-                self.diverged += 1;
-                continue;
-            }
-            if !(value.is_finite() && all_finite(&chain.grad) && all_finite(&chain.x)) {
-                chain.diverged = true;
-                self.diverged += 1;
-                continue;
-            }
-            if record && value < chain.best.value {
-                // Field by field: a whole `Best` would be built on the
-                // stack first, `D` floats of it.
-                chain.best.x = chain.x;
-                chain.best.value = value;
-                chain.best.iteration = k;
-                if value < best_value {
-                    best = c;
-                    best_value = value;
-                }
-            }
-        }
-        self.evaluations += evaluated;
+        let cx = Context {
+            kernel: &self.kernel,
+            potential: &self.potential,
+            domain: &self.domain,
+            k,
+            record: k.is_multiple_of(self.stride),
+            floor: -(F::MAX.sqrt()),
+        };
+        let before = self.chains.as_ref()[self.best].best.value;
+        let found = step_chains(&cx, self.chains.as_mut());
+        self.evaluations += found.evaluated;
+        self.diverged += found.diverged;
         self.iteration = k;
-        let improved = best_value < before;
-        self.best = best;
-        if let Some((chain, value)) = unbounded {
+        let mut best_value = before;
+        if let Some((value, c)) = found.best.filter(|&(value, _)| value < before) {
+            self.best = c;
+            best_value = value;
+        }
+        if let Some((chain, value)) = found.unbounded {
             return Err(Error::UnboundedBelow {
                 chain,
                 value: value.to_f64(),
@@ -210,13 +196,13 @@ where
         if self.diverged == n {
             return Err(Error::AllDiverged { chains: n });
         }
-        if let Some((_, tolerance)) = self.stop.stall {
-            if best_value < self.stall_value - tolerance {
-                self.stall_value = best_value;
-                self.stall_since = k;
-            }
+        if let Some((_, tolerance)) = self.stop.stall
+            && best_value < self.stall_value - tolerance
+        {
+            self.stall_value = best_value;
+            self.stall_since = k;
         }
-        Ok(if improved {
+        Ok(if best_value < before {
             Stepped::Improved
         } else {
             Stepped::Unchanged
@@ -281,17 +267,32 @@ where
     /// println!("{report} ({improvements} improvements)");
     /// # Ok::<(), hrla::Error>(())
     /// ```
-    pub fn run_with<O>(&mut self, every: u64, mut observer: O) -> Result<Report<F>, Error>
+    pub fn run_with<O>(&mut self, every: u64, observer: O) -> Result<Report<F>, Error>
     where
         O: FnMut(&Progress<'_, F, D>) -> ControlFlow<()>,
+    {
+        self.run_by(every, observer, &|cx, chains| sweep(cx, chains, 0))
+    }
+
+    /// The loop of [`run_with`](Optimizer::run_with), the chains of each
+    /// step stepped by `step_chains`.
+    fn run_by<O, T>(
+        &mut self,
+        every: u64,
+        mut observer: O,
+        step_chains: &T,
+    ) -> Result<Report<F>, Error>
+    where
+        O: FnMut(&Progress<'_, F, D>) -> ControlFlow<()>,
+        T: Fn(&Context<'_, S::Kernel, P, B, F>, &mut [Chain<F, D, R>]) -> Sweep<F>,
     {
         loop {
             if let Some(termination) = self.termination() {
                 return Ok(self.report(termination));
             }
-            let stepped = self.advance()?;
+            let stepped = self.advance_by(step_chains)?;
             let improved = matches!(stepped, Stepped::Improved);
-            if improved || (every > 0 && self.iteration % every == 0) {
+            if improved || (every > 0 && self.iteration.is_multiple_of(every)) {
                 let progress = Progress {
                     iteration: self.iteration,
                     evaluations: self.evaluations,
@@ -567,9 +568,68 @@ where
     }
 }
 
-/// Without short-circuit, so that the checks vectorise: this runs on every
-/// chain at every step, and a chain is almost always finite.
-#[inline(always)]
-pub(crate) fn all_finite<F: Float, const D: usize>(v: &[F; D]) -> bool {
-    v.iter().fold(true, |ok, x| ok & x.is_finite())
+/// Steps on an [`Executor`]: the chains of every step in parts, on threads
+/// if the executor has them, with the same bits as
+/// [`step`](Optimizer::step) and [`run`](Optimizer::run) for any executor.
+impl<F, P, S, C, St, const D: usize, R, B> Optimizer<F, P, S, C, St, D, R, B>
+where
+    F: Float,
+    P: Potential<F, D> + Sync,
+    S: Sampler<F>,
+    S::Kernel: Sync,
+    C: Schedule<F>,
+    St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
+    R: Rng + Send + 'static,
+    B: Domain<F, D> + Sync,
+{
+    /// [`step`](Optimizer::step), the chains stepped by `executor`.
+    pub fn step_on<E: Executor>(&mut self, executor: &E) -> Result<(), Error> {
+        self.advance_by(|cx, chains| in_parts(executor, cx, chains))
+            .map(drop)
+    }
+
+    /// [`run`](Optimizer::run), the chains of every step stepped by
+    /// `executor`.
+    pub fn run_on<E: Executor>(&mut self, executor: &E) -> Result<Report<F>, Error> {
+        if self.stop.is_empty() {
+            return Err(Error::NoStoppingRule);
+        }
+        self.run_with_on(executor, 0, |_| ControlFlow::Continue(()))
+    }
+
+    /// [`run_with`](Optimizer::run_with), the chains of every step stepped
+    /// by `executor`; the observer runs on the calling thread.
+    pub fn run_with_on<E, O>(
+        &mut self,
+        executor: &E,
+        every: u64,
+        observer: O,
+    ) -> Result<Report<F>, Error>
+    where
+        E: Executor,
+        O: FnMut(&Progress<'_, F, D>) -> ControlFlow<()>,
+    {
+        self.run_by(every, observer, &|cx, chains| {
+            in_parts(executor, cx, chains)
+        })
+    }
+}
+
+/// One step of `chains`, in the executor's parts.
+fn in_parts<E, F, K, P, B, R, const D: usize>(
+    executor: &E,
+    cx: &Context<'_, K, P, B, F>,
+    chains: &mut [Chain<F, D, R>],
+) -> Sweep<F>
+where
+    E: Executor,
+    F: Float,
+    K: Kernel<F> + Sync,
+    P: Potential<F, D> + Sync,
+    B: Domain<F, D> + Sync,
+    R: Rng + Send + 'static,
+{
+    executor
+        .fold_parts(chains, |first, part| sweep(cx, part, first), Sweep::then)
+        .unwrap_or(Sweep::NOTHING)
 }

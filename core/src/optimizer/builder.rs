@@ -3,10 +3,11 @@
 
 use rand_core::{Rng, SeedableRng};
 
-use super::algorithm::{Optimizer, all_finite};
+use super::algorithm::Optimizer;
 use super::chain::Chain;
 use super::stop::Stop;
 use super::stream::chain_seed;
+use super::sweep::all_finite;
 use crate::domain::{Domain, Unbounded};
 use crate::error::Error;
 use crate::float::Float;
@@ -124,7 +125,7 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
         B: Domain<F, D>,
         St: Start<F, D>,
         Store: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
-        R: Rng + SeedableRng,
+        R: Rng + SeedableRng + 'static,
     {
         let n = chains.as_ref().len();
         if n == 0 {
@@ -139,10 +140,10 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
             return Err(Error::Zero { name: "stride" });
         }
         self.stop.validate()?;
-        if let Some(budget) = self.stop.evaluations {
-            if budget < n as u64 {
-                return Err(Error::Budget { budget, chains: n });
-            }
+        if let Some(budget) = self.stop.evaluations
+            && budget < n as u64
+        {
+            return Err(Error::Budget { budget, chains: n });
         }
         if let Some(length) = self.schedule.length() {
             match self.stop.steps {

@@ -12,13 +12,16 @@
 mod algorithm;
 mod builder;
 mod chain;
+mod executor;
 mod report;
 mod stop;
 mod stream;
+mod sweep;
 
 pub use algorithm::Optimizer;
 pub use builder::Builder;
 pub use chain::{Best, Chain};
+pub use executor::{Executor, Serial};
 pub use report::{Progress, Report};
 pub use stop::{Stop, Termination};
 pub use stream::{chain_seed, splitmix64};

@@ -13,10 +13,11 @@ use rand_core::Rng;
 use super::hrla::Hrla;
 use super::ola::{Ola, OlaKernel};
 use super::ou::OuKernel;
-use super::traits::{Kernel, Sampler, StepMoments};
+use super::traits::{ChainState, Kernel, Sampler, StepMoments};
 use super::ula::Ula;
 use crate::error::Error;
 use crate::float::Float;
+use crate::lockstep::{LANES, Xoshiro256Lanes};
 
 macro_rules! samplers {
     ($( $(#[$doc:meta])* $variant:ident($sampler:ident, $kernel:ident) = $name:literal ),+ $(,)?) => {
@@ -116,6 +117,17 @@ macro_rules! samplers {
             ) {
                 match self {
                     $( Self::$variant(k) => k.step(x, y, grad, rng), )+
+                }
+            }
+
+            #[inline]
+            fn step_lanes<const D: usize>(
+                &self,
+                chains: [ChainState<'_, F, D>; LANES],
+                rng: &mut Xoshiro256Lanes,
+            ) {
+                match self {
+                    $( Self::$variant(k) => k.step_lanes(chains, rng), )+
                 }
             }
         }

@@ -44,9 +44,10 @@
 
 use rand_core::Rng;
 
-use super::traits::{Kernel, StepMoments};
+use super::traits::{ChainState, Kernel, StepMoments};
 use crate::error::{ALPHA_H, Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
+use crate::lockstep::{LANES, Xoshiro256Lanes};
 
 /// Terms of the series `A(s)` and `S(s)`: for `s <= 4` the first omitted
 /// term is below 2^-60 of the sum, so both are exact to the last place of f64.
@@ -302,6 +303,23 @@ impl<F: Float> Kernel<F> for OuKernel<F> {
             }
         }
     }
+
+    /// Every chain's pair `(z1, z2)` of a coordinate in lockstep, then each
+    /// chain's update: the draws of [`step`](Kernel::step), per lane.
+    #[inline]
+    fn step_lanes<const D: usize>(
+        &self,
+        mut chains: [ChainState<'_, F, D>; LANES],
+        rng: &mut Xoshiro256Lanes,
+    ) {
+        if D <= BLOCK {
+            self.step_lanes_block::<D, D>(&mut chains, 0, rng);
+        } else {
+            for start in (0..D).step_by(BLOCK) {
+                self.step_lanes_block::<D, BLOCK>(&mut chains, start, rng);
+            }
+        }
+    }
 }
 
 /// Coordinates stepped together: all of a block's draws first, then its
@@ -329,5 +347,25 @@ impl<F: Float> OuKernel<F> {
         for (((xi, yi), &gi), &(z1, z2)) in x.iter_mut().zip(y.iter_mut()).zip(grad).zip(&*z) {
             self.apply(xi, yi, gi, z1, z2);
         }
+    }
+
+    /// Coordinates `start..start + B` (at most) of `L` chains: every
+    /// chain's normals in lockstep first, then each chain's update, which
+    /// vectorises over its coordinates.
+    #[inline]
+    fn step_lanes_block<const D: usize, const B: usize>(
+        &self,
+        chains: &mut [ChainState<'_, F, D>; LANES],
+        start: usize,
+        rng_out: &mut Xoshiro256Lanes,
+    ) {
+        let mut lanes = *rng_out;
+        for i in start..D.min(start + B) {
+            let pairs = F::standard_normal_pair_lanes(&mut lanes);
+            for (chain, (z1, z2)) in chains.iter_mut().zip(pairs) {
+                self.apply(&mut chain.x[i], &mut chain.y[i], chain.grad[i], z1, z2);
+            }
+        }
+        *rng_out = lanes;
     }
 }

@@ -9,6 +9,7 @@ use rand_core::Rng;
 
 use crate::error::Error;
 use crate::float::Float;
+use crate::lockstep::{LANES, Xoshiro256Lanes};
 
 /// A Langevin-type sampling method: its parameters, without the inverse
 /// temperature.
@@ -50,6 +51,37 @@ pub trait Kernel<F: Float>: Copy {
         grad: &[F; D],
         rng: &mut R,
     );
+
+    /// Advances `L` chains by one step each, chain `l` drawing from lane
+    /// `l` of `rng`: bit for bit what [`step`](Kernel::step) gives with
+    /// that lane's generator alone. This is the seam for wide hardware:
+    /// the chains are independent, so a kernel may interleave their draws
+    /// and updates in any way that keeps each chain's own order of draws.
+    ///
+    /// The default steps the chains one after another; kernels override it
+    /// to draw every chain's normals in lockstep.
+    #[inline]
+    fn step_lanes<const D: usize>(
+        &self,
+        chains: [ChainState<'_, F, D>; LANES],
+        rng: &mut Xoshiro256Lanes,
+    ) {
+        for (l, chain) in chains.into_iter().enumerate() {
+            self.step(chain.x, chain.y, chain.grad, &mut rng.lane(l));
+        }
+    }
+}
+
+/// What [`Kernel::step_lanes`] advances of one chain: its position and
+/// velocity, and the gradient at the position.
+#[derive(Debug)]
+pub struct ChainState<'a, F, const D: usize> {
+    /// Position `x`.
+    pub x: &'a mut [F; D],
+    /// Velocity `y`.
+    pub y: &'a mut [F; D],
+    /// `∇U(x)`.
+    pub grad: &'a [F; D],
 }
 
 /// Mean and covariance of one step of one coordinate, given `(x, y)` and the

@@ -81,8 +81,8 @@ impl<'a> Tracker<'a> {
     /// checkpoint), so the caller need not compute the best chain value at
     /// other iterates. Every wanted iterate must be observed, in order.
     pub fn wants(&self, k: u64) -> bool {
-        (k > 0 && k % self.stride == 0)
-            || self.every.is_some_and(|r| k % r == 0)
+        (k > 0 && k.is_multiple_of(self.stride))
+            || self.every.is_some_and(|r| k.is_multiple_of(r))
             || self.checkpoints.get(self.at_checkpoints.len()) == Some(&k)
     }
 
@@ -90,14 +90,14 @@ impl<'a> Tracker<'a> {
     /// chain has diverged). Iterates not [`wanted`](Tracker::wants) are
     /// ignored.
     pub fn observe(&mut self, k: u64, best_now: f64) {
-        if k > 0 && k % self.stride == 0 {
+        if k > 0 && k.is_multiple_of(self.stride) {
             self.running = self.running.min(best_now);
         }
         if self.checkpoints.get(self.at_checkpoints.len()) == Some(&k) {
             self.at_checkpoints.push(self.running);
         }
         if let Some(r) = self.every
-            && k % r == 0
+            && k.is_multiple_of(r)
         {
             let j = (k / r) as usize;
             if j < self.points {
