@@ -74,16 +74,26 @@ impl ProtocolResult {
     }
 }
 
-/// What a worker accumulates: memory is `O(configurations x points x
-/// tolerances + M)`, independent of how many iterates are run.
-struct Partial {
-    counts: Vec<Vec<u32>>,
-    values: Vec<Vec<(usize, Vec<f64>)>>,
-    diverged: Vec<usize>,
+/// What the runs of a plan (or of a shard of it) leave: memory is
+/// `O(configurations x points x tolerances + M)`, independent of how many
+/// iterates are run. Parts of one plan merge into the whole in any order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Part {
+    /// Per configuration: runs within each tolerance at each grid point.
+    pub counts: Vec<Vec<u32>>,
+    /// Per configuration: `(run index, running best at each checkpoint)`.
+    pub values: Vec<Vec<(usize, Vec<f64>)>>,
+    /// Per configuration: chains that diverged.
+    pub diverged: Vec<usize>,
+    /// Wall time of the runs.
+    pub wall: Duration,
+    /// Chain-steps done.
+    pub chain_steps: u64,
 }
 
-impl Partial {
-    fn new(plan: &Plan) -> Self {
+impl Part {
+    /// Nothing run yet.
+    pub fn empty(plan: &Plan) -> Self {
         Self {
             counts: plan
                 .configs
@@ -92,10 +102,13 @@ impl Partial {
                 .collect(),
             values: vec![Vec::new(); plan.configs.len()],
             diverged: vec![0; plan.configs.len()],
+            wall: Duration::ZERO,
+            chain_steps: 0,
         }
     }
 
-    fn merge(mut self, other: Partial) -> Self {
+    /// Both parts' runs (wall times add up).
+    pub fn merge(mut self, other: Part) -> Self {
         for (mine, theirs) in self.counts.iter_mut().zip(other.counts) {
             for (m, t) in mine.iter_mut().zip(theirs) {
                 *m += t;
@@ -107,28 +120,92 @@ impl Partial {
         for (mine, theirs) in self.diverged.iter_mut().zip(other.diverged) {
             *mine += theirs;
         }
+        self.wall += other.wall;
+        self.chain_steps += other.chain_steps;
         self
+    }
+}
+
+/// Which of a plan's runs a process does: the `(configuration, run)` pairs
+/// whose index in plan order is `index` modulo `count` (`0/1` is all of
+/// them). Shards of one plan are disjoint and cover it, whatever `count`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, `0..count`.
+    pub index: usize,
+    /// Shards in all, at least 1.
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole plan.
+    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
+
+    /// The `(configuration, run)` pairs of this shard, in plan order.
+    pub fn tasks(&self, plan: &Plan) -> Vec<(usize, usize)> {
+        (0..plan.configs.len())
+            .flat_map(|c| (0..plan.runs).map(move |i| (c, i)))
+            .enumerate()
+            .filter(|(t, _)| t % self.count == self.index)
+            .map(|(_, task)| task)
+            .collect()
+    }
+}
+
+impl std::str::FromStr for Shard {
+    type Err = ReproError;
+
+    /// `i/n`, with `n >= 1` and `i < n`.
+    fn from_str(s: &str) -> Result<Self, ReproError> {
+        let bad = || ReproError::Usage(format!("--shard `{s}`: expected i/n with 0 <= i < n"));
+        let (i, n) = s.split_once('/').ok_or_else(bad)?;
+        let (index, count) = (
+            i.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if count == 0 || index >= count {
+            return Err(bad());
+        }
+        Ok(Shard { index, count })
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
     }
 }
 
 /// Runs every configuration `plan.runs` times on the current rayon pool.
 /// Run `i` of every configuration is seeded with [`run_seed`]`(seed, i)`
-/// (each of its chains then has its own stream); counts are integers and the summaries are taken in run order, so the result does
-/// not depend on the number of threads. `bar` advances by chain-steps.
+/// (each of its chains then has its own stream); counts are integers and
+/// the summaries are taken in run order, so the result does not depend on
+/// the number of threads, nor on whether the plan ran in shards
+/// ([`run_shard`], merged with [`Part::merge`] and [`finish`]). `bar`
+/// advances by chain-steps.
 pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResult, ReproError> {
+    let part = run_shard(plan, seed, Shard::WHOLE, bar)?;
+    Ok(finish(plan, seed, part, rayon::current_num_threads()))
+}
+
+/// The runs of one shard of a plan.
+pub fn run_shard(
+    plan: &Plan,
+    seed: u64,
+    shard: Shard,
+    bar: &ProgressBar,
+) -> Result<Part, ReproError> {
     let started = Instant::now();
-    let tasks: Vec<(usize, usize)> = (0..plan.configs.len())
-        .flat_map(|c| (0..plan.runs).map(move |i| (c, i)))
-        .collect();
+    let tasks = shard.tasks(plan);
     let progress = |n: u64| bar.inc(n);
-    let total = tasks
+    let mut part = tasks
         .par_iter()
         // One run per rayon job: a run is long (up to 10^6 chain-steps), so
         // scheduling costs nothing, and the last runs of a protocol are
         // spread over every core instead of queued behind one.
         .with_max_len(1)
         .try_fold(
-            || Partial::new(plan),
+            || Part::empty(plan),
             |mut acc, &(c, i)| {
                 let spec = &plan.configs[c];
                 let out = run_once(
@@ -139,17 +216,23 @@ pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResu
                 )?;
                 acc.values[c].push((i, out.running_best));
                 acc.diverged[c] += out.diverged;
+                acc.chain_steps += spec.chain_steps();
                 Ok::<_, ReproError>(acc)
             },
         )
-        .try_reduce(|| Partial::new(plan), |a, b| Ok(a.merge(b)))?;
-    let wall = started.elapsed();
+        .try_reduce(|| Part::empty(plan), |a, b| Ok(a.merge(b)))?;
+    part.wall = started.elapsed();
+    Ok(part)
+}
+
+/// The protocol's result from all its runs (every shard merged).
+pub fn finish(plan: &Plan, seed: u64, part: Part, threads: usize) -> ProtocolResult {
     let configs = plan
         .configs
         .iter()
-        .zip(total.counts)
-        .zip(total.values)
-        .zip(total.diverged)
+        .zip(part.counts)
+        .zip(part.values)
+        .zip(part.diverged)
         .map(|(((spec, counts), mut values), diverged)| {
             values.sort_by_key(|(i, _)| *i);
             let checkpoints = spec
@@ -174,14 +257,14 @@ pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResu
             }
         })
         .collect();
-    Ok(ProtocolResult {
+    ProtocolResult {
         plan: plan.clone(),
         seed,
         configs,
-        wall,
-        chain_steps: plan.chain_steps(),
-        threads: rayon::current_num_threads(),
-    })
+        wall: part.wall,
+        chain_steps: part.chain_steps,
+        threads,
+    }
 }
 
 #[cfg(test)]
@@ -216,5 +299,48 @@ mod tests {
         let pts = 61;
         assert_eq!(one.configs[0].counts[0], one.configs[1].counts[0]);
         assert_eq!(one.configs[0].counts.len(), 6 * pts);
+    }
+
+    /// Three shards, merged in any order, are the whole plan; they are
+    /// disjoint and cover every run.
+    #[test]
+    fn shards_merge_into_the_whole() {
+        let o = Overrides {
+            m: Some(5),
+            k: Some(vec![40]),
+            a: Some(vec![1.0, 4.0]),
+            ..Overrides::default()
+        };
+        let p = plan(ProtocolId::E1, &o, false).unwrap();
+        let bar = ProgressBar::hidden();
+        let whole = execute(&p, 7, &bar).unwrap();
+        let shards: Vec<Part> = (0..3)
+            .map(|index| run_shard(&p, 7, Shard { index, count: 3 }, &bar).unwrap())
+            .collect();
+        let mut all: Vec<(usize, usize)> = (0..3)
+            .flat_map(|index| Shard { index, count: 3 }.tasks(&p))
+            .collect();
+        all.sort();
+        assert_eq!(all, Shard::WHOLE.tasks(&p));
+        for order in [[0, 1, 2], [2, 0, 1]] {
+            let merged = order
+                .iter()
+                .map(|&i| shards[i].clone())
+                .fold(Part::empty(&p), Part::merge);
+            let merged = finish(&p, 7, merged, 1);
+            assert_eq!(merged.configs, whole.configs);
+            assert_eq!(merged.chain_steps, whole.chain_steps);
+        }
+    }
+
+    #[test]
+    fn shard_syntax() {
+        assert_eq!(
+            "2/5".parse::<Shard>().unwrap(),
+            Shard { index: 2, count: 5 }
+        );
+        for bad in ["5/5", "1/0", "x/2", "3", "-1/2", ""] {
+            assert!(bad.parse::<Shard>().is_err(), "{bad}");
+        }
     }
 }

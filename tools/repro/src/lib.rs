@@ -16,7 +16,10 @@
 //!   statistics and their conventions.
 //! - [`seed`]: one seed per run index, from one base seed (the kernel then
 //!   gives each chain its own stream).
-//! - [`exec`]: every run of a plan in parallel (rayon).
+//! - [`exec`]: every run of a plan (or of one shard of it) in parallel
+//!   (rayon).
+//! - [`shard`]: a shard's runs on disk, and the merge of all shards into
+//!   the result of one process.
 //! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures.
 //! - [`error`]: the error type they all return.
 #![forbid(unsafe_code)]
@@ -30,6 +33,7 @@ pub mod output;
 pub mod plot;
 pub mod protocol;
 pub mod seed;
+pub mod shard;
 pub mod stats;
 
 pub use error::ReproError;

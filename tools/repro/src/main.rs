@@ -12,9 +12,10 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use hrla_repro::exec::{ProtocolResult, execute};
+use hrla_repro::exec::{ProtocolResult, Shard, execute, finish, run_shard};
 use hrla_repro::output::{summary_markdown, write_all};
-use hrla_repro::protocol::{Overrides, ProtocolId, plan};
+use hrla_repro::protocol::{Overrides, Plan, ProtocolId, plan};
+use hrla_repro::shard;
 
 /// Reproduce the experiments of "Global Optimization Algorithm through
 /// High-Resolution Sampling" (spec section 7) with the hrla kernel.
@@ -47,6 +48,15 @@ struct Cli {
     /// Worker threads (0: one per core).
     #[arg(long, global = true, default_value_t = 0)]
     threads: usize,
+    /// Run only shard i of n (runs i, i + n, ... of every protocol, in plan
+    /// order) and write OUT/ID/shard-i-of-n.txt instead of the tables: one
+    /// task of a job array (tools/repro/slurm/).
+    #[arg(long, global = true, value_name = "i/n", conflicts_with = "merge")]
+    shard: Option<Shard>,
+    /// Merge the shard files under OUT/ID/ (written with the same options)
+    /// and write the tables, the same bytes as one process would.
+    #[arg(long, global = true)]
+    merge: bool,
 }
 
 #[derive(Debug, Subcommand)]
@@ -120,18 +130,29 @@ fn main() -> Result<()> {
         .join(" ");
     let mut total = Duration::ZERO;
     for p in &plans {
-        let bar = progress_bar(cli.quiet, p.chain_steps(), p.id.name());
+        let context = || format!("protocol {}", p.id.name());
+        if let Some(part) = cli.shard {
+            total += run_one_shard(&cli, p, part).with_context(context)?;
+            continue;
+        }
         let load_before = load_average();
-        let result = execute(p, cli.seed, &bar)
-            .with_context(|| format!("running protocol {}", p.id.name()))?;
-        bar.finish_and_clear();
-        let notes = [
+        let (result, mut notes) = if cli.merge {
+            let (part, threads) = shard::merge(&cli.out, p, cli.seed).with_context(context)?;
+            let result = finish(p, cli.seed, part, threads);
+            let note = ("wall time", "the sum of the shards'".to_string());
+            (result, vec![note])
+        } else {
+            let bar = progress_bar(cli.quiet, p.chain_steps(), p.id.name());
+            let result = execute(p, cli.seed, &bar).with_context(context)?;
+            bar.finish_and_clear();
+            (result, Vec::new())
+        };
+        notes.extend([
             ("command", command.clone()),
             ("load average before", load_before),
             ("load average after", load_average()),
-        ];
-        let files = write_all(&result, &cli.out, &notes)
-            .with_context(|| format!("writing protocol {}", p.id.name()))?;
+        ]);
+        let files = write_all(&result, &cli.out, &notes).with_context(context)?;
         total += result.wall;
         if !cli.quiet {
             report(&result, &files);
@@ -141,6 +162,31 @@ fn main() -> Result<()> {
         println!("Total wall time: {:.1} s", total.as_secs_f64());
     }
     Ok(())
+}
+
+/// Runs one shard of a plan and writes its file; returns the wall time.
+fn run_one_shard(cli: &Cli, p: &Plan, part: Shard) -> Result<Duration> {
+    let steps = part
+        .tasks(p)
+        .iter()
+        .map(|&(c, _)| p.configs[c].chain_steps())
+        .sum();
+    let bar = progress_bar(cli.quiet, steps, p.id.name());
+    let result = run_shard(p, cli.seed, part, &bar)?;
+    bar.finish_and_clear();
+    let threads = rayon::current_num_threads();
+    let file = shard::write(&cli.out, p, cli.seed, part, &result, threads)?;
+    if !cli.quiet {
+        println!(
+            "{} shard {part}: {} runs, {} chain-steps in {:.2} s; wrote {}",
+            p.id.name(),
+            part.tasks(p).len(),
+            result.chain_steps,
+            result.wall.as_secs_f64(),
+            file.display()
+        );
+    }
+    Ok(result.wall)
 }
 
 /// The 1, 5 and 15 minute load averages, so that a wall time measured on a
