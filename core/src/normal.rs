@@ -19,7 +19,7 @@ use rand_core::Rng;
 use crate::lanes;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
 use crate::ziggurat_tables as zig;
-use wide::{f64x4, u64x4};
+use wide::{f32x8, f64x4, u32x8, u64x4};
 
 /// A float type with an exact standard normal sampler: `f32` and `f64`.
 ///
@@ -233,16 +233,36 @@ impl StandardNormal for f32 {
 
     #[inline(always)]
     fn standard_normal_pair_lanes(rng: &mut Xoshiro256Lanes) -> [(Self, Self); LANES] {
-        let words = rng.next_u64();
-        let z1 = ziggurat_lanes(words.map(|w| split32(w as u32)), &X32, |l, first| {
-            rng.with_lane(l, |g| slow32(g, first))
-        });
-        let z2 = ziggurat_lanes(
-            words.map(|w| split32((w >> 32) as u32)),
-            &X32,
-            |l, first| rng.with_lane(l, |g| slow32(g, first)),
-        );
-        core::array::from_fn(|l| (z1[l], z2[l]))
+        // Both halves of every lane's word in one 8-lane vector: the
+        // pair's first normal from the low half (even lanes), the second
+        // from the high half (odd lanes), as `standard_normal_pair`.
+        #[cfg(target_endian = "little")]
+        let halves: u32x8 = wide::bytemuck::cast(rng.next_vector());
+        #[cfg(not(target_endian = "little"))]
+        let halves = {
+            let w = rng.next_u64();
+            u32x8::new(core::array::from_fn(|j| (w[j / 2] >> (32 * (j % 2))) as u32))
+        };
+        let layer = (halves & u32x8::splat(0xff)).to_array().map(|i| i as usize);
+        let u = f32x8::from_bits((halves >> 9) | u32x8::splat(0x4000_0000)) - f32x8::splat(3.0);
+        let x = u * f32x8::new(layer.map(|i| X32[i]));
+        let inside = x.abs().simd_lt(f32x8::new(layer.map(|i| X32[i + 1])));
+        let mut z = x.to_array();
+        if !inside.all() {
+            let (inside, u) = (inside.to_bitmask(), u.to_array());
+            // Every chain's first normal before any second one: each
+            // chain's own order of words.
+            for half in 0..2 {
+                for l in 0..LANES {
+                    let j = 2 * l + half;
+                    if inside & (1 << j) == 0 {
+                        let first = (layer[j], u[j], z[j]);
+                        z[j] = rng.with_lane(l, |g| slow32(g, first));
+                    }
+                }
+            }
+        }
+        core::array::from_fn(|l| (z[2 * l], z[2 * l + 1]))
     }
 }
 
