@@ -56,14 +56,34 @@ def _pin_cpu_early():
     return cpu
 
 
-PINNED_CPU = _pin_cpu_early() if __name__ == "__main__" else None
+PINNED_CPU = _pin_cpu_early() 
+
+
+def print_paired(paired, crate_ns):
+    """The same-stretch ratios: peer repeat r over the crate's run r."""
+    if not paired:
+        return
+    print()
+    print(f"Same stretch: the crate (f64 value+best) ran between the peers' repeats: "
+          f"{statistics.median(crate_ns):.2f} ns median ({min(crate_ns):.2f}-{max(crate_ns):.2f}); "
+          f"ratio = peer repeat r / crate run r, median of {len(crate_ns)} pairs")
+    print()
+    print("| implementation | variant | ratio to hrla (median of pairs) | min–max |")
+    print("| --- | --- | ---: | ---: |")
+    for tool, variant, med, lo, hi in paired:
+        print(f"| {tool} | {variant} | {med:.2f}x | {lo:.2f}–{hi:.2f} |")
+
+
+if __name__ == "__main__" else None
 
 import argparse
 import datetime
 import json
 import math
 import platform
+import shlex
 import statistics
+import subprocess
 import time
 from pathlib import Path
 
@@ -587,6 +607,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--hrla-ns", type=float, help="hrla ns per coordinate-step, value + running best")
     ap.add_argument("--hrla-ns-novalue", type=float, help="hrla ns per coordinate-step, no value")
+    ap.add_argument("--hrla-cmd",
+                    help="a command printing the crate's f64 value+best ns per coordinate-step (e.g. "
+                         "target/release/step f64 2000), run once per repeat between the peers' repeats: "
+                         "the ratios are then per pair, from one stretch of time")
     ap.add_argument("--steps", "-K", type=int, default=2000)
     ap.add_argument("--repeats", type=int, default=7)
     ap.add_argument("--only", default="", help="comma list among numpy,numba,jax")
@@ -645,15 +669,27 @@ def main():
         impl = factory(x_start, y_start, 7)
         impl.run(args.steps)  # warm-up: compilation (numba, JAX), caches, page faults
         live.append((tool, variant, value, impl, ok, [], []))
+    crate_ns = []
     for rep in range(args.repeats):
         for tool, variant, value, impl, ok, walls, cpus in live:
             w, c = time_once(impl, args.steps)
             walls.append(w)
             cpus.append(c)
+        if args.hrla_cmd:
+            out = subprocess.run(shlex.split(args.hrla_cmd), check=True, capture_output=True, text=True)
+            crate_ns.append(float(out.stdout.split()[-1]))
         print(f"[time]  repeat {rep + 1}/{args.repeats} done", file=sys.stderr, flush=True)
+    if crate_ns:
+        figs[("f64", True)] = statistics.median(crate_ns)
+        source = f"`{args.hrla_cmd}`, run between the peers' repeats"
     rows = []
+    paired = []
     for tool, variant, value, impl, ok, walls, cpus in live:
         r = summarise(impl, args.steps, walls, cpus)
+        if crate_ns and value and "float32" not in variant:
+            n = impl.state()[0].shape[1]
+            ratios = [w / (args.steps * n * D) * 1e9 / h for w, h in zip(walls, crate_ns)]
+            paired.append((tool, variant, statistics.median(ratios), min(ratios), max(ratios)))
         fl = "f32" if "float32" in variant else "f64"
         ref = figs.get((fl, value))
         note = ""
@@ -688,6 +724,7 @@ def main():
           "numpy and numba are float64; ns figures and the ratio are wall time; CPU-time ns = process "
           "CPU time (all threads) per coordinate-step; cpu/wall = CPU time / wall time while timed "
           "(< 1: the core was shared with other processes; > 1: more than one thread working).")
+    print_paired(paired, crate_ns)
     return 0 if all(r[4] for r in rows) else 1
 
 
