@@ -104,7 +104,12 @@
 //!   [`Stop`] rules, [`Progress`] for an observer, and a [`Report`] whose
 //!   [`Termination`] says why the run ended; failures are [`Error`]s.
 //! - Randomness: [`chain_seed`], one stream per chain; [`StandardNormal`],
-//!   exact normals for both float types.
+//!   exact normals for both float types; [`Xoshiro256Lanes`], [`LANES`]
+//!   chains' generators stepped in lockstep.
+//! - Speed and scale: [`Kernel::step_lanes`], the seam where a wide backend
+//!   steps a block of chains; [`Executor`] (with [`Serial`]) and
+//!   [`Optimizer::step_on`], where a host's threads come in (the
+//!   `hrla-threads` crate).
 //!
 //! # Validity
 //!
@@ -134,6 +139,33 @@
 //! for micromath's smaller approximations: this changes some `f32` results
 //! and makes the normals slightly inexact; the step coefficients and
 //! Rastrigin's polynomial sine keep full accuracy.
+//!
+//! # Lanes, threads and machines
+//!
+//! Chains are independent, and chain `c`'s trajectory is a pure function of
+//! `(seed, c)`; everything that makes a run faster keeps it so:
+//!
+//! - **Vector lanes.** On targets with float vectors, the optimiser steps
+//!   groups of [`LANES`] live chains whose generator is the default
+//!   `Xoshiro256PlusPlus` in lockstep: their generators advance in one
+//!   vector per state word ([`Xoshiro256Lanes`]), the Ziggurat's fast path
+//!   runs in all lanes at once, and a lane the fast path rejects finishes
+//!   from its own stream. Each chain draws exactly the words it draws
+//!   alone; on Cortex-M, RISC-V and plain wasm32 chains step one by one.
+//!   [`Kernel::step_lanes`] is the seam: a backend for wider hardware (a
+//!   GPU, 512-bit vectors) steps a block of chains, structure-of-arrays
+//!   inside, and must give each chain the words of its own generator in
+//!   the order [`Kernel::step`] draws them, with the same float operations
+//!   in the same order (no fused multiply-add), so that its results are
+//!   the same bits.
+//! - **Threads.** [`Optimizer::step_on`] and [`Optimizer::run_on`] cut each
+//!   step's chains into parts for an [`Executor`]; the parts' findings fold
+//!   in chain order by an associative rule, so 1, 2, 3 or 7 threads give
+//!   the serial bits. The kernel has no threads of its own; the
+//!   `hrla-threads` crate runs the parts on rayon's pool.
+//! - **Machines.** Runs seeded by their index split across processes; the
+//!   reproduction tool's `--shard i/n` and `--merge` (a SLURM job array in
+//!   `tools/repro/slurm/`) give the tables of one process, byte for byte.
 //!
 //! # Memory
 //!

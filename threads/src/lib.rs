@@ -1,5 +1,5 @@
 //! Threads for the [`hrla`] optimiser: [`Threads`], an
-//! [`Executor`](hrla::Executor) that steps the chains of every step in
+//! [`Executor`] that steps the chains of every step in
 //! parts on rayon's thread pool.
 //!
 //! The kernel stays single-threaded and `no_std`; this crate is where a
