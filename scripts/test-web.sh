@@ -56,7 +56,7 @@ fi
 # comparisons: say so before the run and again at the end, where it is seen.
 firmware_warning() {
   [ -n "${HRLA_FIRMWARE_OUT:-}" ] && return 0
-  echo "WARNING: HRLA_FIRMWARE_OUT is not set: the 14 comparisons of the wasm build with the" \
+  echo "WARNING: HRLA_FIRMWARE_OUT is not set: the 15 comparisons of the wasm build with the" \
     "firmware under QEMU (embedded <variant> on <core>: 'wasm in Node == firmware under QEMU')" \
     "are SKIPPED, since there is no fresh firmware output to compare with." \
     "To run them: scripts/test.sh (does both), or scripts/test-firmware.sh then" \

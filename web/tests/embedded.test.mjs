@@ -3,7 +3,7 @@
 // report, byte for byte, as the host (hrla-embedded-host) and as the
 // firmware under QEMU on each of its three cores (Cortex-M3, Cortex-M4F,
 // RISC-V): in f32 and f64, with either per-chain generator, and with
-// micromath (on the Cortex-M3, where test-firmware.sh runs it).
+// micromath (on the cores where test-firmware.sh runs it).
 //
 // Needs, from scripts/test-web.sh: $HRLA_WEB_OUT/embedded-node and
 // embedded-node-micromath (wasm-bindgen --target nodejs) and
@@ -38,7 +38,13 @@ const VARIANTS = [
   { name: "f64", float: "f64", rng: "xoshiro128", wasm: plain, cores: ALL_CORES },
   { name: "f32+xoshiro256", float: "f32", rng: "xoshiro256", wasm: plain, cores: ALL_CORES },
   { name: "f64+xoshiro256", float: "f64", rng: "xoshiro256", wasm: plain, cores: ALL_CORES },
-  { name: "f32+micromath", float: "f32", rng: "xoshiro128", wasm: micromath, cores: ["cortex-m3"] },
+  {
+    name: "f32+micromath",
+    float: "f32",
+    rng: "xoshiro128",
+    wasm: micromath,
+    cores: ["cortex-m3", "cortex-m4f"],
+  },
   { name: "f64+micromath", float: "f64", rng: "xoshiro128", wasm: micromath, cores: ["cortex-m3"] },
 ];
 
