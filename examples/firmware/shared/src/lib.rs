@@ -1,5 +1,6 @@
 //! The computation of the firmware example, shared word for word by the
-//! Cortex-M firmware (`examples/firmware/qemu`), the host (`hrla-embedded-host`) and
+//! firmware (`examples/firmware/qemu`, on Cortex-M and RISC-V cores), the
+//! host (`hrla-embedded-host`) and
 //! wasm in Node (`examples/firmware/wasm`), so that their outputs can be
 //! compared byte for byte.
 //!
@@ -83,7 +84,7 @@ pub fn chains<F: Float, R: Generator>() -> [DemoChain<F, R>; N] {
 }
 
 /// Where [`report`] writes its lines: semihosting on the firmware, stdout on
-/// the host.
+/// the host, a buffer in wasm.
 pub trait Sink {
     /// Writes the bytes as they are.
     fn write(&mut self, bytes: &[u8]);
