@@ -26,7 +26,7 @@ cargo run --quiet -p hrla-wasm --example trace -- wasm/tests/trace-cases.txt \
   >"$HRLA_WEB_OUT/native-trace.txt"
 
 # The firmware example's computation in wasm, without and with micromath, and
-# the host's report of each variant (file names as in test-firmware.sh), for
+# the host's report of each variant (the variant names of test-firmware.sh), for
 # web/tests/embedded.test.mjs. It also compares with the firmware's output
 # under QEMU when $HRLA_FIRMWARE_OUT names it (scripts/test.sh does).
 build_embedded_wasm "$HRLA_WEB_OUT/embedded-node"
@@ -37,6 +37,8 @@ for fp in f32 f64; do
     cargo run --quiet --release -p hrla-embedded ${features:+--features $features} \
       --bin hrla-embedded-host -- "$fp" >"$HRLA_WEB_OUT/embedded/$fp${features:++$features}.host.txt"
   done
+  cargo run --quiet --release -p hrla-embedded --bin hrla-embedded-host -- --rng xoshiro256 "$fp" \
+    >"$HRLA_WEB_OUT/embedded/$fp+xoshiro256.host.txt"
 done
 
 if [ ! -x /usr/bin/chromium ]; then
@@ -50,13 +52,13 @@ fi
 # Always: npm ci installs exactly the lock file (one package, a second or two).
 (cd web/tests && npm ci --no-audit --no-fund)
 
-# Without the firmware's output, embedded.test.mjs skips its four QEMU
+# Without the firmware's output, embedded.test.mjs skips its QEMU
 # comparisons: say so before the run and again at the end, where it is seen.
 firmware_warning() {
   [ -n "${HRLA_FIRMWARE_OUT:-}" ] && return 0
-  echo "WARNING: HRLA_FIRMWARE_OUT is not set: the 4 comparisons of the wasm build with the" \
-    "firmware under QEMU (embedded f32, f64, f32+micromath, f64+micromath: 'wasm in Node ==" \
-    "firmware under QEMU') are SKIPPED, since there is no fresh firmware output to compare with." \
+  echo "WARNING: HRLA_FIRMWARE_OUT is not set: the 15 comparisons of the wasm build with the" \
+    "firmware under QEMU (embedded <variant> on <core>: 'wasm in Node == firmware under QEMU')" \
+    "are SKIPPED, since there is no fresh firmware output to compare with." \
     "To run them: scripts/test.sh (does both), or scripts/test-firmware.sh then" \
     "HRLA_FIRMWARE_OUT=$TARGET_DIR/firmware-check scripts/test-web.sh" >&2
 }

@@ -47,7 +47,7 @@ cargo test --workspace 2>&1 | tee -a "$LOG"
 export HRLA_FIRMWARE_OUT
 HRLA_FIRMWARE_OUT=$(realpath -m "${CARGO_TARGET_DIR:-target}")/firmware-check
 
-step "firmware: Algorithm 1 on an emulated Cortex-M3, bit-identical to the host"
+step "firmware: Algorithm 1 on an emulated Cortex-M3, Cortex-M4F and RISC-V core, bit-identical to the host"
 ./scripts/test-firmware.sh 2>&1 | tee -a "$LOG"
 
 step "wasm wrapper and demo page (bit-identity in Node, the page in Chromium), firmware computation in wasm"

@@ -1,14 +1,16 @@
 // The firmware example's computation (examples/firmware/shared, crate hrla-embedded)
 // compiled to wasm (examples/firmware/wasm) and run in Node prints the same
 // report, byte for byte, as the host (hrla-embedded-host) and as the
-// Cortex-M3 firmware under QEMU: in f32, f64, and both with micromath.
+// firmware under QEMU on each of its three cores (Cortex-M3, Cortex-M4F,
+// RISC-V): in f32 and f64, with either per-chain generator, and with
+// micromath (on the cores where test-firmware.sh runs it).
 //
 // Needs, from scripts/test-web.sh: $HRLA_WEB_OUT/embedded-node and
 // embedded-node-micromath (wasm-bindgen --target nodejs) and
 // $HRLA_WEB_OUT/embedded/<variant>.host.txt. The firmware's output,
-// <variant>.qemu-results.txt, is read from $HRLA_FIRMWARE_OUT, which
+// <core>.<variant>.qemu-results.txt, is read from $HRLA_FIRMWARE_OUT, which
 // scripts/test.sh sets after a fresh firmware run; run alone, test-web.sh
-// does not set it and those four comparisons are skipped (with a warning from
+// does not set it and those comparisons are skipped (with a warning from
 // test-web.sh and this reason in node's report) rather than made against a
 // possibly stale run.
 import assert from "node:assert/strict";
@@ -28,12 +30,22 @@ const NO_FIRMWARE =
   "to compare, run scripts/test.sh, or scripts/test-firmware.sh then " +
   `HRLA_FIRMWARE_OUT=${process.env.CARGO_TARGET_DIR ?? "target"}/firmware-check scripts/test-web.sh`;
 
-// Variant names as test-firmware.sh names its files.
+const ALL_CORES = ["cortex-m3", "cortex-m4f", "riscv32"];
+// Variant names as test-firmware.sh names its files, and the cores it runs
+// each on.
 const VARIANTS = [
-  { name: "f32", float: "f32", wasm: plain },
-  { name: "f64", float: "f64", wasm: plain },
-  { name: "f32+micromath", float: "f32", wasm: micromath },
-  { name: "f64+micromath", float: "f64", wasm: micromath },
+  { name: "f32", float: "f32", rng: "xoshiro128", wasm: plain, cores: ALL_CORES },
+  { name: "f64", float: "f64", rng: "xoshiro128", wasm: plain, cores: ALL_CORES },
+  { name: "f32+xoshiro256", float: "f32", rng: "xoshiro256", wasm: plain, cores: ALL_CORES },
+  { name: "f64+xoshiro256", float: "f64", rng: "xoshiro256", wasm: plain, cores: ALL_CORES },
+  {
+    name: "f32+micromath",
+    float: "f32",
+    rng: "xoshiro128",
+    wasm: micromath,
+    cores: ["cortex-m3", "cortex-m4f"],
+  },
+  { name: "f64+micromath", float: "f64", rng: "xoshiro128", wasm: micromath, cores: ["cortex-m3"] },
 ];
 
 /** Four lines of "<float> <label> <hex>...", as hrla_embedded::report writes them. */
@@ -47,31 +59,37 @@ function assertWellFormed(text, float) {
   for (const l of lines) assert.match(l, /^f(32|64) [a-z.0-9]+( [0-9a-f]{8}| [0-9a-f]{16})+$/);
 }
 
-const reports = new Map(VARIANTS.map((v) => [v.name, v.wasm.report(v.float)]));
+const reports = new Map(VARIANTS.map((v) => [v.name, v.wasm.report(v.float, v.rng)]));
 
-for (const { name, float } of VARIANTS) {
+for (const { name, float, cores } of VARIANTS) {
   test(`embedded ${name}: wasm in Node == host, bit for bit`, () => {
     const host = readFileSync(join(OUT, "embedded", `${name}.host.txt`), "utf8");
     assertWellFormed(host, float);
     assert.equal(reports.get(name), host);
   });
 
-  test(
-    `embedded ${name}: wasm in Node == firmware under QEMU, bit for bit`,
-    { skip: FIRMWARE ? false : NO_FIRMWARE },
-    () => {
-      const qemu = readFileSync(join(FIRMWARE, `${name}.qemu-results.txt`), "utf8");
-      assertWellFormed(qemu, float);
-      assert.equal(reports.get(name), qemu);
-    },
-  );
+  for (const core of cores) {
+    test(
+      `embedded ${name}: wasm in Node == firmware under QEMU on ${core}, bit for bit`,
+      { skip: FIRMWARE ? false : NO_FIRMWARE },
+      () => {
+        const qemu = readFileSync(join(FIRMWARE, `${core}.${name}.qemu-results.txt`), "utf8");
+        assertWellFormed(qemu, float);
+        assert.equal(reports.get(name), qemu);
+      },
+    );
+  }
 }
 
-test("embedded: the two wasm builds are the ones intended", () => {
+test("embedded: the wasm builds and generators are the ones intended", () => {
   // Else the micromath comparisons would silently repeat the plain ones.
   assert.equal(plain.micromath(), false);
   assert.equal(micromath.micromath(), true);
   assert.notEqual(reports.get("f32+micromath"), reports.get("f32"));
   assert.equal(reports.get("f64+micromath"), reports.get("f64"));
-  assert.throws(() => plain.report("f16"), /unknown float type "f16"/);
+  // The generator is not ignored.
+  assert.notEqual(reports.get("f32+xoshiro256"), reports.get("f32"));
+  assert.notEqual(reports.get("f64+xoshiro256"), reports.get("f64"));
+  assert.throws(() => plain.report("f16", "xoshiro128"), /unknown float type "f16"/);
+  assert.throws(() => plain.report("f32", "pcg32"), /unknown generator "pcg32"/);
 });

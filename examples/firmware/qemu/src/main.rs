@@ -1,220 +1,251 @@
-//! Algorithm 1 on 2-D Rastrigin (HRLA, 16 chains, fixed seed) as Cortex-M3
-//! firmware for QEMU's `lm3s6965evb`.
+//! Algorithm 1 on 2-D Rastrigin (HRLA, 16 chains, fixed seed) as firmware
+//! for three cores under QEMU: a Cortex-M3 (`thumbv7m-none-eabi`,
+//! `lm3s6965evb`), a Cortex-M4F with its FPU (`thumbv7em-none-eabihf`,
+//! `mps2-an386`) and an RV32IMAC (`riscv32imac-unknown-none-elf`, `virt`).
 //!
-//! It runs [`hrla_embedded::run`] in f32 and/or f64 (cargo features `f32`,
-//! `f64`) over 16 chains kept in a `static` (an `hrla::heapless::Vec`, so
-//! in `.bss`: their RAM is known at link time and off the stack), prints
-//! the result lines of [`hrla_embedded::report`] through
-//! semihosting (the host prints the same lines; `scripts/test-firmware.sh`
-//! compares them byte for byte), then `#` diagnostic lines, and exits
-//! through semihosting with status 0. A panic exits non-zero
-//! (`panic-semihosting` with `exit`).
+//! It is the embedding guide of `docs/EMBEDDED.md`, which quotes the part
+//! between the `guide` markers word for word (`scripts/test-firmware.sh`
+//! checks it): the chains in a `static`, the optimiser built over them, one
+//! step per control-loop tick, each timed against the tick's budget. Then
+//! it prints the result lines of [`hrla_embedded::report`] through
+//! semihosting (the host prints the same lines from
+//! [`hrla_embedded::run`]; `scripts/test-firmware.sh` compares them byte
+//! for byte), then `#` diagnostic lines, and exits through semihosting with
+//! status 0. An error exits with status 1, a panic with 101.
 //!
-//! Diagnostics:
+//! Cargo features: `f32` or `f64` (exactly one: the float type),
+//! `xoshiro256` (one `Xoshiro256PlusPlus` per chain instead of
+//! `Xoshiro128PlusPlus`), `micromath` (the kernel's), `fmt` (prints the
+//! best point a second time through `core::fmt`, only to measure what that
+//! costs in flash).
 //!
-//! - `# calibration n`: SysTick ticks (core clock) of a loop of exactly 2^24
-//!   instructions.
-//! - `# T ticks n` and `# T instructions n`: the ticks spent in the run of
-//!   type `T`, and the instructions they stand for. Under
-//!   `qemu-system-arm -icount shift=0` every guest instruction takes 1 ns of
-//!   virtual time, so ticks are proportional to instructions executed (QEMU
-//!   emulates no DWT cycle counter, and this Debian build ships no TCG
-//!   plugins); on real hardware the same lines count core cycles.
-//! - `# stack.peak n`: the stack's high-water mark in bytes, read from the
-//!   paint that cortex-m-rt's `paint-stack` feature lays between
-//!   `_stack_end` and `_stack_start` before `main`.
+//! Diagnostics, `T` the float type:
+//!
+//! - `# calibration n`: on the Cortex-M cores, SysTick ticks of a loop of
+//!   exactly 2^24 instructions (0 on RISC-V, whose counter counts
+//!   instructions).
+//! - `# T steps.instructions n`: instructions spent in the 2 000 calls of
+//!   `opt.step()`, the clock's own reads taken out; `# T chain-step.instructions n`
+//!   the same per chain and step, rounded; `# T step.worst n` the longest
+//!   step; `# T budget.overruns n` the steps over the tick's budget.
+//!   Under QEMU `-icount shift=0` every guest instruction takes 1 ns of
+//!   virtual time, so the clock counts instructions, deterministically:
+//!   `minstret` on RISC-V, exact; SysTick scaled by the calibration on the
+//!   Cortex-M cores, to within a tick per reading.
+//! - `# stack.peak n`, `# stack.size n`: the stack's high-water mark and
+//!   size in bytes, from the paint laid below the stack before `main` runs
+//!   the example.
 #![no_std]
 #![no_main]
 
-use core::sync::atomic::{AtomicU32, Ordering};
+#[cfg(all(feature = "f32", feature = "f64"))]
+compile_error!("choose one float type: feature `f32` or `f64`, not both");
+#[cfg(not(any(feature = "f32", feature = "f64")))]
+compile_error!("choose a float type: feature `f32` or `f64`");
 
-use cortex_m::peripheral::SYST;
-use cortex_m::peripheral::syst::SystClkSource;
-use cortex_m_rt::{entry, exception};
-use cortex_m_semihosting::{debug, hio};
-use hrla::Float;
+#[cfg(target_arch = "arm")]
+#[path = "cortex_m.rs"]
+mod platform;
+#[cfg(target_arch = "riscv32")]
+#[path = "riscv.rs"]
+mod platform;
+
 use hrla::heapless::Vec;
-use hrla_embedded::{DemoChain, N, Sink};
-use panic_semihosting as _;
+use hrla::{Builder, Chain, Error, Float, Gaussian, Hrla, Rastrigin};
+use hrla_embedded::{Demo, Sink};
+use platform::Clock;
+use semihosting::io::{self, Write};
+use semihosting::process;
+use static_cell::ConstStaticCell;
+
+/// The float type of this build.
+#[cfg(feature = "f32")]
+type Real = f32;
+/// The float type of this build.
+#[cfg(all(feature = "f64", not(feature = "f32")))]
+type Real = f64;
+
+/// Each chain's generator.
+#[cfg(not(feature = "xoshiro256"))]
+type Rng = hrla_embedded::Xoshiro128PlusPlus;
+/// Each chain's generator.
+#[cfg(feature = "xoshiro256")]
+type Rng = hrla_embedded::Xoshiro256PlusPlus;
+
+/// The paint below the stack: a word still holding it was never written.
+pub(crate) const PAINT: u32 = 0xcccc_cccc;
 
 /// Semihosting stdout as a byte sink.
-struct Host(hio::HostStream);
+struct Console(io::Stdout);
 
-impl Sink for Host {
+impl Sink for Console {
     fn write(&mut self, bytes: &[u8]) {
         // Nothing useful can be done if the host refuses the write.
         let _ = self.0.write_all(bytes);
     }
 }
 
-impl Host {
+impl Console {
     /// One `# label value` diagnostic line, `value` in decimal.
-    fn diagnostic(&mut self, label: &[u8], value: u64) {
+    fn diagnostic(&mut self, label: &[&[u8]], value: u64) {
         let (buf, n) = hrla_embedded::dec(value);
-        self.write(b"# ");
-        self.write(label);
+        self.write(b"#");
+        for part in label {
+            self.write(b" ");
+            self.write(part);
+        }
         self.write(b" ");
         self.write(&buf[..n]);
         self.write(b"\n");
     }
 }
 
-/// SysTick reloads every 2^24 ticks; its handler counts the wraps.
-const RELOAD: u32 = 0x00ff_ffff;
-static WRAPS: AtomicU32 = AtomicU32::new(0);
-
-#[exception]
-fn SysTick() {
-    WRAPS.fetch_add(1, Ordering::Relaxed);
+/// How the steps fitted in their ticks, in clock counts (instructions
+/// under QEMU).
+#[derive(Default)]
+struct Timing {
+    steps: u64,
+    total: u64,
+    worst: u64,
+    overruns: u64,
 }
 
-/// Ticks since SysTick started (it counts down, so invert the current value).
-fn ticks() -> u64 {
-    loop {
-        let wraps = WRAPS.load(Ordering::Relaxed);
-        let current = SYST::get_current();
-        // A wrap between the two reads would pair a new count with an old
-        // wrap number: read again.
-        if WRAPS.load(Ordering::Relaxed) == wraps {
-            return (u64::from(wraps) << 24) | u64::from(RELOAD - current);
+impl Timing {
+    fn add(&mut self, spent: u64, budget: u64) {
+        self.steps += 1;
+        self.total += spent;
+        self.worst = self.worst.max(spent);
+        // On hardware: log it, step every other tick, or use fewer chains.
+        self.overruns += u64::from(spent > budget);
+    }
+}
+
+// guide: begin
+/// The chains: 16 of 2-D Rastrigin, in static RAM (`.bss`), where the
+/// linker counts them; `ConstStaticCell` hands them out once, as
+/// `&'static mut`, whatever the runtime.
+static CHAINS: ConstStaticCell<Vec<Chain<Real, 2, Rng>, 16>> = ConstStaticCell::new(Vec::new());
+
+/// What the optimiser may spend in one tick of the control loop, in clock
+/// counts: half a tick of a 1 kHz loop on a 168 MHz core.
+const BUDGET: u64 = 84_000;
+
+/// Algorithm 1 with one step per control-loop tick, for `ticks` ticks.
+fn control_loop(
+    clock: &mut Clock,
+    seed: u64,
+    ticks: u64,
+) -> Result<(Demo<'static, Real, Rng>, Timing), Error> {
+    let chains = CHAINS.take();
+    // One chain at a time: no array of chains is ever built on the stack.
+    while chains.push(Chain::default()).is_ok() {}
+    let mut opt = Builder::new(
+        Rastrigin, // or FnPotential::new(|x, g| { ...; u }): value and gradient
+        Hrla::paper(0.01)?,
+        4.0,                                         // the inverse temperature a
+        Gaussian::new([3.0; 2], Float::sqrt(10.0))?, // the start, N(3·1, 10 I)
+    )
+    .seed(seed) // fixed, or drawn from the hardware RNG at start-up
+    .build(chains.as_mut_slice())?;
+
+    let mut timing = Timing::default();
+    for _ in 0..ticks {
+        // A real loop waits for its timer here and runs its controller.
+        let t0 = clock.now();
+        opt.step()?; // every chain, one step
+        timing.add(clock.now() - t0, BUDGET);
+        let _set_point = opt.best().x; // the best point so far, for the controller
+    }
+    Ok((opt, timing))
+}
+// guide: end
+
+#[platform::entry]
+fn main() -> ! {
+    // First: on RISC-V this paints the stack below this frame.
+    let (bottom, top) = platform::stack();
+    let Some(mut clock) = Clock::start() else {
+        fail();
+    };
+    let Ok(stdout) = io::stdout() else {
+        fail();
+    };
+    let mut out = Console(stdout);
+    out.diagnostic(&[b"calibration"], clock.calibration());
+    // What one reading of the clock costs, taken out of every step's.
+    let t0 = clock.now();
+    let overhead = clock.now() - t0;
+
+    let (name, _) = hrla_embedded::float_name::<Real>();
+    let Ok((opt, timing)) = control_loop(&mut clock, hrla_embedded::SEED, hrla_embedded::STEPS)
+    else {
+        out.write(name);
+        out.write(b" error\n");
+        fail();
+    };
+    hrla_embedded::report(&opt, &mut out);
+    #[cfg(feature = "fmt")]
+    {
+        use core::fmt::Write as _;
+        /// `core::fmt` over the console.
+        struct Fmt<'a>(&'a mut Console);
+        impl core::fmt::Write for Fmt<'_> {
+            fn write_str(&mut self, s: &str) -> core::fmt::Result {
+                self.0.write(s.as_bytes());
+                Ok(())
+            }
         }
+        let b = opt.best();
+        let _ = writeln!(Fmt(&mut out), "# fmt best {:?} at {:?}", b.value, b.x);
     }
+
+    let spent = timing.total - timing.steps * overhead;
+    let chain_steps = hrla_embedded::N as u64 * timing.steps;
+    out.diagnostic(&[name, b"steps.instructions"], spent);
+    out.diagnostic(
+        &[name, b"chain-step.instructions"],
+        (spent + chain_steps / 2) / chain_steps,
+    );
+    out.diagnostic(&[name, b"step.worst"], timing.worst);
+    out.diagnostic(&[name, b"budget.overruns"], timing.overruns);
+    out.diagnostic(&[b"stack.peak"], stack_peak(bottom, top));
+    out.diagnostic(&[b"stack.size"], (top - bottom) as u64);
+    process::exit(0)
 }
 
-/// Instructions executed by [`calibration_loop`].
-const CALIBRATION: u64 = 1 << 24;
-
-/// Executes exactly [`CALIBRATION`] instructions: `CALIBRATION / 2`
-/// iterations of `subs` + `bne` (written out rather than `asm::delay`, whose
-/// iteration count has changed between cortex-m releases).
-fn calibration_loop() {
-    let iterations = (CALIBRATION / 2) as u32;
-    // SAFETY: only decrements a register it owns; touches no memory or stack.
-    unsafe {
-        core::arch::asm!(
-            "2:",
-            "subs {0}, #1",
-            "bne 2b",
-            inout(reg) iterations => _,
-            options(nomem, nostack),
-        );
-    }
-}
-
-/// The paint value of cortex-m-rt's `paint-stack`.
-const PAINT: u32 = 0xcccc_cccc;
-
-unsafe extern "C" {
-    // Bounds of the stack from cortex-m-rt's link.x: it grows down from
-    // `_stack_start` towards `_stack_end` (the end of static RAM).
-    static _stack_start: u32;
-    static _stack_end: u32;
-}
-
-/// The deepest the stack has been since reset, in bytes: the distance from
-/// the top of the stack to the lowest word no longer holding the paint.
-fn stack_peak() -> u64 {
-    let bottom = &raw const _stack_end as usize;
-    let top = &raw const _stack_start as usize;
+/// The deepest the stack has been, in bytes: the distance from its top to
+/// the lowest word no longer holding the paint.
+fn stack_peak(bottom: usize, top: usize) -> u64 {
     let mut p = bottom;
     // SAFETY: every word in [bottom, top) is RAM reserved for the stack,
-    // aligned to 4 bytes by link.x; reading it has no side effect.
+    // 4-byte aligned by the runtime's link.x; reading it has no side effect.
     while p < top && unsafe { core::ptr::read_volatile(p as *const u32) } == PAINT {
         p += 4;
     }
     (top - p) as u64
 }
 
-/// Runs the example in `F` over the chains in `storage` (filled to its
-/// capacity, [`N`], with empty chains first), writes its result lines, its
-/// tick count and the instructions these ticks stand for under
-/// `-icount shift=0`.
-fn run_one<F: Float>(host: &mut Host, calibration: u64, storage: &mut Vec<DemoChain<F>, N>) {
-    let (name, _) = hrla_embedded::float_name::<F>();
-    // One chain at a time: no array of chains is ever built on the stack.
-    while storage.push(DemoChain::default()).is_ok() {}
-    let t0 = ticks();
-    let result = hrla_embedded::run::<F>(storage, hrla_embedded::SEED, hrla_embedded::STEPS);
-    let t1 = ticks();
-    let Ok((opt, _)) = result else {
-        host.write(name);
-        host.write(b" error\n");
-        fail();
-    };
-    hrla_embedded::report(&opt, host);
-    #[cfg(feature = "fmt")]
-    {
-        use core::fmt::Write;
-        // Only here to measure what float formatting costs in flash.
-        let b = opt.best();
-        let _ = writeln!(host.0, "# fmt best {:?} at {:?}", b.value, b.x);
+/// Prints where the panic happened and exits with status 101: the
+/// location, not the message, which only `core::fmt` can print (about
+/// 2.5 KiB of flash).
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
+    if let Ok(stdout) = io::stdout() {
+        let mut out = Console(stdout);
+        out.write(b"panicked");
+        if let Some(at) = info.location() {
+            out.write(b" at ");
+            out.write(at.file().as_bytes());
+            let (line, n) = hrla_embedded::dec(u64::from(at.line()));
+            out.write(b":");
+            out.write(&line[..n]);
+        }
+        out.write(b"\n");
     }
-    let mut label = [0u8; 16];
-    label[..3].copy_from_slice(name);
-    label[3..9].copy_from_slice(b" ticks");
-    host.diagnostic(&label[..9], t1 - t0);
-    label[3..].copy_from_slice(b" instructions");
-    host.diagnostic(&label, (t1 - t0) * CALIBRATION / calibration.max(1));
-}
-
-#[entry]
-fn main() -> ! {
-    // The chains, in `.bss`: cortex-m-rt hands `main` a `&'static mut` to
-    // each `static mut` declared here (safe: `main` runs once). Empty
-    // `heapless::Vec`s are const, so nothing is built at start-up.
-    #[cfg(feature = "f32")]
-    static mut CHAINS_F32: Vec<DemoChain<f32>, N> = Vec::new();
-    #[cfg(feature = "f64")]
-    static mut CHAINS_F64: Vec<DemoChain<f64>, N> = Vec::new();
-
-    let Some(mut cp) = cortex_m::Peripherals::take() else {
-        fail();
-    };
-    cp.SYST.set_clock_source(SystClkSource::Core);
-    cp.SYST.set_reload(RELOAD);
-    cp.SYST.enable_interrupt();
-    cp.SYST.enable_counter();
-    // The current value reads 0 until the counter has loaded the reload
-    // value (under QEMU, for a while): a reading then would be a phantom
-    // wrap.
-    while SYST::get_current() == 0 {}
-
-    let Ok(stdout) = hio::hstdout() else {
-        fail();
-    };
-    let mut host = Host(stdout);
-
-    let t0 = ticks();
-    calibration_loop();
-    let calibration = ticks() - t0;
-    host.diagnostic(b"calibration", calibration);
-
-    #[cfg(feature = "f32")]
-    run_one::<f32>(&mut host, calibration, CHAINS_F32);
-    #[cfg(feature = "f64")]
-    run_one::<f64>(&mut host, calibration, CHAINS_F64);
-
-    host.diagnostic(b"stack.peak", stack_peak());
-    host.diagnostic(b"stack.size", {
-        let bottom = &raw const _stack_end as usize;
-        let top = &raw const _stack_start as usize;
-        (top - bottom) as u64
-    });
-
-    debug::exit(debug::EXIT_SUCCESS);
-    park()
+    process::exit(101)
 }
 
 /// Exits with a failure status through semihosting.
 fn fail() -> ! {
-    debug::exit(debug::EXIT_FAILURE);
-    park()
-}
-
-/// Where the program ends when no debugger catches the semihosting exit (a
-/// board running on its own): sleep forever.
-fn park() -> ! {
-    loop {
-        cortex_m::asm::wfi();
-    }
+    process::exit(1)
 }

@@ -290,9 +290,9 @@ fn seeds() {
     fn one<F: Float>() {
         let mut vals: Vec<f64> = (0..64)
             .map(|seed| {
-                let mut chains = hrla_embedded::chains::<F>();
+                let mut chains = hrla_embedded::chains::<F, hrla_embedded::Xoshiro128PlusPlus>();
                 let (opt, _) =
-                    hrla_embedded::run::<F>(&mut chains, seed, STEPS).expect("valid setting");
+                    hrla_embedded::run::<F, _>(&mut chains, seed, STEPS).expect("valid setting");
                 let x = opt.best().x.map(Float::to_f64);
                 Rastrigin.value(&x)
             })
@@ -325,9 +325,9 @@ fn speed() {
     fn one<F: Float>() {
         let mut times: Vec<f64> = (0..101)
             .map(|_| {
-                let mut chains = hrla_embedded::chains::<F>();
+                let mut chains = hrla_embedded::chains::<F, hrla_embedded::Xoshiro128PlusPlus>();
                 let t = Instant::now();
-                let r = hrla_embedded::run::<F>(&mut chains, black_box(SEED), black_box(STEPS));
+                let r = hrla_embedded::run::<F, _>(&mut chains, black_box(SEED), black_box(STEPS));
                 black_box(r.expect("valid setting"));
                 t.elapsed().as_secs_f64()
             })

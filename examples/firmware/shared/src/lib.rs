@@ -1,13 +1,16 @@
 //! The computation of the firmware example, shared word for word by the
-//! Cortex-M firmware (`examples/firmware/qemu`), the host (`hrla-embedded-host`) and
+//! firmware (`examples/firmware/qemu`, on Cortex-M and RISC-V cores), the
+//! host (`hrla-embedded-host`) and
 //! wasm in Node (`examples/firmware/wasm`), so that their outputs can be
 //! compared byte for byte.
 //!
 //! [`run`] performs Algorithm 1 on 2-D Rastrigin with HRLA, N = 16 chains,
 //! the paper's parameters (`a = 4`, `b = 10`, `alpha = beta = 1`,
 //! `h = 0.01`), starting from `N(3·1, 10 I)`, for [`STEPS`] steps, each
-//! chain drawing from its own `Xoshiro128PlusPlus`, seeded from [`SEED`]
-//! and its index (`hrla::chain_seed`). The chains live in storage the caller
+//! chain drawing from its own generator `R` (`Xoshiro128PlusPlus` by
+//! default, the 32-bit cores' choice; `Xoshiro256PlusPlus`, the kernel's
+//! default, for comparison), seeded from [`SEED`] and its index
+//! (`hrla::chain_seed`). The chains live in storage the caller
 //! owns, without allocation: [`chains`] makes an array of them (on the
 //! stack, as the host and wasm do), and the firmware keeps them in a
 //! `static` `hrla::heapless::Vec`. [`report`] writes its result as
@@ -36,8 +39,9 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+use hrla::rand_core::{Rng, SeedableRng};
 use hrla::{Builder, Chain, Error, Float, Gaussian, Hrla, Optimizer, Rastrigin, Report, Stop};
-use rand_xoshiro::Xoshiro128PlusPlus;
+pub use rand_xoshiro::{Xoshiro128PlusPlus, Xoshiro256PlusPlus};
 
 /// The dimension of the Rastrigin potential.
 pub const D: usize = 2;
@@ -46,26 +50,41 @@ pub const N: usize = 16;
 /// The number of HRLA steps.
 pub const STEPS: u64 = 2_000;
 /// The seed of the run: chain `c` draws from
-/// `Xoshiro128PlusPlus::seed_from_u64(hrla::chain_seed(SEED, c))`.
+/// `R::seed_from_u64(hrla::chain_seed(SEED, c))`.
 pub const SEED: u64 = 2025;
 
-/// One chain of the example: 2-D, with a 32-bit generator (the f32
-/// sampler's `next_u64` for a pair of normals is two `next_u32` there).
-pub type DemoChain<F> = Chain<F, D, Xoshiro128PlusPlus>;
+/// One chain of the example: 2-D, with a 32-bit generator by default (the
+/// f32 sampler's `next_u64` for a pair of normals is two `next_u32` there).
+pub type DemoChain<F, R = Xoshiro128PlusPlus> = Chain<F, D, R>;
 
 /// The optimiser the example runs, over chains it borrows from the caller
 /// (it holds no array of chains itself).
-pub type Demo<'a, F> =
-    Optimizer<F, Rastrigin, Hrla<F>, F, &'a mut [DemoChain<F>], D, Xoshiro128PlusPlus>;
+pub type Demo<'a, F, R = Xoshiro128PlusPlus> =
+    Optimizer<F, Rastrigin, Hrla<F>, F, &'a mut [DemoChain<F, R>], D, R>;
+
+/// A per-chain generator the example can run with: its name in the
+/// variants' file names and on the host's command line.
+pub trait Generator: Rng + SeedableRng {
+    /// `"xoshiro128"` or `"xoshiro256"`.
+    const NAME: &'static str;
+}
+
+impl Generator for Xoshiro128PlusPlus {
+    const NAME: &'static str = "xoshiro128";
+}
+
+impl Generator for Xoshiro256PlusPlus {
+    const NAME: &'static str = "xoshiro256";
+}
 
 /// [`N`] empty chains in an array, to be filled by [`run`]: storage without
 /// allocation, wherever the caller puts it.
-pub fn chains<F: Float>() -> [DemoChain<F>; N] {
+pub fn chains<F: Float, R: Generator>() -> [DemoChain<F, R>; N] {
     core::array::from_fn(|_| Chain::default())
 }
 
 /// Where [`report`] writes its lines: semihosting on the firmware, stdout on
-/// the host.
+/// the host, a buffer in wasm.
 pub trait Sink {
     /// Writes the bytes as they are.
     fn write(&mut self, bytes: &[u8]);
@@ -77,11 +96,11 @@ pub trait Sink {
 ///
 /// Generic over the float type so that the f32 and f64 runs are the same
 /// code; the seed is a parameter so that tests can try several.
-pub fn run<F: Float>(
-    chains: &mut [DemoChain<F>],
+pub fn run<F: Float, R: Generator>(
+    chains: &mut [DemoChain<F, R>],
     seed: u64,
     steps: u64,
-) -> Result<(Demo<'_, F>, Report<F>), Error> {
+) -> Result<(Demo<'_, F, R>, Report<F>), Error> {
     let sampler = Hrla::paper(F::from_f64(0.01))?;
     let start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(10.0).sqrt())?;
     let a = F::from_f64(4.0);
@@ -95,7 +114,7 @@ pub fn run<F: Float>(
 
 /// 64-bit FNV-1a of the final chain states (see the crate docs for the
 /// exact byte sequence).
-pub fn checksum<F: Float>(opt: &Demo<'_, F>) -> u64 {
+pub fn checksum<F: Float, R: Generator>(opt: &Demo<'_, F, R>) -> u64 {
     const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
     const PRIME: u64 = 0x0000_0100_0000_01b3;
     let mut h = OFFSET;
@@ -155,7 +174,7 @@ pub fn float_name<F: Float>() -> (&'static [u8], usize) {
 }
 
 /// Writes the four lines of the run (see the crate docs) to `out`.
-pub fn report<F: Float>(opt: &Demo<'_, F>, out: &mut impl Sink) {
+pub fn report<F: Float, R: Generator>(opt: &Demo<'_, F, R>, out: &mut impl Sink) {
     let (name, digits) = float_name::<F>();
     let mut field = |label: &[u8], values: &[(u64, usize)]| {
         out.write(name);
@@ -181,12 +200,12 @@ pub fn report<F: Float>(opt: &Demo<'_, F>, out: &mut impl Sink) {
     field(b"chains.fnv1a", &[(checksum(opt), 16)]);
 }
 
-/// Runs the example at [`SEED`] for [`STEPS`] steps, its [`N`] chains in
-/// an array on the stack, and writes its report; an error (impossible with
-/// these constants) is written as a line.
-pub fn run_and_report<F: Float>(out: &mut impl Sink) {
-    let mut chains = chains::<F>();
-    match run::<F>(&mut chains, SEED, STEPS) {
+/// Runs the example at [`SEED`] for [`STEPS`] steps with generator `R`,
+/// its [`N`] chains in an array on the stack, and writes its report; an
+/// error (impossible with these constants) is written as a line.
+pub fn run_and_report<F: Float, R: Generator>(out: &mut impl Sink) {
+    let mut chains = chains::<F, R>();
+    match run::<F, R>(&mut chains, SEED, STEPS) {
         Ok((opt, _)) => report(&opt, out),
         Err(_) => {
             let (name, _) = float_name::<F>();

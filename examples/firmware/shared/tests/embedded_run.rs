@@ -2,7 +2,9 @@
 //! test script runs these with and without the `micromath` feature).
 
 use hrla::{Float, Hrla, Kernel, Potential, Rastrigin, Sampler, Termination};
-use hrla_embedded::{N, STEPS, Sink, chains, checksum, run};
+use hrla_embedded::{
+    N, STEPS, Sink, Xoshiro128PlusPlus, Xoshiro256PlusPlus, chains, checksum, run,
+};
 
 /// Seeds 0..64 in the firmware's setting: the best point, re-evaluated in
 /// f64 so that an approximate `U` cannot flatter it, is within 0.01 of the
@@ -13,8 +15,8 @@ use hrla_embedded::{N, STEPS, Sink, chains, checksum, run};
 fn finds_the_minimum<F: Float>() {
     let mut good = 0;
     for seed in 0..64 {
-        let mut storage = chains::<F>();
-        let (opt, report) = run::<F>(&mut storage, seed, STEPS).expect("valid setting");
+        let mut storage = chains::<F, Xoshiro128PlusPlus>();
+        let (opt, report) = run::<F, _>(&mut storage, seed, STEPS).expect("valid setting");
         assert_eq!(opt.chains().len(), N);
         assert_eq!(report.termination, Termination::Steps);
         assert_eq!(report.iterations, STEPS);
@@ -41,10 +43,15 @@ fn f64_run_finds_the_minimum() {
 
 #[test]
 fn a_run_is_a_function_of_its_seed() {
-    let (mut sa, mut sb, mut sc) = (chains::<f32>(), chains::<f32>(), chains::<f32>());
-    let (a, _) = run::<f32>(&mut sa, 3, 200).expect("valid setting");
-    let (b, _) = run::<f32>(&mut sb, 3, 200).expect("valid setting");
-    let (c, _) = run::<f32>(&mut sc, 4, 200).expect("valid setting");
+    type X128 = Xoshiro128PlusPlus;
+    let (mut sa, mut sb, mut sc) = (
+        chains::<f32, X128>(),
+        chains::<f32, X128>(),
+        chains::<f32, X128>(),
+    );
+    let (a, _) = run::<f32, _>(&mut sa, 3, 200).expect("valid setting");
+    let (b, _) = run::<f32, _>(&mut sb, 3, 200).expect("valid setting");
+    let (c, _) = run::<f32, _>(&mut sc, 4, 200).expect("valid setting");
     assert_eq!(checksum(&a), checksum(&b));
     assert_ne!(checksum(&a), checksum(&c));
 }
@@ -53,12 +60,12 @@ fn a_run_is_a_function_of_its_seed() {
 /// of the firmware's 16 is the same in a run of fewer chains, and storage
 /// that held another run is overwritten, not continued.
 fn chain_streams_are_independent<F: Float>() {
-    let mut all = chains::<F>();
-    let mut few = chains::<F>();
+    let mut all = chains::<F, Xoshiro128PlusPlus>();
+    let mut few = chains::<F, Xoshiro128PlusPlus>();
     // A different run first, so that the storage is dirty.
-    run::<F>(&mut few[..5], 99, 50).expect("valid setting");
-    let (whole, _) = run::<F>(&mut all, 7, 300).expect("valid setting");
-    let (part, _) = run::<F>(&mut few[..5], 7, 300).expect("valid setting");
+    run::<F, _>(&mut few[..5], 99, 50).expect("valid setting");
+    let (whole, _) = run::<F, _>(&mut all, 7, 300).expect("valid setting");
+    let (part, _) = run::<F, _>(&mut few[..5], 7, 300).expect("valid setting");
     assert_eq!(whole.chains()[..5], part.chains()[..]);
 }
 
@@ -85,12 +92,13 @@ impl Sink for Lines {
 /// kernel's random streams, normals or arithmetic changes them (and then
 /// the firmware, the host and wasm must still agree with each other:
 /// `scripts/test-firmware.sh` and `web/tests/embedded.test.mjs`). With
-/// micromath only the f32 checksum differs: the best point is the same.
+/// micromath only the f32 lines differ (with `Xoshiro128PlusPlus` only the
+/// checksum: the best point is the same).
 #[test]
 fn report_matches_the_docs() {
     let mut out = Lines(Vec::new());
-    hrla_embedded::run_and_report::<f32>(&mut out);
-    hrla_embedded::run_and_report::<f64>(&mut out);
+    hrla_embedded::run_and_report::<f32, Xoshiro128PlusPlus>(&mut out);
+    hrla_embedded::run_and_report::<f64, Xoshiro128PlusPlus>(&mut out);
     let f32_checksum = if cfg!(feature = "micromath") {
         "4787aa7661fdc47e"
     } else {
@@ -105,6 +113,34 @@ fn report_matches_the_docs() {
          f64 best.x 3f77a5f7da8850b0 bf65193a977c5c20\n\
          f64 best.iteration 000000000000057f\n\
          f64 chains.fnv1a bc4c54c02217ecdd\n"
+    );
+    assert_eq!(String::from_utf8(out.0).unwrap(), expected);
+}
+
+/// The same with the kernel's default generator, `Xoshiro256PlusPlus`,
+/// per chain: other streams, so another run.
+#[test]
+fn report_with_xoshiro256_matches_the_docs() {
+    let mut out = Lines(Vec::new());
+    hrla_embedded::run_and_report::<f32, Xoshiro256PlusPlus>(&mut out);
+    hrla_embedded::run_and_report::<f64, Xoshiro256PlusPlus>(&mut out);
+    let f32_lines = if cfg!(feature = "micromath") {
+        "f32 best.value 37e4b359\n\
+         f32 best.x 3a9636b1 380fb800\n\
+         f32 best.iteration 000000000000061d\n\
+         f32 chains.fnv1a ceae9351be54ade9\n"
+    } else {
+        "f32 best.value 37e4b2ed\n\
+         f32 best.x 3a9636b1 380f2400\n\
+         f32 best.iteration 000000000000061d\n\
+         f32 chains.fnv1a f8fdc51cd54edc12\n"
+    };
+    let expected = format!(
+        "{f32_lines}\
+         f64 best.value 3f2c42a2ae00707b\n\
+         f64 best.x bf6a2d3404545940 bf3c44b2991f5700\n\
+         f64 best.iteration 0000000000000428\n\
+         f64 chains.fnv1a cf2ae69a6f22e411\n"
     );
     assert_eq!(String::from_utf8(out.0).unwrap(), expected);
 }
@@ -171,13 +207,20 @@ fn rastrigin_does_not_depend_on_micromath() {
 fn sizes_match_the_docs() {
     use hrla_embedded::{Demo, DemoChain};
     use std::mem::size_of;
+    type X256 = Xoshiro256PlusPlus;
     let chain = (size_of::<DemoChain<f32>>(), size_of::<DemoChain<f64>>());
+    let chain256 = (
+        size_of::<DemoChain<f32, X256>>(),
+        size_of::<DemoChain<f64, X256>>(),
+    );
     let demo = (size_of::<Demo<'_, f32>>(), size_of::<Demo<'_, f64>>());
     println!(
-        "DemoChain<f32>: {} bytes, DemoChain<f64>: {}",
-        chain.0, chain.1
+        "DemoChain<f32>: {} bytes, DemoChain<f64>: {}; with Xoshiro256PlusPlus {} and {}",
+        chain.0, chain.1, chain256.0, chain256.1
     );
     println!("Demo<f32>: {} bytes, Demo<f64>: {}", demo.0, demo.1);
     assert_eq!(chain, (72, 112));
+    // 16 bytes more of generator state per chain.
+    assert_eq!(chain256, (88, 128));
     assert_eq!(demo, (320, 472));
 }
