@@ -64,7 +64,7 @@ pub type Demo<'a, F, R = Xoshiro128PlusPlus> =
 
 /// A per-chain generator the example can run with: its name in the
 /// variants' file names and on the host's command line.
-pub trait Generator: Rng + SeedableRng {
+pub trait Generator: Rng + SeedableRng + 'static {
     /// `"xoshiro128"` or `"xoshiro256"`.
     const NAME: &'static str;
 }
