@@ -4,13 +4,15 @@
 //! is the kernel's, with the same names ([`hrla::Builder`]'s pieces,
 //! [`hrla::Optimizer`], [`hrla::Auto`], [`hrla::Lbfgs`]'s polish) and, for
 //! the same seed, the same bits. Dimensions are const generics in the
-//! kernel: this module compiles the set in [`dims`] and refuses others
+//! kernel: this module compiles the set in `dims.rs` and refuses others
 //! with `DimensionError`. Floats are `f64`.
 //!
 //! Potentials come in two kinds: the kernel's built-ins, which run with the
 //! GIL released and no Python in the loop, and a user's Python function,
 //! called once per step for all live chains with an `(N, D)` array
-//! (see [`potential`]).
+//! (see `potential.rs`).
+
+#![deny(unsafe_code)]
 
 mod auto;
 mod config;

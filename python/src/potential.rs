@@ -108,6 +108,9 @@ impl<const D: usize> Builtin<D> {
     }
 }
 
+/// `(U, G)` for a batch of points: shapes `(N,)` and `(N, D)`.
+type Batch<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>);
+
 /// A potential of the kernel, run in Rust with no Python in the loop. The
 /// subclasses are the kernel's built-ins; `value_and_gradient` evaluates
 /// one on a batch of points (with the GIL released).
@@ -122,7 +125,7 @@ impl PyBuiltin {
         &self,
         py: Python<'py>,
         x: PyReadonlyArray2<'py, f64>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<Batch<'py>> {
         let (n, d) = (x.shape()[0], x.shape()[1]);
         let points: Vec<f64> = x.as_array().iter().copied().collect();
         let (values, grads) = with_dim!(d, D => {
@@ -291,13 +294,14 @@ pub struct PyPotential<const D: usize> {
 #[derive(Default)]
 struct State {
     /// The batch the next evaluations read, in order.
-    batch: Option<Batch>,
+    batch: Option<Answers>,
     /// The first failure since the last [`PyPotential::take_error`]: later
     /// evaluations return NaN without calling Python.
     error: Option<PyErr>,
 }
 
-struct Batch {
+/// The answers of one batched call, read in order.
+struct Answers {
     points: Vec<f64>,
     values: Vec<f64>,
     grads: Vec<f64>,
@@ -323,7 +327,7 @@ impl<const D: usize> PyPotential<D> {
     /// must be at those points, in that order.
     pub fn load(&self, py: Python<'_>, points: Vec<f64>) -> PyResult<()> {
         let (values, grads) = call(py, &self.function, &points, D)?;
-        self.state().batch = Some(Batch {
+        self.state().batch = Some(Answers {
             points,
             values,
             grads,
