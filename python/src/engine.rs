@@ -373,6 +373,14 @@ pub struct PyOptimizer {
     engine: Box<dyn Engine>,
 }
 
+impl PyOptimizer {
+    /// The `(N, D)` field `field` of the chains, as a view.
+    fn rows(slf: Bound<'_, Self>, field: fn(&Layout) -> usize) -> Bound<'_, PyArray2<f64>> {
+        let l = slf.borrow().engine.layout();
+        crate::views::rows(slf.into_any(), &l, field(&l))
+    }
+}
+
 #[pymethods]
 impl PyOptimizer {
     #[new]
@@ -460,29 +468,25 @@ impl PyOptimizer {
     /// Positions `x_k`, shape `(N, D)`: a read-only view, no copy.
     #[getter]
     fn x<'py>(slf: Bound<'py, Self>) -> Bound<'py, PyArray2<f64>> {
-        let l = slf.borrow().engine.layout();
-        crate::views::rows(slf.into_any(), &l, l.x)
+        Self::rows(slf, |l| l.x)
     }
 
     /// Velocities `y_k`, shape `(N, D)` (zero for OLA): a view.
     #[getter]
     fn y<'py>(slf: Bound<'py, Self>) -> Bound<'py, PyArray2<f64>> {
-        let l = slf.borrow().engine.layout();
-        crate::views::rows(slf.into_any(), &l, l.y)
+        Self::rows(slf, |l| l.y)
     }
 
     /// Gradients `∇U(x_k)`, shape `(N, D)`: a view.
     #[getter]
     fn gradient<'py>(slf: Bound<'py, Self>) -> Bound<'py, PyArray2<f64>> {
-        let l = slf.borrow().engine.layout();
-        crate::views::rows(slf.into_any(), &l, l.gradient)
+        Self::rows(slf, |l| l.gradient)
     }
 
     /// Each chain's best point, shape `(N, D)`: a view.
     #[getter]
     fn best_x<'py>(slf: Bound<'py, Self>) -> Bound<'py, PyArray2<f64>> {
-        let l = slf.borrow().engine.layout();
-        crate::views::rows(slf.into_any(), &l, l.best_x)
+        Self::rows(slf, |l| l.best_x)
     }
 
     /// Each chain's best value, shape `(N,)`: a view.

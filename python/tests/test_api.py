@@ -1,6 +1,9 @@
 """The Python API: minimize, the step-by-step object and its views, the
 batched Python potential, and errors as exceptions."""
 
+import re
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -13,16 +16,29 @@ def rastrigin(X):
     return X.shape[1] + np.sum(X * X - np.cos(t), axis=1), 2 * X + 2 * np.pi * np.sin(t)
 
 
-def test_readme_example_finds_the_minimum_of_a_user_function():
-    def fun(X):  # Himmelblau's function, four global minima with U* = 0
-        p, q = X[:, 0] ** 2 + X[:, 1] - 11, X[:, 0] + X[:, 1] ** 2 - 7
-        return p * p + q * q, np.stack([4 * X[:, 0] * p + 2 * q, 2 * p + 4 * X[:, 1] * q], axis=1)
+def readme_python_blocks():
+    """The ```python blocks of the README's Python section."""
+    text = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    section = text.split("\n## Python\n", 1)[1].split("\n## ", 1)[0]
+    return re.findall(r"```python\n(.*?)```", section, re.S)
 
-    res = hrla.minimize(fun, [(-5, 5)] * 2, method="hrla", seed=1)
+
+def test_readme_example_finds_the_minimum_of_a_user_function(capsys):
+    first, second = readme_python_blocks()
+    assert len([line for line in first.splitlines() if line.strip()]) == 6
+    scope = {}
+    exec(first, scope)
+    res = scope["res"]
     assert res.success and res.fun < 1e-12, res
     minima = np.array([[3.0, 2.0], [-2.805118, 3.131312], [-3.779310, -3.283186], [3.584428, -1.848127]])
     assert np.min(np.linalg.norm(minima - res.x, axis=1)) < 1e-5
     assert res.nfev == res.njev <= 125_000
+    # The step-by-step example.
+    scope = {"hrla": hrla}
+    exec(second, scope)
+    opt, x, report = scope["opt"], scope["x"], scope["report"]
+    assert report.termination == "Steps" and report.iterations == 14_000
+    assert np.array_equal(x, opt.x) and x.base is opt
 
 
 def test_builtin_potential_agrees_with_numpy():
