@@ -53,13 +53,26 @@ step "firmware: Algorithm 1 on an emulated Cortex-M3, Cortex-M4F and RISC-V core
 step "wasm wrapper and demo page (bit-identity in Node, the page in Chromium), firmware computation in wasm"
 ./scripts/test-web.sh 2>&1 | tee -a "$LOG"
 
+step "Python package: pip install from source into a virtualenv, pytest (bit-identity with the Rust crate)"
+./scripts/test-python.sh 2>&1 | tee -a "$LOG"
+
 # cargo prints "test result: ok. N passed; M failed; K ignored; ...", node's
 # TAP reporter "# pass N", "# fail M" and "# skipped K", the firmware script
 # its own "firmware: N passed, M failed" (its QEMU comparisons are not cargo
-# tests). Ignored and skipped tests both count as skipped.
+# tests), pytest "N failed, M passed, K skipped in T s" (only the counts it
+# has; errors count as failed). Ignored and skipped tests both count as
+# skipped.
 awk '/^test result:/ { p += $4; f += $6; s += $8 }
      /^# pass / { p += $3 }
      /^# fail / { f += $3 }
      /^# skipped / { s += $3 }
      /^firmware: [0-9]+ passed, [0-9]+ failed$/ { p += $2; f += $4 }
+     /^=* *[0-9]+ (passed|failed|skipped|errors?)/ && / in [0-9.]+s/ {
+       for (i = 1; i < NF; i++) {
+         w = $(i + 1); sub(/,$/, "", w)
+         if (w == "passed") p += $i
+         else if (w == "failed" || w == "error" || w == "errors") f += $i
+         else if (w == "skipped") s += $i
+       }
+     }
      END { printf "\nsummary: %d passed, %d failed, %d skipped\n", p, f, s }' "$LOG"

@@ -1,0 +1,277 @@
+"""Global optimisation by high-resolution Langevin sampling (HRLA).
+
+To minimise a smooth nonconvex ``U: R^D -> R``, run ``N`` independent chains
+that sample the Gibbs law ``exp(-a U)`` and keep the best point visited
+(Algorithm 1 of Cortild, Delplancke, Oudjane and Peypouquet, *Global
+Optimization Algorithm through High-Resolution Sampling*, TMLR 2025). The
+sampler, HRLA, discretises the high-resolution Langevin dynamics::
+
+    dX = (-beta ∇U(X) + Y) dt + sqrt(2 beta / a) dB^x
+    dY = (-(a/b) ∇U(X) - alpha Y) dt + sqrt(2 alpha / b) dB^y
+
+whose invariant law is ``exp(-a U(x) - b |y|^2 / 2)``. Over each step of
+length ``h`` the gradient ``g`` is frozen and the linear SDE left is solved
+exactly: every coordinate moves to a Gaussian with, for ``u = alpha h``,
+``e = exp(-u)``, ``phi1 = (1 - e)/u``, ``phi2 = (e - 1 + u)/u^2``,
+``gamma = a/b``, ``sx2 = beta/a``, ``sy2 = alpha/b``::
+
+    mean_x = x + h phi1 y - (beta h + gamma h^2 phi2) g
+    mean_y = e y - gamma h phi1 g
+    Sxx = (sy2/alpha^3)(2u - e^2 + 4e - 3) + 2 sx2 h
+    Syy = sy2 (1 - e^2)/alpha,   Sxy = sy2 (1 - e)^2/alpha^2
+
+Every number is computed by the Rust kernel ``hrla`` (this package binds it
+with PyO3): the same names as its Rust API and, for a seed, the same bits.
+Each chain ``c`` draws from its own ``Xoshiro256PlusPlus`` seeded with
+``chain_seed(seed, c)``. Floats are ``float64``. The dimension ``D`` is a
+compile-time constant in the kernel: ``DIMENSIONS`` lists those compiled in
+(1 to 16, 20, 32, 50, 100); any other raises ``DimensionError``.
+
+Two kinds of potential:
+
+- the kernel's built-ins (``Rastrigin()``, ``Quadratic(k, m)``,
+  ``DoubleWell()``, ``StyblinskiTang()``, ``Levy()``, ``Ackley()``), run in
+  Rust with the GIL released;
+- a Python function ``fun(X) -> (U, G)`` on a batch: ``X`` of shape
+  ``(N, D)``, ``U`` of shape ``(N,)`` and ``G = ∇U(X)`` of shape ``(N, D)``,
+  called once per step for all live chains (and with one row at a time by
+  the polish, quenches, restarts and ``Auto``).
+
+Entry points: :func:`minimize` (scipy.optimize-like, returns an
+:class:`OptimizeResult`), :class:`Optimizer` (step by step, chains as numpy
+views), :class:`Builder` (the Rust builder's chain of settings), and
+:class:`Auto` (the default solver).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable, Optional, Tuple, Union
+
+import numpy as np
+
+from ._hrla import (
+    DIMENSIONS,
+    Ackley,
+    Auto,
+    Constant,
+    DimensionError,
+    DivergedError,
+    DoubleWell,
+    Gaussian,
+    Geometric,
+    HrlaError,
+    Hrla,
+    Interval,
+    Levy,
+    Linear,
+    Ola,
+    Optimizer,
+    Point,
+    Polished,
+    PolishSettings,
+    Potential,
+    Quadratic,
+    Rastrigin,
+    Report,
+    Solution,
+    Stop,
+    StyblinskiTang,
+    Ula,
+    UnboundedBelowError,
+)
+
+__all__ = [
+    "DIMENSIONS", "Ackley", "Auto", "Builder", "Constant", "DimensionError",
+    "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla", "HrlaError",
+    "Interval", "Levy", "Linear", "Ola", "OptimizeResult", "Optimizer", "Point",
+    "Polished", "PolishSettings", "Potential", "Quadratic", "Rastrigin", "Report",
+    "Solution", "Stop", "StyblinskiTang", "Ula", "UnboundedBelowError", "minimize",
+]
+
+Fun = Union[Potential, Callable[[np.ndarray], Tuple[Any, Any]]]
+
+
+class OptimizeResult(dict):
+    """The outcome of :func:`minimize`, as ``scipy.optimize.OptimizeResult``:
+    a dict whose keys are also attributes.
+
+    ``x`` the best point, ``fun`` ``U(x)``, ``nfev`` the evaluations of
+    ``U`` (all counted: initial points, steps, polish), ``njev`` the same
+    (every evaluation computes ``U`` and ``∇U`` together), ``nit`` the
+    steps (``"auto"``: rounds), ``success``, ``termination`` (the kernel's
+    ``Termination`` name: ``"Steps"``, ``"Evaluations"``, ``"Target"``,
+    ``"Stalled"``), ``message`` (the kernel's report), ``method``, ``seed``.
+    """
+
+    def __getattr__(self, name: str) -> Any:
+        try:
+            return self[name]
+        except KeyError as e:
+            raise AttributeError(name) from e
+
+    __setattr__ = dict.__setitem__  # type: ignore[assignment]
+    __delattr__ = dict.__delitem__  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        keys = ("fun", "x", "nfev", "nit", "success", "termination", "message")
+        return "OptimizeResult(" + ", ".join(f"{k}={self[k]!r}" for k in keys if k in self) + ")"
+
+
+def _box(bounds: Any, dim: Optional[int]) -> Tuple[Optional[Interval], Optional[int]]:
+    """``bounds`` as the kernel's box (the same interval in every
+    coordinate) and the dimension it fixes: ``(lo, hi)`` or a sequence of
+    ``D`` equal pairs, as ``scipy.optimize.dual_annealing`` takes."""
+    if bounds is None:
+        return None, dim
+    if isinstance(bounds, Interval):
+        return bounds, dim
+    b = np.asarray(bounds, dtype=np.float64)
+    if b.shape == (2,):
+        return Interval(float(b[0]), float(b[1])), dim
+    if b.ndim == 2 and b.shape[1] == 2 and b.shape[0] >= 1:
+        if not (np.all(b[:, 0] == b[0, 0]) and np.all(b[:, 1] == b[0, 1])):
+            raise ValueError(
+                "the kernel's box is the same interval [lo, hi] in every coordinate; "
+                f"got different bounds {bounds!r}"
+            )
+        if dim is not None and dim != b.shape[0]:
+            raise ValueError(f"bounds have {b.shape[0]} pairs but dim={dim}")
+        return Interval(float(b[0, 0]), float(b[0, 1])), b.shape[0]
+    raise ValueError(f"bounds must be (lo, hi) or a sequence of D (lo, hi) pairs, got {bounds!r}")
+
+
+_SAMPLERS = {"hrla": Hrla, "ula": Ula, "ola": Ola}
+
+
+def minimize(
+    fun: Fun,
+    bounds: Any = None,
+    *,
+    dim: Optional[int] = None,
+    method: str = "auto",
+    budget: int = 125_000,
+    seed: int = 0,
+    chains: Optional[int] = None,
+    h: float = 0.01,
+    schedule: Any = 4.0,
+    start: Any = None,
+    steps: Optional[int] = None,
+    target: Optional[float] = None,
+    stall: Optional[Tuple[int, float]] = None,
+    polish: int = 1000,
+) -> OptimizeResult:
+    """Minimises ``fun`` globally by Langevin sampling.
+
+    ``fun`` is a built-in potential (``hrla.Rastrigin()``, ...) or a Python
+    function ``fun(X) -> (U, G)`` evaluating ``U`` and ``∇U`` on the rows of
+    ``X`` (shape ``(N, D)``; ``U`` of shape ``(N,)``, ``G`` of shape
+    ``(N, D)``). ``bounds`` is ``(lo, hi)`` (then give ``dim``) or ``D``
+    equal pairs ``[(lo, hi)] * D``; the chains stay in the box by
+    reflection.
+
+    ``method="auto"`` (the default; needs ``bounds``) is the kernel's
+    :class:`Auto` solver: no setting to tune, ``budget`` evaluations in
+    all, ``chains`` defaulting to ``Auto.chains_for(budget)``; it calls a
+    Python ``fun`` with one row at a time.
+
+    ``method="hrla"``, ``"ula"`` or ``"ola"`` runs Algorithm 1 of the paper
+    with that sampler in its paper setting at step ``h``, the schedule
+    ``schedule`` (a float ``a``, or ``Linear``/``Geometric`` annealing),
+    ``chains`` chains (default 10) from ``start`` (default: uniform in the
+    box), until ``budget`` evaluations, ``steps`` steps, the ``target``
+    value or the ``stall = (window, tolerance)`` rule; then an L-BFGS
+    polish of the best point with at most ``polish`` evaluations (0: none),
+    kept out of the sampling's share of the budget. A Python ``fun`` is called once per step for all
+    chains.
+
+    Returns an :class:`OptimizeResult`. Bad input and failed runs raise
+    :class:`HrlaError` (with the kernel's message) or a subclass.
+    """
+    box, dim = _box(bounds, dim)
+    method = method.lower()
+    if method == "auto":
+        if box is None:
+            raise ValueError('method="auto" needs bounds: (lo, hi) with dim=, or D (lo, hi) pairs')
+        s = Auto().minimize(fun, box, budget, seed, chains=chains, dim=dim)
+        spent = s.evaluations + 2 * s.chains > budget
+        return OptimizeResult(
+            x=np.asarray(s.x), fun=s.value, nfev=s.evaluations, njev=s.evaluations,
+            nit=s.rounds, success=spent,
+            termination="Evaluations" if spent else "Diverged",
+            message=(f"evaluation budget spent: best U = {s.value!r} after {s.rounds} rounds "
+                     f"and {s.evaluations} evaluations" if spent else
+                     "every chain diverged before the budget was spent; x is the best point found"),
+            method="auto", seed=seed, step=s.step, inverse_temperature=s.inverse_temperature,
+        )
+    if method not in _SAMPLERS:
+        raise ValueError(f"unknown method {method!r}; expected one of: auto hrla ula ola")
+    if start is None:
+        if box is None:
+            raise ValueError("give bounds or a start (hrla.Gaussian, hrla.Point, hrla.Interval)")
+        start = box
+    n = 10 if chains is None else chains
+    stop = Stop().evaluations(budget)
+    if polish > 0:
+        # The sampling leaves `polish` evaluations of the budget to the polish.
+        sampling = (budget - polish - n) // max(n, 1)
+        if sampling < 1:
+            raise ValueError(f"a budget of {budget} leaves no step to {n} chains before a polish of {polish}")
+        steps = sampling if steps is None else min(steps, sampling)
+    if steps is not None:
+        stop = stop.steps(steps)
+    if target is not None:
+        stop = stop.target(target)
+    if stall is not None:
+        stop = stop.stall(*stall)
+    opt = Optimizer(fun, _SAMPLERS[method].paper(h), schedule, start,
+                    chains=n, seed=seed, stop=stop,
+                    domain=box, dim=dim)
+    report = opt.run()
+    if polish > 0:
+        opt.polish(opt.best_chain, PolishSettings(polish))
+    x, value, _ = opt.best
+    return OptimizeResult(
+        x=x, fun=value, nfev=opt.evaluations, njev=opt.evaluations, nit=report.iterations,
+        success=True, termination=report.termination, message=report.message,
+        method=method, seed=seed,
+    )
+
+
+class Builder:
+    """The settings of a run, chained as in Rust's ``hrla::Builder``::
+
+        opt = (Builder(Rastrigin(), Hrla.paper(0.01), 4.0, Gaussian([3.0] * 10, 10 ** 0.5))
+               .seed(1).stop(Stop().steps(14_000)).build(chains=10))
+
+    ``build`` makes the :class:`Optimizer` (``dim`` only when neither the
+    potential nor the start fixes it).
+    """
+
+    def __init__(self, potential: Fun, sampler: Any, schedule: Any, start: Any) -> None:
+        self._args = (potential, sampler, schedule, start)
+        self._kw: dict = {}
+
+    def _with(self, **kw: Any) -> "Builder":
+        b = Builder(*self._args)
+        b._kw = {**self._kw, **kw}
+        return b
+
+    def domain(self, domain: Interval) -> "Builder":
+        """Confines the chains to a box by reflection."""
+        return self._with(domain=domain)
+
+    def seed(self, seed: int) -> "Builder":
+        """The run's seed (chain ``c`` uses ``chain_seed(seed, c)``)."""
+        return self._with(seed=seed)
+
+    def stride(self, stride: int) -> "Builder":
+        """Records the running best at iterates that are multiples of ``stride``."""
+        return self._with(stride=stride)
+
+    def stop(self, stop: Stop) -> "Builder":
+        """The stopping rules."""
+        return self._with(stop=stop)
+
+    def build(self, chains: int = 10, dim: Optional[int] = None) -> Optimizer:
+        """Draws the initial points of ``chains`` chains and checks everything."""
+        return Optimizer(*self._args, chains=chains, dim=dim, **self._kw)

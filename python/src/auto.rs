@@ -1,0 +1,160 @@
+//! `hrla.Auto`: the kernel's default solver.
+
+use hrla::{Auto, Chain, Lbfgs};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+
+use crate::config::PyInterval;
+use crate::dims::with_dim;
+use crate::engine::{MEMORY, dimension};
+use crate::errors::kernel;
+use crate::potential::{Pot, PotentialSpec};
+
+/// The default solver: rounds of HRLA steps, each followed by an L-BFGS
+/// quench of every chain and one-coordinate restarts from the best point,
+/// with `h = step_scale / L` from the curvature `L` at the starts and `a`
+/// from the spread of `U`, cooled by `factor` per round. Needs a box.
+#[pyclass(frozen, module = "hrla", name = "Auto", get_all)]
+#[derive(Clone)]
+pub struct PyAuto {
+    /// Rounds the budget is spread over.
+    pub rounds: u64,
+    /// Evaluations per quench, at most.
+    pub quench: u64,
+    /// Heat when fewer than this fraction of chains changed basin.
+    pub low_rate: f64,
+    /// Cool when more than this fraction did.
+    pub high_rate: f64,
+    /// The factor by which `a` changes.
+    pub factor: f64,
+    /// `h = step_scale / L`.
+    pub step_scale: f64,
+    /// Chains restarted after every round.
+    pub restarts: usize,
+}
+
+/// What `Auto.minimize` found.
+#[pyclass(frozen, module = "hrla", name = "Solution", get_all)]
+pub struct PySolution {
+    /// The best point.
+    pub x: Py<PyArray1<f64>>,
+    /// `U(x)`.
+    pub value: f64,
+    /// Evaluations used, all included (at most the budget).
+    pub evaluations: u64,
+    /// Rounds of sampling done.
+    pub rounds: u64,
+    /// The step size chosen.
+    pub step: f64,
+    /// The inverse temperature at the end.
+    pub inverse_temperature: f64,
+    /// Chains run.
+    pub chains: usize,
+}
+
+#[pymethods]
+impl PyAuto {
+    #[new]
+    #[pyo3(signature = (*, rounds = None, quench = None, low_rate = None, high_rate = None, factor = None, step_scale = None, restarts = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        rounds: Option<u64>,
+        quench: Option<u64>,
+        low_rate: Option<f64>,
+        high_rate: Option<f64>,
+        factor: Option<f64>,
+        step_scale: Option<f64>,
+        restarts: Option<usize>,
+    ) -> Self {
+        let d = Auto::<f64>::default();
+        Self {
+            rounds: rounds.unwrap_or(d.rounds),
+            quench: quench.unwrap_or(d.quench),
+            low_rate: low_rate.unwrap_or(d.low_rate),
+            high_rate: high_rate.unwrap_or(d.high_rate),
+            factor: factor.unwrap_or(d.factor),
+            step_scale: step_scale.unwrap_or(d.step_scale),
+            restarts: restarts.unwrap_or(d.restarts),
+        }
+    }
+
+    /// The number of chains measured best for an evaluation budget:
+    /// `budget / 4000` within `[8, 32]`.
+    #[staticmethod]
+    fn chains_for(budget: u64) -> usize {
+        Auto::<f64>::chains_for(budget)
+    }
+
+    /// Minimises `potential` over the box `domain` within `budget`
+    /// evaluations (all counted), with `chains` chains (default
+    /// `chains_for(budget)`); chain `c` draws from the generator of
+    /// `(seed, c)`. A Python potential is called with one row at a time.
+    #[pyo3(signature = (potential, domain, budget, seed = 0, *, chains = None, dim = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn minimize(
+        &self,
+        py: Python<'_>,
+        potential: &Bound<'_, PyAny>,
+        domain: PyInterval,
+        budget: u64,
+        seed: u64,
+        chains: Option<usize>,
+        dim: Option<usize>,
+    ) -> PyResult<PySolution> {
+        let spec = PotentialSpec::from_py(potential)?;
+        let d = dimension(&[("dim", dim), ("the potential", spec.dimension())])?;
+        let n = chains.unwrap_or_else(|| Auto::<f64>::chains_for(budget));
+        let auto = Auto {
+            rounds: self.rounds,
+            quench: self.quench,
+            low_rate: self.low_rate,
+            high_rate: self.high_rate,
+            factor: self.factor,
+            step_scale: self.step_scale,
+            restarts: self.restarts,
+        };
+        with_dim!(d, D => {
+            let pot = spec.build::<D>(py)?;
+            let mut storage: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
+            let mut lbfgs: Box<Lbfgs<f64, D, MEMORY>> = Box::default();
+            let mut solve = || auto.minimize(&pot, domain.0, budget, seed, &mut storage, &mut lbfgs);
+            let found = match &pot {
+                Pot::Builtin(_) => py.detach(solve),
+                Pot::Python(_) => solve(),
+            };
+            if let Pot::Python(p) = &pot {
+                p.finish()?;
+            }
+            let s = found.map_err(kernel)?;
+            Ok(PySolution {
+                x: PyArray1::from_slice(py, &s.x).unbind(),
+                value: s.value,
+                evaluations: s.evaluations,
+                rounds: s.rounds,
+                step: s.step,
+                inverse_temperature: s.inverse_temperature,
+                chains: n,
+            })
+        })
+    }
+}
+
+#[pymethods]
+impl PySolution {
+    fn __repr__(&self) -> String {
+        format!(
+            "Solution(value={:?}, evaluations={}, rounds={}, step={:?}, inverse_temperature={:?}, chains={})",
+            self.value,
+            self.evaluations,
+            self.rounds,
+            self.step,
+            self.inverse_temperature,
+            self.chains
+        )
+    }
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyAuto>()?;
+    m.add_class::<PySolution>()
+}

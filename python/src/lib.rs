@@ -1,0 +1,37 @@
+//! Python face of the `hrla` kernel, built by maturin as `hrla._hrla`.
+//!
+//! A thin PyO3 layer with no maths of its own: every number a run computes
+//! is the kernel's, with the same names ([`hrla::Builder`]'s pieces,
+//! [`hrla::Optimizer`], [`hrla::Auto`], [`hrla::Lbfgs`]'s polish) and, for
+//! the same seed, the same bits. Dimensions are const generics in the
+//! kernel: this module compiles the set in `dims.rs` and refuses others
+//! with `DimensionError`. Floats are `f64`.
+//!
+//! Potentials come in two kinds: the kernel's built-ins, which run with the
+//! GIL released and no Python in the loop, and a user's Python function,
+//! called once per step for all live chains with an `(N, D)` array
+//! (see `potential.rs`).
+
+#![deny(unsafe_code)]
+
+mod auto;
+mod config;
+mod dims;
+mod engine;
+mod errors;
+mod potential;
+mod views;
+
+use pyo3::prelude::*;
+
+/// The extension module `hrla._hrla`; `hrla/__init__.py` re-exports it.
+#[pymodule]
+fn _hrla(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    errors::register(m)?;
+    config::register(m)?;
+    potential::register(m)?;
+    engine::register(m)?;
+    auto::register(m)?;
+    m.add("DIMENSIONS", dims::SUPPORTED.to_vec())?;
+    Ok(())
+}

@@ -1,0 +1,162 @@
+"""The Python API: minimize, the step-by-step object and its views, the
+batched Python potential, and errors as exceptions."""
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import hrla
+
+
+def rastrigin(X):
+    """Batched Rastrigin in numpy: X (N, D) -> (U (N,), G (N, D))."""
+    t = 2 * np.pi * X
+    return X.shape[1] + np.sum(X * X - np.cos(t), axis=1), 2 * X + 2 * np.pi * np.sin(t)
+
+
+def readme_python_blocks():
+    """The ```python blocks of the README's Python section."""
+    text = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    section = text.split("\n## Python\n", 1)[1].split("\n## ", 1)[0]
+    return re.findall(r"```python\n(.*?)```", section, re.S)
+
+
+def test_readme_example_finds_the_minimum_of_a_user_function(capsys):
+    first, second = readme_python_blocks()
+    assert len([line for line in first.splitlines() if line.strip()]) == 6
+    scope = {}
+    exec(first, scope)
+    res = scope["res"]
+    assert res.success and res.fun < 1e-12, res
+    minima = np.array([[3.0, 2.0], [-2.805118, 3.131312], [-3.779310, -3.283186], [3.584428, -1.848127]])
+    assert np.min(np.linalg.norm(minima - res.x, axis=1)) < 1e-5
+    assert res.nfev == res.njev <= 125_000
+    # The step-by-step example.
+    scope = {"hrla": hrla}
+    exec(second, scope)
+    opt, x, report = scope["opt"], scope["x"], scope["report"]
+    assert report.termination == "Steps" and report.iterations == 14_000
+    assert np.array_equal(x, opt.x) and x.base is opt
+
+
+def test_builtin_potential_agrees_with_numpy():
+    X = np.random.default_rng(0).uniform(-5, 5, size=(64, 10))
+    u, g = hrla.Rastrigin().value_and_gradient(X)
+    u0, g0 = rastrigin(X)
+    np.testing.assert_allclose(u, u0, rtol=1e-12, atol=1e-11)
+    np.testing.assert_allclose(g, g0, rtol=1e-12, atol=1e-11)
+    assert hrla.Rastrigin().global_minimum(10) == 0.0
+
+
+def test_auto_and_the_methods_on_10d_rastrigin():
+    box = [(-5.12, 5.12)] * 10
+    res = hrla.minimize(hrla.Rastrigin(), box, seed=1)
+    assert res.success and res.termination == "Evaluations" and res.fun < 1e-10, res
+    assert res.nfev <= 125_000
+    # Algorithm 1 with a batched numpy potential: the same as the built-in
+    # up to the last bits of numpy's sine, so only the quality is checked.
+    res = hrla.minimize(rastrigin, box, method="hrla", seed=1, budget=50_000, schedule=hrla.Linear(0.1, 4.0, 4_000))
+    assert res.termination == "Steps" and res.fun < 3.0, res
+
+
+def test_views_look_into_the_optimizer():
+    opt = hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Gaussian([3.0] * 10, 3.0),
+                         chains=5, seed=2, stop=hrla.Stop().steps(50))
+    x, best_value = opt.x, opt.best_value
+    assert x.shape == (5, 10) and best_value.shape == (5,)
+    assert not x.flags.writeable and x.base is opt
+    before = x.copy()
+    opt.step()
+    # Updated in place by the step: the same array, new numbers.
+    assert not np.array_equal(before, x)
+    assert np.array_equal(x, opt.x)
+    with pytest.raises(ValueError):
+        x[0, 0] = 1.0
+    del opt  # the views keep the chains alive
+    assert np.all(np.isfinite(x)) and np.all(best_value >= 0)
+
+
+def test_the_function_is_called_once_per_step_for_the_live_chains():
+    shapes = []
+
+    def fun(X):
+        shapes.append(X.shape)
+        return rastrigin(X)
+
+    opt = hrla.Optimizer(fun, hrla.Ola.paper(0.01), 1.0, hrla.Gaussian([0.0] * 3, 1.0), chains=7, seed=1,
+                         stop=hrla.Stop().steps(30))
+    report = opt.run()
+    assert report.iterations == 30 and shapes == [(7, 3)] * 31
+    # The polish calls it one point at a time.
+    n = len(shapes)
+    p = opt.polish(opt.best_chain, hrla.PolishSettings(50))
+    assert shapes[n:] == [(1, 3)] * p.evaluations
+
+
+def test_kernel_errors_become_exceptions_with_its_messages():
+    with pytest.raises(hrla.HrlaError, match=r"`h` must be finite and > 0, got -1"):
+        hrla.Hrla.paper(-1.0)
+    with pytest.raises(hrla.HrlaError, match="hi - lo"):
+        hrla.Interval(1.0, 1.0)
+    with pytest.raises(hrla.HrlaError, match="no stopping rule"):
+        hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.0, 0.0])).run()
+    with pytest.raises(hrla.HrlaError, match="would cut the schedule of 100 steps short"):
+        hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), hrla.Linear(1, 2, 100), hrla.Point([0.0]),
+                       stop=hrla.Stop().steps(10))
+    with pytest.raises(hrla.DimensionError, match="dimension 17 is not compiled in"):
+        hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.0] * 17))
+    with pytest.raises(ValueError, match="dimension"):
+        hrla.Optimizer(hrla.Quadratic(1.0, [0.0] * 3), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.0] * 2))
+    with pytest.raises(TypeError, match="sampler must be"):
+        hrla.Optimizer(hrla.Rastrigin(), "hrla", 4.0, hrla.Point([0.0]))
+    assert set(hrla.DIMENSIONS) >= set(range(1, 17)) | {20, 32, 50, 100}
+
+
+def test_failed_runs_raise():
+    # Every chain diverges: the gradient turns NaN after the initial points.
+    calls = []
+
+    def fun(X):
+        calls.append(X.shape)
+        g = np.zeros_like(X) if len(calls) == 1 else np.full_like(X, np.nan)
+        return np.zeros(len(X)), g
+
+    opt = hrla.Optimizer(fun, hrla.Hrla.paper(0.01), 1.0, hrla.Point([0.0, 0.0]), chains=3,
+                         stop=hrla.Stop().steps(5))
+    with pytest.raises(hrla.DivergedError, match="all 3 chains diverged"):
+        opt.run()
+    with pytest.raises(hrla.DivergedError):  # a failed run stays failed
+        opt.step()
+    # A potential unbounded below.
+    opt = hrla.Optimizer(lambda X: (-1e300 * np.sum(X * X, axis=1), -2e300 * X), hrla.Ola.paper(0.01), 1.0,
+                         hrla.Point([0.0]), chains=2, stop=hrla.Stop().steps(5))
+    with pytest.raises(hrla.UnboundedBelowError, match="unbounded below"):
+        opt.run()
+
+
+def test_python_errors_and_bad_answers_propagate():
+    def boom(X):
+        raise KeyError("from the potential")
+
+    with pytest.raises(KeyError, match="from the potential"):
+        hrla.minimize(boom, [(-1, 1)] * 2, method="hrla")
+    with pytest.raises(KeyError, match="from the potential"):
+        hrla.minimize(boom, [(-1, 1)] * 2)  # Auto, one point at a time
+    with pytest.raises(ValueError, match=r"U of shape \(10,\) and G of shape \(10, 2\)"):
+        hrla.minimize(lambda X: (np.zeros(3), X), [(-1, 1)] * 2, method="ola")
+    with pytest.raises(TypeError, match="pair"):
+        hrla.minimize(lambda X: 1.0, [(-1, 1)] * 2, method="ola")
+    with pytest.raises(ValueError, match="same interval"):
+        hrla.minimize(hrla.Rastrigin(), [(-1, 1), (-2, 2)])
+
+
+def test_every_listed_dimension_is_compiled_in():
+    for d in hrla.DIMENSIONS:
+        opt = hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.5] * d), chains=2)
+        opt.step()
+        assert opt.dim == d and opt.x.shape == (2, d) and len(opt) == 2
+    for d in (0, 17, 101):
+        with pytest.raises(hrla.DimensionError):
+            hrla.Rastrigin().global_minimum(d)
