@@ -241,7 +241,9 @@ impl StandardNormal for f32 {
         #[cfg(not(target_endian = "little"))]
         let halves = {
             let w = rng.next_u64();
-            u32x8::new(core::array::from_fn(|j| (w[j / 2] >> (32 * (j % 2))) as u32))
+            u32x8::new(core::array::from_fn(|j| {
+                (w[j / 2] >> (32 * (j % 2))) as u32
+            }))
         };
         let layer = (halves & u32x8::splat(0xff)).to_array().map(|i| i as usize);
         let u = f32x8::from_bits((halves >> 9) | u32x8::splat(0x4000_0000)) - f32x8::splat(3.0);

@@ -78,9 +78,11 @@ macro_rules! case {
 
 fn main() {
     let pairs: usize = std::env::args().nth(1).map_or(60, |s| s.parse().unwrap());
-    let cases: [fn(usize); 7] = [
+    let cases: [fn(usize); 9] = [
         |p| case!("f64 d10 hrla/best", f64, 10, Hrla, p),
         |p| case!("f32 d10 hrla/best", f32, 10, Hrla, p),
+        |p| case!("f64 d32 hrla/best", f64, 32, Hrla, p),
+        |p| case!("f32 d32 hrla/best", f32, 32, Hrla, p),
         |p| case!("f64 d100 hrla/best", f64, 100, Hrla, p),
         |p| case!("f32 d100 hrla/best", f32, 100, Hrla, p),
         |p| case!("f64 d2 hrla/best", f64, 2, Hrla, p),

@@ -359,13 +359,24 @@ impl<F: Float> OuKernel<F> {
         start: usize,
         rng_out: &mut Xoshiro256Lanes,
     ) {
+        let n = D.min(start + B) - start;
         let mut lanes = *rng_out;
-        for i in start..D.min(start + B) {
+        let mut z1 = [[F::ZERO; B]; LANES];
+        let mut z2 = [[F::ZERO; B]; LANES];
+        for i in 0..n {
             let pairs = F::standard_normal_pair_lanes(&mut lanes);
-            for (chain, (z1, z2)) in chains.iter_mut().zip(pairs) {
-                self.apply(&mut chain.x[i], &mut chain.y[i], chain.grad[i], z1, z2);
+            for l in 0..LANES {
+                (z1[l][i], z2[l][i]) = pairs[l];
             }
         }
         *rng_out = lanes;
+        for ((chain, z1), z2) in chains.iter_mut().zip(&z1).zip(&z2) {
+            let x = &mut chain.x[start..start + n];
+            let y = &mut chain.y[start..start + n];
+            let grad = &chain.grad[start..start + n];
+            for i in 0..n {
+                self.apply(&mut x[i], &mut y[i], grad[i], z1[i], z2[i]);
+            }
+        }
     }
 }
