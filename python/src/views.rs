@@ -36,7 +36,7 @@ pub fn layout_of<const D: usize, R>(chains: &[Chain<f64, D, R>]) -> Layout {
     let offset = |p: *const f64| (p as usize - start) / size_of::<f64>();
     // A chain holds f64 fields, so it is aligned to (and a multiple of) 8
     // bytes, and every f64 field lies a whole number of f64s from its start.
-    const { assert!(size_of::<Chain<f64, 1>>() % size_of::<f64>() == 0) };
+    const { assert!(size_of::<Chain<f64, 1>>().is_multiple_of(size_of::<f64>())) };
     Layout {
         base: std::ptr::from_ref(first).cast(),
         n: chains.len(),
