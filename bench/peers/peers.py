@@ -56,25 +56,7 @@ def _pin_cpu_early():
     return cpu
 
 
-PINNED_CPU = _pin_cpu_early() 
-
-
-def print_paired(paired, crate_ns):
-    """The same-stretch ratios: peer repeat r over the crate's run r."""
-    if not paired:
-        return
-    print()
-    print(f"Same stretch: the crate (f64 value+best) ran between the peers' repeats: "
-          f"{statistics.median(crate_ns):.2f} ns median ({min(crate_ns):.2f}-{max(crate_ns):.2f}); "
-          f"ratio = peer repeat r / crate run r, median of {len(crate_ns)} pairs")
-    print()
-    print("| implementation | variant | ratio to hrla (median of pairs) | min–max |")
-    print("| --- | --- | ---: | ---: |")
-    for tool, variant, med, lo, hi in paired:
-        print(f"| {tool} | {variant} | {med:.2f}x | {lo:.2f}–{hi:.2f} |")
-
-
-if __name__ == "__main__" else None
+PINNED_CPU = _pin_cpu_early() if __name__ == "__main__" else None
 
 import argparse
 import datetime
@@ -601,6 +583,21 @@ def versions():
     except ImportError:
         pass
     return v
+
+
+def print_paired(paired, crate_ns):
+    """The same-stretch ratios: peer repeat r over the crate's run r."""
+    if not paired:
+        return
+    print()
+    print(f"Same stretch: the crate (f64 value+best) ran between the peers' repeats: "
+          f"{statistics.median(crate_ns):.2f} ns median ({min(crate_ns):.2f}-{max(crate_ns):.2f}); "
+          f"ratio = peer repeat r / crate run r, median of {len(crate_ns)} pairs")
+    print()
+    print("| implementation | variant | ratio to hrla (median of pairs) | min–max |")
+    print("| --- | --- | ---: | ---: |")
+    for tool, variant, med, lo, hi in paired:
+        print(f"| {tool} | {variant} | {med:.2f}x | {lo:.2f}–{hi:.2f} |")
 
 
 def main():
