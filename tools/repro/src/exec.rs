@@ -37,6 +37,9 @@ pub struct ConfigResult {
     pub counts: Vec<u32>,
     /// Chains that diverged, over all runs.
     pub diverged: usize,
+    /// Evaluations of the potential over all runs (of `U` and `∇U`
+    /// together for the kernel's samplers, of `U` alone for the peers).
+    pub evaluations: u64,
 }
 
 /// The results of a protocol.
@@ -54,6 +57,10 @@ pub struct ProtocolResult {
     pub chain_steps: u64,
     /// Worker threads.
     pub threads: usize,
+    /// Per configuration (in plan order), the wall time of its runs added
+    /// up: how long one run takes, whatever the thread count. Measured, so
+    /// not reproducible, unlike everything in [`ConfigResult`].
+    pub run_wall: Vec<Duration>,
 }
 
 impl ConfigResult {
@@ -80,6 +87,8 @@ struct Partial {
     counts: Vec<Vec<u32>>,
     values: Vec<Vec<(usize, Vec<f64>)>>,
     diverged: Vec<usize>,
+    evaluations: Vec<u64>,
+    wall: Vec<Duration>,
 }
 
 impl Partial {
@@ -92,6 +101,8 @@ impl Partial {
                 .collect(),
             values: vec![Vec::new(); plan.configs.len()],
             diverged: vec![0; plan.configs.len()],
+            evaluations: vec![0; plan.configs.len()],
+            wall: vec![Duration::ZERO; plan.configs.len()],
         }
     }
 
@@ -105,6 +116,12 @@ impl Partial {
             mine.extend(theirs);
         }
         for (mine, theirs) in self.diverged.iter_mut().zip(other.diverged) {
+            *mine += theirs;
+        }
+        for (mine, theirs) in self.evaluations.iter_mut().zip(other.evaluations) {
+            *mine += theirs;
+        }
+        for (mine, theirs) in self.wall.iter_mut().zip(other.wall) {
             *mine += theirs;
         }
         self
@@ -131,6 +148,7 @@ pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResu
             || Partial::new(plan),
             |mut acc, &(c, i)| {
                 let spec = &plan.configs[c];
+                let run_started = Instant::now();
                 let out = run_once(
                     spec,
                     run_seed(seed, i as u64),
@@ -139,6 +157,8 @@ pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResu
                 )?;
                 acc.values[c].push((i, out.running_best));
                 acc.diverged[c] += out.diverged;
+                acc.evaluations[c] += out.evaluations;
+                acc.wall[c] += run_started.elapsed();
                 Ok::<_, ReproError>(acc)
             },
         )
@@ -150,7 +170,8 @@ pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResu
         .zip(total.counts)
         .zip(total.values)
         .zip(total.diverged)
-        .map(|(((spec, counts), mut values), diverged)| {
+        .zip(total.evaluations)
+        .map(|((((spec, counts), mut values), diverged), evaluations)| {
             values.sort_by_key(|(i, _)| *i);
             let checkpoints = spec
                 .checkpoints
@@ -171,6 +192,7 @@ pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResu
                 checkpoints,
                 counts,
                 diverged,
+                evaluations,
             }
         })
         .collect();
@@ -181,6 +203,7 @@ pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResu
         wall,
         chain_steps: plan.chain_steps(),
         threads: rayon::current_num_threads(),
+        run_wall: total.wall,
     })
 }
 
@@ -216,5 +239,32 @@ mod tests {
         let pts = 61;
         assert_eq!(one.configs[0].counts[0], one.configs[1].counts[0]);
         assert_eq!(one.configs[0].counts.len(), 6 * pts);
+    }
+
+    /// T3 with its peers: the same results on one thread and on three,
+    /// and every configuration, kernel or peer, made the evaluations the
+    /// comparison table states (`N (K + 1)` per run).
+    #[test]
+    fn peers_do_not_depend_on_the_thread_count_and_count_their_evaluations() {
+        let o = Overrides {
+            m: Some(3),
+            a_high: Some(vec![4.0]),
+            ..Overrides::default()
+        };
+        let p = plan(ProtocolId::T3, &o, true).unwrap();
+        let run = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| execute(&p, 7, &ProgressBar::hidden()).unwrap())
+        };
+        let one = run(1);
+        assert_eq!(one.configs, run(3).configs);
+        assert_eq!(one.configs.len(), 2 + 4 * 2);
+        for c in &one.configs {
+            let per_run = crate::compare::evaluations_to(&c.spec, c.spec.steps);
+            assert_eq!(c.evaluations, 3 * per_run, "{:?}", c.spec.method);
+        }
     }
 }
