@@ -24,7 +24,8 @@ pub enum ProtocolId {
     E5,
     /// Fixed effort N K = 140000 with annealing.
     T2,
-    /// Against simulated-annealing methods, K = 50 and 500, two starts.
+    /// Against simulated-annealing methods (run by the tool), K = 50 and
+    /// 500, two starts.
     T3,
 }
 
@@ -65,7 +66,9 @@ impl ProtocolId {
             ProtocolId::E4 => "dimension: d = 10 against d = 20",
             ProtocolId::E5 => "linear annealing to a_high",
             ProtocolId::T2 => "fixed effort N K = 140000 with annealing",
-            ProtocolId::T3 => "best of 250 chains at k = 50 and 500 with annealing, two starts",
+            ProtocolId::T3 => {
+                "best of 250 samples at k = 50 and 500: annealed HRLA beside SA, FSA, SMC-SA and CSA, two starts"
+            }
         }
     }
 
