@@ -68,6 +68,15 @@ fn assert_success(out: &Output) {
     );
 }
 
+/// Every text of an SVG figure, trimmed.
+fn svg_texts(doc: &roxmltree::Document) -> HashSet<String> {
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .filter_map(|n| n.text())
+        .map(|t| t.trim().to_string())
+        .collect()
+}
+
 fn num(row: &[String], columns: &[&str], name: &str) -> f64 {
     let i = columns.iter().position(|c| *c == name).unwrap();
     row[i]
@@ -139,12 +148,7 @@ fn quick_all_writes_well_formed_outputs() {
         let doc = roxmltree::Document::parse(&svg)
             .unwrap_or_else(|e| panic!("{}: {e}", svg_path.display()));
         assert_eq!(doc.root_element().tag_name().name(), "svg");
-        let texts: HashSet<String> = doc
-            .descendants()
-            .filter(|n| n.has_tag_name("text"))
-            .filter_map(|n| n.text())
-            .map(|t| t.trim().to_string())
-            .collect();
+        let texts = svg_texts(&doc);
         for panel in &p.panels {
             assert!(
                 texts.contains(&panel.title),
@@ -217,13 +221,7 @@ fn t3_runs_the_peers_beside_hrla() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("| CSA N(3·1, 10 I) |"));
     let svg = fs::read_to_string(sub.join("t3.svg")).unwrap();
-    let doc = roxmltree::Document::parse(&svg).unwrap();
-    let texts: HashSet<String> = doc
-        .descendants()
-        .filter(|n| n.has_tag_name("text"))
-        .filter_map(|n| n.text())
-        .map(|t| t.trim().to_string())
-        .collect();
+    let texts = svg_texts(&roxmltree::Document::parse(&svg).unwrap());
     for caption in [
         "k = 1",
         "k = 10",

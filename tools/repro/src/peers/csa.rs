@@ -31,32 +31,19 @@ impl Peer for Csa {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::peers::moves::{RandomWalk, Scope};
-
-    fn walk(sd: f64) -> RandomWalk {
-        RandomWalk {
-            sd,
-            scope: Scope::Full,
-        }
-    }
-    use hrla::{Gaussian, Rastrigin};
+    use crate::peers::testing::{assert_iterates_as, full_walk};
+    use hrla::Rastrigin;
 
     /// CSA's iteration k resamples along the logarithmic schedule
     /// (`dbeta = ln((k + 1) / k)`), then makes FSA's move at
     /// `beta = (k + 1) ln(k + 1)`; resampling never evaluates `U`.
     #[test]
     fn csa_is_logarithmic_resampling_then_fsa() {
-        let mut start = Gaussian::new([0.5; 10], 1.0).unwrap();
-        let mut a = Population::<10>::new(&Rastrigin, &mut start, 30, 12);
-        let mut b = a.clone();
-        for k in 1..=20 {
-            Csa { walk: walk(0.2) }.iterate(&mut a, &Rastrigin, k);
-            b.resample(((k + 1) as f64 / k as f64).ln());
+        let walk = full_walk(0.2);
+        assert_iterates_as(Csa { walk }, 20, |pop, k| {
+            pop.resample(((k + 1) as f64 / k as f64).ln());
             let m = (k + 1) as f64;
-            b.move_all(&Rastrigin, walk(0.2), m * m.ln(), Acceptance::Fast);
-        }
-        assert_eq!(a.positions(), b.positions());
-        assert_eq!(a.values(), b.values());
-        assert_eq!(a.evaluations(), 30 * 21);
+            pop.move_all(&Rastrigin, walk, m * m.ln(), Acceptance::Fast);
+        });
     }
 }

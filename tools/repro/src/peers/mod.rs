@@ -231,6 +231,43 @@ impl<const D: usize> Population<D> {
     }
 }
 
+/// What the methods' tests share: a full random walk, and the check that a
+/// method's iterations are exactly a given sequence of population steps.
+#[cfg(test)]
+pub(crate) mod testing {
+    use super::*;
+    use hrla::{Gaussian, Rastrigin};
+
+    /// The full random walk with standard deviation `sd`.
+    pub fn full_walk(sd: f64) -> RandomWalk {
+        RandomWalk {
+            sd,
+            scope: Scope::Full,
+        }
+    }
+
+    /// Runs `peer` for iterations `1..=k` on 30 members of 10-D Rastrigin
+    /// started from N(0.5·1, I), and `by_hand` on a copy; both must end
+    /// bit for bit equal, after `N (k + 1)` evaluations each.
+    pub fn assert_iterates_as(
+        peer: impl Peer,
+        k: u64,
+        mut by_hand: impl FnMut(&mut Population<10>, u64),
+    ) {
+        let mut start = Gaussian::new([0.5; 10], 1.0).unwrap();
+        let mut a = Population::<10>::new(&Rastrigin, &mut start, 30, 12);
+        let mut b = a.clone();
+        for i in 1..=k {
+            peer.iterate(&mut a, &Rastrigin, i);
+            by_hand(&mut b, i);
+        }
+        assert_eq!(a.positions(), b.positions());
+        assert_eq!(a.values(), b.values());
+        assert_eq!(a.evaluations(), 30 * (k + 1));
+        assert_eq!(b.evaluations(), a.evaluations());
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -31,44 +31,27 @@ impl Peer for SmcSa {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::peers::moves::{RandomWalk, Scope};
-
-    fn walk(sd: f64) -> RandomWalk {
-        RandomWalk {
-            sd,
-            scope: Scope::Full,
-        }
-    }
     use crate::peers::Sa;
-    use hrla::{Gaussian, Point, Rastrigin};
+    use crate::peers::testing::{assert_iterates_as, full_walk};
+    use hrla::{Point, Rastrigin};
 
     /// From one point every weight is equal, so whatever ancestors are
     /// drawn the first SMC-SA iteration is SA's, bit for bit (resampling
-    /// draws from its own stream, never a member's). Later iterations are
+    /// draws from its own stream, never a member's). Every iteration is
     /// the reweighting by `ln((k + 1) / k)` followed by SA's move.
     #[test]
     fn smc_sa_is_resampling_then_sa() {
+        let walk = full_walk(0.3);
         let mut start = Point::new([1.0; 10]).unwrap();
         let mut smc = Population::<10>::new(&Rastrigin, &mut start, 25, 4);
         let mut sa = smc.clone();
-        SmcSa { walk: walk(0.3) }.iterate(&mut smc, &Rastrigin, 1);
-        Sa { walk: walk(0.3) }.iterate(&mut sa, &Rastrigin, 1);
+        SmcSa { walk }.iterate(&mut smc, &Rastrigin, 1);
+        Sa { walk }.iterate(&mut sa, &Rastrigin, 1);
         assert_eq!(smc.positions(), sa.positions());
-
-        let mut start = Gaussian::new([0.0; 10], 1.0).unwrap();
-        let mut a = Population::<10>::new(&Rastrigin, &mut start, 25, 4);
-        let mut b = a.clone();
-        for k in 1..=20 {
-            SmcSa { walk: walk(0.3) }.iterate(&mut a, &Rastrigin, k);
-            b.resample(((k + 1) as f64 / k as f64).ln());
-            b.move_all(
-                &Rastrigin,
-                walk(0.3),
-                ((k + 1) as f64).ln(),
-                Acceptance::Metropolis,
-            );
-        }
-        assert_eq!(a.positions(), b.positions());
-        assert_eq!(a.evaluations(), 25 * 21);
+        assert_iterates_as(SmcSa { walk }, 20, |pop, k| {
+            pop.resample(((k + 1) as f64 / k as f64).ln());
+            let beta = ((k + 1) as f64).ln();
+            pop.move_all(&Rastrigin, walk, beta, Acceptance::Metropolis);
+        });
     }
 }
