@@ -341,13 +341,15 @@ impl<const D: usize> PyPotential<D> {
     pub fn finish(&self) -> PyResult<()> {
         let mut state = self.state();
         if let Some(b) = state.batch.take()
-            && b.next != b.values.len() && state.error.is_none() {
-                state.error = Some(PyRuntimeError::new_err(format!(
-                    "hrla internal error: the step read {} of the {} batched answers",
-                    b.next,
-                    b.values.len()
-                )));
-            }
+            && b.next != b.values.len()
+            && state.error.is_none()
+        {
+            state.error = Some(PyRuntimeError::new_err(format!(
+                "hrla internal error: the step read {} of the {} batched answers",
+                b.next,
+                b.values.len()
+            )));
+        }
         state.error.take().map_or(Ok(()), Err)
     }
 

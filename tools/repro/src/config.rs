@@ -5,6 +5,7 @@
 use hrla::{AnySampler, AnySchedule, Constant, Linear, Sampler, SamplerKind};
 
 use crate::error::ReproError;
+use crate::peers::{AnyPeer, DEFAULT_WALK, PeerKind, RandomWalk, Scope};
 use crate::stats::grid_points;
 
 /// The dimensions compiled into the tool (the kernel's dimension is a const
@@ -14,6 +15,55 @@ pub const DIMENSIONS: [usize; 7] = [1, 2, 5, 10, 20, 50, 100];
 /// The name of a sampler in tables and legends: `HRLA`, `ULA`, `OLA`.
 pub fn sampler_label(kind: SamplerKind) -> String {
     kind.name().to_ascii_uppercase()
+}
+
+/// What moves the samples of a run: a kernel sampler (with the run's `h`
+/// and temperature) or one of T3's peers (with its own schedule).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// The kernel's HRLA, ULA or OLA.
+    Kernel(SamplerKind),
+    /// A simulated-annealing peer and its proposal.
+    Peer {
+        /// The method.
+        kind: PeerKind,
+        /// The random-walk proposal.
+        walk: RandomWalk,
+    },
+}
+
+impl Method {
+    /// `HRLA`, `ULA`, `OLA`, `SA`, ..., with what differs from the default
+    /// proposal (`SA coordinate sd=0.5`).
+    pub fn label(self) -> String {
+        match self {
+            Method::Kernel(kind) => sampler_label(kind),
+            Method::Peer { kind, walk } => {
+                let mut label = kind.label().to_string();
+                if walk.scope == Scope::Coordinate {
+                    label.push_str(" coordinate");
+                }
+                if walk.sd != DEFAULT_WALK.sd {
+                    label.push_str(&format!(" sd={}", walk.sd));
+                }
+                label
+            }
+        }
+    }
+
+    /// The peer, if the method is one.
+    pub fn peer(self) -> Option<AnyPeer> {
+        match self {
+            Method::Kernel(_) => None,
+            Method::Peer { kind, walk } => Some(kind.peer(walk)),
+        }
+    }
+
+    /// Whether each evaluation is of `U` and `∇U` (the kernel's samplers)
+    /// rather than of `U` alone (the peers).
+    pub fn uses_gradient(self) -> bool {
+        matches!(self, Method::Kernel(_))
+    }
 }
 
 /// The inverse temperature along a run.
@@ -88,17 +138,18 @@ impl StartSpec {
 /// (`alpha = beta = 1`, `b = 10`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunSpec {
-    /// The sampler.
-    pub sampler: SamplerKind,
+    /// The sampler or peer.
+    pub method: Method,
     /// The dimension `d` (one of [`DIMENSIONS`]).
     pub d: usize,
-    /// The step size `h`.
+    /// The step size `h` (kernel samplers only).
     pub h: f64,
     /// The number of chains `N`.
     pub chains: usize,
     /// The number of steps `K`.
     pub steps: u64,
-    /// Constant `a` or linear annealing.
+    /// Constant `a` or linear annealing (kernel samplers only: a peer
+    /// follows its own schedule).
     pub temperature: Temperature,
     /// The initial distribution.
     pub start: StartSpec,
@@ -126,10 +177,20 @@ impl RunSpec {
         self.chains as u64 * self.steps
     }
 
-    /// The kernel's schedule over the run and its sampler.
+    /// The kernel's schedule over the run and its sampler (a peer's run has
+    /// neither).
     pub fn kernel_setup(&self) -> Result<(AnySchedule<f64>, AnySampler<f64>), hrla::Error> {
+        let kind = match self.method {
+            Method::Kernel(kind) => kind,
+            Method::Peer { .. } => {
+                return Err(hrla::Error::Unknown {
+                    what: "kernel sampler",
+                    expected: " hrla ula ola",
+                });
+            }
+        };
         let schedule = self.temperature.schedule(self.steps)?;
-        let sampler = AnySampler::paper(self.sampler, self.h)?;
+        let sampler = AnySampler::paper(kind, self.h)?;
         Ok((schedule, sampler))
     }
 
@@ -168,6 +229,12 @@ impl RunSpec {
             && !(variance.is_finite() && variance >= 0.0)
         {
             return bad("the start variance must be finite and >= 0");
+        }
+        if let Method::Peer { walk, .. } = self.method {
+            if !(walk.sd.is_finite() && walk.sd > 0.0) {
+                return bad("the peers' proposal SD must be finite and > 0");
+            }
+            return Ok(());
         }
         let (schedule, sampler) = self.kernel_setup()?;
         // Every a_k of a linear schedule lies between its ends, and the

@@ -17,17 +17,19 @@ use hrla::{
 
 use crate::config::{RunSpec, StartSpec};
 use crate::error::ReproError;
+use crate::peers::{AnyPeer, Peer, Population};
 use crate::stats::Tracker;
 
-/// Gaussian or fixed-point start behind one type.
+/// Gaussian or fixed-point start behind one type (the peers start from it
+/// too, so member `c` starts where the kernel's chain `c` does).
 #[derive(Clone, Copy, Debug)]
-enum AnyStart<const D: usize> {
+pub(crate) enum AnyStart<const D: usize> {
     Gaussian(Gaussian<f64, D>),
     Point(Point<f64, D>),
 }
 
 impl<const D: usize> AnyStart<D> {
-    fn new(spec: StartSpec) -> Result<Self, hrla::Error> {
+    pub(crate) fn new(spec: StartSpec) -> Result<Self, hrla::Error> {
         Ok(match spec {
             StartSpec::Gaussian { centre, variance } => {
                 AnyStart::Gaussian(Gaussian::new([centre; D], variance.sqrt())?)
@@ -98,6 +100,9 @@ pub struct RunOutcome {
     pub running_best: Vec<f64>,
     /// Chains that diverged during the run.
     pub diverged: usize,
+    /// Evaluations of the potential: of `U` and `∇U` together for the
+    /// kernel's samplers, of `U` alone for the peers.
+    pub evaluations: u64,
 }
 
 /// How many iterates a run does between two progress reports.
@@ -131,8 +136,54 @@ fn run_d<const D: usize>(
     counts: &mut [u32],
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RunOutcome, ReproError> {
-    let mut opt = optimizer::<D>(spec, seed)?;
-    // Rastrigin's global minimum U* = 0.
+    match spec.method.peer() {
+        Some(peer) => run_peer::<D>(spec, peer, seed, counts, progress),
+        None => run_kernel::<D>(spec, seed, counts, progress),
+    }
+}
+
+/// A run being driven: one iteration at a time, and its best sample now.
+trait Iterate {
+    /// Iteration `k >= 1`.
+    fn iterate(&mut self, k: u64) -> Result<(), ReproError>;
+    /// `min` over the samples of `U` now (`+inf` when none is left).
+    fn best_now(&self) -> f64;
+}
+
+impl<const D: usize> Iterate for RunOptimizer<D> {
+    fn iterate(&mut self, _k: u64) -> Result<(), ReproError> {
+        Ok(step(self)?)
+    }
+    fn best_now(&self) -> f64 {
+        best_now(self)
+    }
+}
+
+/// A peer's population and its method.
+struct PeerRun<const D: usize> {
+    pop: Population<D>,
+    peer: AnyPeer,
+}
+
+impl<const D: usize> Iterate for PeerRun<D> {
+    fn iterate(&mut self, k: u64) -> Result<(), ReproError> {
+        self.peer.iterate(&mut self.pop, &Rastrigin, k);
+        Ok(())
+    }
+    fn best_now(&self) -> f64 {
+        self.pop.best_now()
+    }
+}
+
+/// Runs `spec.steps` iterations of `run`, handing its best sample to the
+/// tracker (Rastrigin's global minimum `U* = 0`) at the iterates it wants
+/// and reporting progress; returns the running best at the checkpoints.
+fn drive(
+    spec: &RunSpec,
+    counts: &mut [u32],
+    progress: &(dyn Fn(u64) + Sync),
+    run: &mut impl Iterate,
+) -> Result<Vec<f64>, ReproError> {
     let mut tracker = Tracker::new(
         spec.steps,
         spec.stride,
@@ -143,35 +194,67 @@ fn run_d<const D: usize>(
         counts,
     );
     if tracker.wants(0) {
-        tracker.observe(0, best_now(&opt));
+        tracker.observe(0, run.best_now());
     }
     let n = spec.chains as u64;
     for k in 1..=spec.steps {
-        step(&mut opt)?;
+        run.iterate(k)?;
         if tracker.wants(k) {
-            tracker.observe(k, best_now(&opt));
+            tracker.observe(k, run.best_now());
         }
         if k % PROGRESS_EVERY == 0 {
             progress(PROGRESS_EVERY * n);
         }
     }
     progress((spec.steps % PROGRESS_EVERY) * n);
+    Ok(tracker.at_checkpoints().to_vec())
+}
+
+fn run_kernel<const D: usize>(
+    spec: &RunSpec,
+    seed: u64,
+    counts: &mut [u32],
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<RunOutcome, ReproError> {
+    let mut opt = optimizer::<D>(spec, seed)?;
+    let running_best = drive(spec, counts, progress, &mut opt)?;
     Ok(RunOutcome {
-        running_best: tracker.at_checkpoints().to_vec(),
+        running_best,
         diverged: opt.diverged_chains(),
+        evaluations: opt.evaluations(),
+    })
+}
+
+/// A peer's run: `spec.chains` members from `spec.start`, member `c` on
+/// the stream `chain_seed(seed, c)` as the kernel's chain `c`.
+fn run_peer<const D: usize>(
+    spec: &RunSpec,
+    peer: AnyPeer,
+    seed: u64,
+    counts: &mut [u32],
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<RunOutcome, ReproError> {
+    let mut start = AnyStart::<D>::new(spec.start)?;
+    let pop = Population::new(&Rastrigin, &mut start, spec.chains, seed);
+    let mut run = PeerRun { pop, peer };
+    let running_best = drive(spec, counts, progress, &mut run)?;
+    Ok(RunOutcome {
+        running_best,
+        diverged: 0,
+        evaluations: run.pop.evaluations(),
     })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::Temperature;
+    use crate::config::{Method, Temperature};
     use crate::seed::run_seed;
     use hrla::SamplerKind;
 
     fn spec(chains: usize, temperature: Temperature) -> RunSpec {
         RunSpec {
-            sampler: SamplerKind::Hrla,
+            method: Method::Kernel(SamplerKind::Hrla),
             d: 10,
             h: 0.01,
             chains,
@@ -265,7 +348,7 @@ mod tests {
     #[test]
     fn a_run_whose_chains_all_diverge_completes() {
         let mut s = spec(3, Temperature::Constant(1.0));
-        s.sampler = SamplerKind::Ula;
+        s.method = Method::Kernel(SamplerKind::Ula);
         s.h = 40.0;
         s.steps = 400;
         s.checkpoints = vec![400];

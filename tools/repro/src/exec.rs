@@ -37,6 +37,9 @@ pub struct ConfigResult {
     pub counts: Vec<u32>,
     /// Chains that diverged, over all runs.
     pub diverged: usize,
+    /// Evaluations of the potential over all runs (of `U` and `∇U`
+    /// together for the kernel's samplers, of `U` alone for the peers).
+    pub evaluations: u64,
 }
 
 /// The results of a protocol.
@@ -54,6 +57,10 @@ pub struct ProtocolResult {
     pub chain_steps: u64,
     /// Worker threads.
     pub threads: usize,
+    /// Per configuration (in plan order), the wall time of its runs added
+    /// up: how long one run takes, whatever the thread count. Measured, so
+    /// not reproducible, unlike everything in [`ConfigResult`].
+    pub run_wall: Vec<Duration>,
 }
 
 impl ConfigResult {
@@ -85,6 +92,10 @@ pub struct Part {
     pub values: Vec<Vec<(usize, Vec<f64>)>>,
     /// Per configuration: chains that diverged.
     pub diverged: Vec<usize>,
+    /// Per configuration: evaluations over all runs.
+    pub evaluations: Vec<u64>,
+    /// Per configuration: the runs' wall times added up.
+    pub run_wall: Vec<Duration>,
     /// Wall time of the runs.
     pub wall: Duration,
     /// Chain-steps done.
@@ -102,6 +113,8 @@ impl Part {
                 .collect(),
             values: vec![Vec::new(); plan.configs.len()],
             diverged: vec![0; plan.configs.len()],
+            evaluations: vec![0; plan.configs.len()],
+            run_wall: vec![Duration::ZERO; plan.configs.len()],
             wall: Duration::ZERO,
             chain_steps: 0,
         }
@@ -118,6 +131,12 @@ impl Part {
             mine.extend(theirs);
         }
         for (mine, theirs) in self.diverged.iter_mut().zip(other.diverged) {
+            *mine += theirs;
+        }
+        for (mine, theirs) in self.evaluations.iter_mut().zip(other.evaluations) {
+            *mine += theirs;
+        }
+        for (mine, theirs) in self.run_wall.iter_mut().zip(other.run_wall) {
             *mine += theirs;
         }
         self.wall += other.wall;
@@ -208,6 +227,7 @@ pub fn run_shard(
             || Part::empty(plan),
             |mut acc, &(c, i)| {
                 let spec = &plan.configs[c];
+                let run_started = Instant::now();
                 let out = run_once(
                     spec,
                     run_seed(seed, i as u64),
@@ -217,6 +237,8 @@ pub fn run_shard(
                 acc.values[c].push((i, out.running_best));
                 acc.diverged[c] += out.diverged;
                 acc.chain_steps += spec.chain_steps();
+                acc.evaluations[c] += out.evaluations;
+                acc.run_wall[c] += run_started.elapsed();
                 Ok::<_, ReproError>(acc)
             },
         )
@@ -233,7 +255,8 @@ pub fn finish(plan: &Plan, seed: u64, part: Part, threads: usize) -> ProtocolRes
         .zip(part.counts)
         .zip(part.values)
         .zip(part.diverged)
-        .map(|(((spec, counts), mut values), diverged)| {
+        .zip(part.evaluations)
+        .map(|((((spec, counts), mut values), diverged), evaluations)| {
             values.sort_by_key(|(i, _)| *i);
             let checkpoints = spec
                 .checkpoints
@@ -254,6 +277,7 @@ pub fn finish(plan: &Plan, seed: u64, part: Part, threads: usize) -> ProtocolRes
                 checkpoints,
                 counts,
                 diverged,
+                evaluations,
             }
         })
         .collect();
@@ -264,6 +288,7 @@ pub fn finish(plan: &Plan, seed: u64, part: Part, threads: usize) -> ProtocolRes
         wall: part.wall,
         chain_steps: part.chain_steps,
         threads,
+        run_wall: part.run_wall,
     }
 }
 
@@ -341,6 +366,33 @@ mod tests {
         );
         for bad in ["5/5", "1/0", "x/2", "3", "-1/2", ""] {
             assert!(bad.parse::<Shard>().is_err(), "{bad}");
+        }
+    }
+
+    /// T3 with its peers: the same results on one thread and on three,
+    /// and every configuration, kernel or peer, made the evaluations the
+    /// comparison table states (`N (K + 1)` per run).
+    #[test]
+    fn peers_do_not_depend_on_the_thread_count_and_count_their_evaluations() {
+        let o = Overrides {
+            m: Some(3),
+            a_high: Some(vec![4.0]),
+            ..Overrides::default()
+        };
+        let p = plan(ProtocolId::T3, &o, true).unwrap();
+        let run = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| execute(&p, 7, &ProgressBar::hidden()).unwrap())
+        };
+        let one = run(1);
+        assert_eq!(one.configs, run(3).configs);
+        assert_eq!(one.configs.len(), 2 + 4 * 2);
+        for c in &one.configs {
+            let per_run = crate::compare::evaluations_to(&c.spec, c.spec.steps);
+            assert_eq!(c.evaluations, 3 * per_run, "{:?}", c.spec.method);
         }
     }
 }

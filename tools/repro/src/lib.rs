@@ -14,22 +14,27 @@
 //! - [`stats`]: the paper's running best (over the stride, without iterate
 //!   0) and empirical probability (not running), streamed; the summary
 //!   statistics and their conventions.
+//! - [`peers`]: T3's simulated-annealing peers (SA, FSA, SMC-SA, CSA),
+//!   run by the same loop and statistics as the kernel.
 //! - [`seed`]: one seed per run index, from one base seed (the kernel then
 //!   gives each chain its own stream).
 //! - [`exec`]: every run of a plan (or of one shard of it) in parallel
 //!   (rayon).
 //! - [`shard`]: a shard's runs on disk, and the merge of all shards into
 //!   the result of one process.
-//! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures.
+//! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures;
+//!   [`compare`]: T3's table of HRLA beside its peers and their costs.
 //! - [`error`]: the error type they all return.
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod compare;
 pub mod config;
 pub mod engine;
 pub mod error;
 pub mod exec;
 pub mod output;
+pub mod peers;
 pub mod plot;
 pub mod protocol;
 pub mod seed;

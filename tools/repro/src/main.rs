@@ -12,6 +12,7 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
+use hrla_repro::compare::{comparison_markdown, cost_markdown, has_peers};
 use hrla_repro::exec::{ProtocolResult, Shard, execute, finish, run_shard};
 use hrla_repro::output::{summary_markdown, write_all};
 use hrla_repro::protocol::{Overrides, Plan, ProtocolId, plan};
@@ -75,7 +76,8 @@ enum Command {
     E5(Overrides),
     /// T2: fixed effort N K = 140000, (N, K) from (1, 140000) to (10000, 14), annealing.
     T2(Overrides),
-    /// T3: N = 250, M = 50, K = 500 read at k = 50 and 500, a_high = 1..6, from (1,...,1) and N(3·1, 10 I).
+    /// T3: N = 250, M = 50, K = 500 read at k = 50 and 500, a_high = 1..6, from (1,...,1) and N(3·1, 10 I);
+    /// beside HRLA, the peers SA, FSA, SMC-SA and CSA with the same N, K, M and seeds.
     T3(Overrides),
     /// Every protocol with its defaults, in the order E1, T1, E2, E3, E4, E5, T2, T3.
     All(AllArgs),
@@ -217,6 +219,10 @@ fn progress_bar(quiet: bool, total: u64, name: &str) -> ProgressBar {
 fn report(r: &ProtocolResult, files: &[PathBuf]) {
     println!("## {}: {}\n", r.plan.id.name(), r.plan.id.title());
     println!("{}", summary_markdown(r));
+    if has_peers(r) {
+        println!("{}", comparison_markdown(r));
+        println!("{}", cost_markdown(r));
+    }
     println!(
         "Wall time {:.2} s for {} chain-steps ({:.3e} per second, {} threads).",
         r.wall.as_secs_f64(),

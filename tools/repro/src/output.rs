@@ -6,7 +6,7 @@ use std::fmt::{Display, Write as _};
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use crate::config::{RunSpec, Temperature, sampler_label};
+use crate::config::{Method, RunSpec, Temperature};
 use crate::error::ReproError;
 use crate::exec::{CheckpointResult, ConfigResult, ProtocolResult};
 use crate::protocol::ProtocolId;
@@ -74,12 +74,29 @@ fn table_rows(r: &ProtocolResult) -> Vec<(&ConfigResult, &CheckpointResult)> {
 }
 
 /// The CSV columns `schedule`, `a` (or `a_high`) and `a_low` (empty at
-/// constant `a`).
-fn schedule_fields(t: Temperature) -> (&'static str, f64, String) {
-    match t {
-        Temperature::Constant(a) => ("constant", a, String::new()),
-        Temperature::Linear { low, high } => ("linear", high, low.to_string()),
+/// constant `a`); a peer's own schedule, with `a` and `a_low` empty.
+fn schedule_fields(s: &RunSpec) -> (&'static str, String, String) {
+    if let Method::Peer { kind, .. } = s.method {
+        return (kind.schedule_label(), String::new(), String::new());
     }
+    match s.temperature {
+        Temperature::Constant(a) => ("constant", a.to_string(), String::new()),
+        Temperature::Linear { low, high } => ("linear", high.to_string(), low.to_string()),
+    }
+}
+
+/// The step size `h` as written in tables (a peer has none).
+fn step_size(s: &RunSpec) -> String {
+    match s.method {
+        Method::Kernel(_) => s.h.to_string(),
+        Method::Peer { .. } => String::new(),
+    }
+}
+
+/// [`schedule_fields`] with the schedule quoted for CSV.
+fn csv_schedule(s: &RunSpec) -> (String, String, String) {
+    let (schedule, a, a_low) = schedule_fields(s);
+    (csv_field(schedule), a, a_low)
 }
 
 /// CSV text fields here never contain quotes; only commas need quoting.
@@ -97,9 +114,9 @@ fn config_columns(id: ProtocolId, s: &RunSpec) -> String {
     format!(
         "{},{},{},{},{},{}",
         id.name(),
-        sampler_label(s.sampler),
+        s.method.label(),
         s.d,
-        s.h,
+        step_size(s),
         s.chains,
         s.steps
     )
@@ -124,7 +141,7 @@ pub fn summary_csv(r: &ProtocolResult) -> String {
     out.push('\n');
     for (c, p) in table_rows(r) {
         let s = &c.spec;
-        let (schedule, a, a_low) = schedule_fields(s.temperature);
+        let (schedule, a, a_low) = csv_schedule(s);
         let m = &p.summary;
         push_row(
             &mut out,
@@ -160,7 +177,7 @@ pub fn curves_csv(r: &ProtocolResult) -> String {
     for c in &r.configs {
         let s = &c.spec;
         let config = config_columns(r.plan.id, s);
-        let (schedule, a, _) = schedule_fields(s.temperature);
+        let (schedule, a, _) = csv_schedule(s);
         let start = csv_field(&s.start.label());
         for (e, eps) in s.eps.iter().enumerate() {
             for (k, hits) in c.curve(e) {
@@ -189,21 +206,28 @@ pub fn curves_csv(r: &ProtocolResult) -> String {
 /// in Markdown.
 fn describe(s: &RunSpec, k: u64) -> [(&'static str, String); 10] {
     let t = s.temperature;
-    let schedule = match t {
-        Temperature::Constant(_) => "constant".to_string(),
-        Temperature::Linear { low, .. } => format!("linear from {low}"),
+    let (schedule, a) = match (s.method, t) {
+        (Method::Peer { kind, .. }, _) => (kind.schedule_label().to_string(), "-".to_string()),
+        (Method::Kernel(_), Temperature::Constant(a)) => ("constant".to_string(), a.to_string()),
+        (Method::Kernel(_), Temperature::Linear { low, high }) => {
+            (format!("linear from {low}"), high.to_string())
+        }
+    };
+    let h = match s.method {
+        Method::Kernel(_) => s.h.to_string(),
+        Method::Peer { .. } => "-".to_string(),
     };
     [
-        ("sampler", sampler_label(s.sampler)),
+        ("sampler", s.method.label()),
         ("d", s.d.to_string()),
-        ("h", s.h.to_string()),
+        ("h", h),
         ("N", s.chains.to_string()),
         ("K", s.steps.to_string()),
         ("at k", k.to_string()),
         ("start", s.start.label()),
         ("stride", s.stride.to_string()),
         ("schedule", schedule),
-        (t.label_name(), t.label_value().to_string()),
+        (t.label_name(), a),
     ]
 }
 
@@ -294,7 +318,8 @@ fn write(path: PathBuf, text: &str) -> Result<PathBuf, ReproError> {
 
 /// Writes every output of `r` into `dir/<id>/` (created if needed) and
 /// returns the files written: `summary.csv`, `summary.md`, `meta.txt` (with
-/// `notes` appended), and for figure protocols `curves.csv` and `<id>.svg`.
+/// `notes` appended), for figure protocols `curves.csv` and `<id>.svg`, and
+/// with peers (T3) `comparison.md`, `cost.md` and `<id>.svg`.
 pub fn write_all(
     r: &ProtocolResult,
     dir: &Path,
@@ -307,6 +332,19 @@ pub fn write_all(
         write(dir.join("summary.md"), &summary_markdown(r))?,
         write(dir.join("meta.txt"), &meta(r, notes))?,
     ];
+    if crate::compare::has_peers(r) {
+        files.push(write(
+            dir.join("comparison.md"),
+            &crate::compare::comparison_markdown(r),
+        )?);
+        files.push(write(
+            dir.join("cost.md"),
+            &crate::compare::cost_markdown(r),
+        )?);
+        let svg = dir.join(format!("{}.svg", r.plan.id.name().to_lowercase()));
+        crate::plot::comparison_figure(r, &svg)?;
+        files.push(svg);
+    }
     if !r.plan.panels.is_empty() {
         files.push(write(dir.join("curves.csv"), &curves_csv(r))?);
         let svg = dir.join(format!("{}.svg", r.plan.id.name().to_lowercase()));

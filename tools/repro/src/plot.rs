@@ -1,5 +1,7 @@
 //! The probability figures as SVG: one panel per tolerance (or per listed
-//! (a, eps) / (d, eps) pair), one curve per `a` or sampler.
+//! (a, eps) / (d, eps) pair), one curve per `a` or sampler; and T3's
+//! comparison figure, the running best of every configuration with the
+//! peers' copied figures beside it.
 //!
 //! Text is written as SVG `<text>` in a generic `sans-serif` family and
 //! laid out with plotters' built-in size estimates, so no font file,
@@ -11,7 +13,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use crate::config::{RunSpec, sampler_label};
+use crate::compare::{config_label, paper_mean};
+use crate::config::{Method, RunSpec};
 use crate::error::ReproError;
 use crate::exec::ProtocolResult;
 use crate::protocol::SeriesKey;
@@ -31,7 +34,7 @@ const COLOURS: [RGBColor; 8] = [
 fn series_label(key: SeriesKey, s: &RunSpec) -> String {
     let t = s.temperature;
     match key {
-        SeriesKey::Sampler => sampler_label(s.sampler),
+        SeriesKey::Sampler => s.method.label(),
         SeriesKey::Temperature => format!("{} = {}", t.label_name(), t.label_value()),
     }
 }
@@ -107,6 +110,114 @@ fn draw(r: &ProtocolResult, path: &Path) -> Result<(), Box<dyn std::error::Error
             .background_style(WHITE.mix(0.6))
             .border_style(BLACK)
             .draw()?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// Draws T3's comparison into `path` (SVG): one panel per checkpoint, one
+/// row per configuration, its mean running best (dot) and mean ± SD (bar)
+/// on a log scale, and the paper's copied mean (cross) where there is one.
+pub fn comparison_figure(r: &ProtocolResult, path: &Path) -> Result<(), ReproError> {
+    draw_comparison(r, path).map_err(|e| ReproError::Plot {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })
+}
+
+fn draw_comparison(r: &ProtocolResult, path: &Path) -> Result<(), Box<dyn std::error::Error>> {
+    let checkpoints: Vec<u64> = r.configs[0].spec.checkpoints.clone();
+    let labels: Vec<String> = r.configs.iter().map(|c| config_label(&c.spec)).collect();
+    let n = labels.len() as i32;
+    // Every mean and copied figure, and the bars' right ends, fit; the
+    // bars' left ends are cut at the axis (a log scale has no 0).
+    let mut lo = f64::INFINITY;
+    let mut hi: f64 = 0.0;
+    for c in &r.configs {
+        for p in &c.checkpoints {
+            let m = &p.summary;
+            lo = lo.min(m.mean).min(m.min);
+            hi = hi.max(m.mean + m.sd);
+            if let Some(v) = paper_mean(&c.spec, p.k) {
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
+    }
+    let (lo, hi) = if lo > 0.0 && hi.is_finite() {
+        (lo / 1.5, hi * 1.5)
+    } else {
+        (1e-3, 1e3)
+    };
+    let panels = checkpoints.len().max(1) as u32;
+    let size = (520 * panels, 90 + 18 * n as u32);
+    let root = SVGBackend::new(path, size).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(
+        &format!(
+            "{}: running best, mean (dot) and ± SD (bar) over M = {} runs; x: copied figure",
+            r.plan.id.name(),
+            r.plan.runs
+        ),
+        ("sans-serif", 16),
+    )?;
+    // Row 0 at the top: the first configuration is drawn highest.
+    let row = |i: usize| SegmentValue::CenterOf(n - 1 - i as i32);
+    let formatter = |v: &SegmentValue<i32>| match v {
+        SegmentValue::CenterOf(j) => labels
+            .get((n - 1 - *j) as usize)
+            .cloned()
+            .unwrap_or_default(),
+        _ => String::new(),
+    };
+    for (area, &k) in root
+        .split_evenly((1, checkpoints.len()))
+        .iter()
+        .zip(&checkpoints)
+    {
+        let mut chart = ChartBuilder::on(area)
+            .caption(format!("k = {k}"), ("sans-serif", 15))
+            .margin(8)
+            .margin_right(16)
+            .x_label_area_size(36)
+            .y_label_area_size(230)
+            .build_cartesian_2d((lo..hi).log_scale(), (0..n).into_segmented())?;
+        chart
+            .configure_mesh()
+            .disable_y_mesh()
+            .y_labels(n as usize)
+            .y_label_formatter(&formatter)
+            .x_desc("running best (log scale)")
+            .label_style(("sans-serif", 11))
+            .axis_desc_style(("sans-serif", 12))
+            .draw()?;
+        for (i, c) in r.configs.iter().enumerate() {
+            let Some(p) = c.checkpoints.iter().find(|p| p.k == k) else {
+                continue;
+            };
+            let colour = match c.spec.method {
+                Method::Kernel(_) => COLOURS[0],
+                Method::Peer { .. } => COLOURS[1],
+            };
+            let m = &p.summary;
+            let left = (m.mean - m.sd).max(lo);
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![(left, row(i)), (m.mean + m.sd, row(i))],
+                colour.stroke_width(2),
+            )))?;
+            chart.draw_series(std::iter::once(Circle::new(
+                (m.mean, row(i)),
+                4,
+                colour.filled(),
+            )))?;
+            if let Some(v) = paper_mean(&c.spec, k) {
+                chart.draw_series(std::iter::once(Cross::new(
+                    (v, row(i)),
+                    5,
+                    BLACK.stroke_width(2),
+                )))?;
+            }
+        }
     }
     root.present()?;
     Ok(())

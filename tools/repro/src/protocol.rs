@@ -3,8 +3,9 @@
 
 use hrla::SamplerKind;
 
-use crate::config::{RunSpec, StartSpec, Temperature};
+use crate::config::{Method, RunSpec, StartSpec, Temperature};
 use crate::error::ReproError;
+use crate::peers::{DEFAULT_WALK, PeerKind, RandomWalk, Scope};
 
 /// The experimental protocols of the paper (spec section 7).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
@@ -23,7 +24,8 @@ pub enum ProtocolId {
     E5,
     /// Fixed effort N K = 140000 with annealing.
     T2,
-    /// Against simulated-annealing methods, K = 50 and 500, two starts.
+    /// Against simulated-annealing methods (run by the tool), K = 50 and
+    /// 500, two starts.
     T3,
 }
 
@@ -64,7 +66,9 @@ impl ProtocolId {
             ProtocolId::E4 => "dimension: d = 10 against d = 20",
             ProtocolId::E5 => "linear annealing to a_high",
             ProtocolId::T2 => "fixed effort N K = 140000 with annealing",
-            ProtocolId::T3 => "best of 250 chains at k = 50 and 500 with annealing, two starts",
+            ProtocolId::T3 => {
+                "best of 250 samples at k = 50 and 500: annealed HRLA beside SA, FSA, SMC-SA and CSA, two starts"
+            }
         }
     }
 
@@ -157,6 +161,17 @@ pub struct Overrides {
     /// Record the probability curves every r iterates (default: K / 500).
     #[arg(long)]
     pub curve_every: Option<u64>,
+    /// T3's simulated-annealing peers run beside the samplers (default: all
+    /// four: sa, fsa, smc-sa, csa).
+    #[arg(long, value_delimiter = ',')]
+    pub peers: Option<Vec<PeerKind>>,
+    /// The peers' random-walk proposal SDs per coordinate (default: 0.25).
+    #[arg(long, value_delimiter = ',')]
+    pub peer_sd: Option<Vec<f64>>,
+    /// Which coordinates a peer's proposal moves: full (all, the default)
+    /// or coordinate (one, drawn uniformly).
+    #[arg(long, value_delimiter = ',')]
+    pub peer_move: Option<Vec<Scope>>,
 }
 
 /// Which configurations a figure panel shows.
@@ -242,6 +257,9 @@ struct Params {
     panels: Vec<(f64, f64)>,
     /// `None`: K / 500.
     curve_every: Option<u64>,
+    peers: Vec<PeerKind>,
+    peer_sd: Vec<f64>,
+    peer_move: Vec<Scope>,
 }
 
 /// The paper's start, N(3·1, 10 I).
@@ -269,6 +287,9 @@ fn defaults(id: ProtocolId) -> Params {
         eps: vec![],
         panels: vec![],
         curve_every: None,
+        peers: vec![],
+        peer_sd: vec![DEFAULT_WALK.sd],
+        peer_move: vec![DEFAULT_WALK.scope],
     };
     let one_to_six = vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
     match id {
@@ -314,6 +335,7 @@ fn defaults(id: ProtocolId) -> Params {
             d.temps = vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
             // The paper's text starts at (1, ..., 1), its code at N(3·1, 10 I).
             d.starts = vec![StartSpec::Point(1.0), PAPER_START];
+            d.peers = PeerKind::ALL.to_vec();
         }
     }
     d
@@ -366,6 +388,9 @@ impl Params {
             eps,
             panels,
             curve_every: o.curve_every.or(self.curve_every),
+            peers: o.peers.clone().unwrap_or(self.peers),
+            peer_sd: o.peer_sd.clone().unwrap_or(self.peer_sd),
+            peer_move: o.peer_move.clone().unwrap_or(self.peer_move),
         }
     }
 }
@@ -422,6 +447,9 @@ fn check_options(id: ProtocolId, o: &Overrides) -> Result<(), ReproError> {
     if o.panels.is_some() && !matches!(id, ProtocolId::E2 | ProtocolId::E4) {
         return usage("--panels applies to E2 (a:eps) and E4 (d:eps)".into());
     }
+    if (o.peers.is_some() || o.peer_sd.is_some() || o.peer_move.is_some()) && id != ProtocolId::T3 {
+        return usage("--peers, --peer-sd and --peer-move apply to T3".into());
+    }
     Ok(())
 }
 
@@ -464,7 +492,9 @@ fn expand<T: Copy>(specs: Vec<RunSpec>, axis: &[T], set: impl Fn(&mut RunSpec, T
 }
 
 /// The grid `sampler x d x h x (N, K) x start x a` of protocol `id`, in
-/// that order (the last varying fastest), each configuration validated.
+/// that order (the last varying fastest), then the grid `peer x proposal
+/// (move x SD) x d x (N, K) x start` of its peers, each configuration
+/// validated.
 fn grid(id: ProtocolId, p: &Params) -> Result<Vec<RunSpec>, ReproError> {
     let figure = !id.is_table();
     let temperature = |t| {
@@ -480,7 +510,7 @@ fn grid(id: ProtocolId, p: &Params) -> Result<Vec<RunSpec>, ReproError> {
     // The placeholders are overwritten by the axes: every spec of the grid
     // has been through each `expand`.
     let template = RunSpec {
-        sampler: SamplerKind::Hrla,
+        method: Method::Kernel(SamplerKind::Hrla),
         d: 0,
         h: 0.0,
         chains: 0,
@@ -492,11 +522,7 @@ fn grid(id: ProtocolId, p: &Params) -> Result<Vec<RunSpec>, ReproError> {
         eps: if figure { p.eps.clone() } else { vec![] },
         curve_every: None,
     };
-    let mut specs = vec![template];
-    specs = expand(specs, &p.samplers, |s, v| s.sampler = v);
-    specs = expand(specs, &p.d, |s, v| s.d = v);
-    specs = expand(specs, &p.h, |s, v| s.h = v);
-    specs = expand(specs, &p.nk, |s, (n, k)| {
+    let lengths = |s: &mut RunSpec, (n, k): (usize, u64)| {
         s.chains = n;
         s.steps = k;
         s.checkpoints = if p.checkpoints.is_empty() {
@@ -505,9 +531,38 @@ fn grid(id: ProtocolId, p: &Params) -> Result<Vec<RunSpec>, ReproError> {
             p.checkpoints.clone()
         };
         s.curve_every = figure.then(|| p.curve_every.unwrap_or_else(|| (k / 500).max(1)));
-    });
+    };
+    let mut specs = vec![template.clone()];
+    specs = expand(specs, &p.samplers, |s, v| s.method = Method::Kernel(v));
+    specs = expand(specs, &p.d, |s, v| s.d = v);
+    specs = expand(specs, &p.h, |s, v| s.h = v);
+    specs = expand(specs, &p.nk, lengths);
     specs = expand(specs, &p.starts, |s, v| s.start = v);
     specs = expand(specs, &p.temps, |s, t| s.temperature = temperature(t));
+    // A peer has no step size or inverse temperature of the kernel's: the
+    // template's placeholders stay.
+    let mut peers = vec![template];
+    let mut walks = Vec::new();
+    for &scope in &p.peer_move {
+        for &sd in &p.peer_sd {
+            walks.push(RandomWalk { sd, scope });
+        }
+    }
+    peers = expand(peers, &p.peers, |s, kind| {
+        s.method = Method::Peer {
+            kind,
+            walk: DEFAULT_WALK,
+        }
+    });
+    peers = expand(peers, &walks, |s, walk| {
+        if let Method::Peer { kind, .. } = s.method {
+            s.method = Method::Peer { kind, walk };
+        }
+    });
+    peers = expand(peers, &p.d, |s, v| s.d = v);
+    peers = expand(peers, &p.nk, lengths);
+    peers = expand(peers, &p.starts, |s, v| s.start = v);
+    specs.extend(peers);
     for spec in &specs {
         spec.validate()?;
     }
@@ -564,7 +619,13 @@ mod tests {
         assert!(t2.configs.iter().all(|c| c.chain_steps() == 140_000));
         assert_eq!(t2.configs.len(), 20);
         let t3 = plan(ProtocolId::T3, &none, false).unwrap();
-        assert_eq!(t3.configs.len(), 2 * 6);
+        // HRLA at 6 a_high and the 4 peers, from both starts.
+        assert_eq!(t3.configs.len(), 2 * 6 + 4 * 2);
+        assert!(
+            t3.configs[12..]
+                .iter()
+                .all(|c| matches!(c.method, Method::Peer { .. }) && c.chains == 250)
+        );
         assert_eq!(t3.runs, 50);
         assert!(t3.configs.iter().all(|c| c.checkpoints == [50, 500]));
         let t3_quick = plan(ProtocolId::T3, &none, true).unwrap();
@@ -621,17 +682,17 @@ mod tests {
             ..Overrides::default()
         };
         let e2 = plan(ProtocolId::E2, &o, true).unwrap();
-        let order: Vec<(SamplerKind, usize, u64, f64)> = e2
+        let order: Vec<(Method, usize, u64, f64)> = e2
             .configs
             .iter()
-            .map(|c| (c.sampler, c.chains, c.steps, c.temperature.label_value()))
+            .map(|c| (c.method, c.chains, c.steps, c.temperature.label_value()))
             .collect();
         // (5, 20), (5, 40), (7, 20), (7, 40): the repeated 5 counts once.
         assert_eq!(order.len(), 3 * 4 * 4);
-        assert_eq!(order[0], (SamplerKind::Ola, 5, 20, 2.0));
-        assert_eq!(order[1], (SamplerKind::Ola, 5, 20, 3.0));
-        assert_eq!(order[4], (SamplerKind::Ola, 5, 40, 2.0));
-        assert_eq!(order[8], (SamplerKind::Ola, 7, 20, 2.0));
-        assert_eq!(order[16], (SamplerKind::Ula, 5, 20, 2.0));
+        assert_eq!(order[0], (Method::Kernel(SamplerKind::Ola), 5, 20, 2.0));
+        assert_eq!(order[1], (Method::Kernel(SamplerKind::Ola), 5, 20, 3.0));
+        assert_eq!(order[4], (Method::Kernel(SamplerKind::Ola), 5, 40, 2.0));
+        assert_eq!(order[8], (Method::Kernel(SamplerKind::Ola), 7, 20, 2.0));
+        assert_eq!(order[16], (Method::Kernel(SamplerKind::Ula), 5, 20, 2.0));
     }
 }

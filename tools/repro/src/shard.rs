@@ -6,7 +6,7 @@
 //! tables; `repro ID --merge` (with the same options) reads the `n` files,
 //! checks that they are the shards of the same plan and seed, one each,
 //! and writes the tables a single process would have written, byte for
-//! byte (the metadata adds the shards' wall times up).
+//! byte (the metadata, and T3's `cost.md`, add the shards' wall times up).
 //!
 //! The file is text, one record a line: floats as the hexadecimal bits of
 //! the `f64`, so a merge loses nothing.
@@ -56,6 +56,8 @@ pub fn write(
     let _ = writeln!(text, "threads {threads}");
     for c in 0..plan.configs.len() {
         let _ = writeln!(text, "diverged {c} {}", part.diverged[c]);
+        let _ = writeln!(text, "evaluations {c} {}", part.evaluations[c]);
+        let _ = writeln!(text, "run-wall-ns {c} {}", part.run_wall[c].as_nanos());
         let counts: Vec<String> = part.counts[c].iter().map(u32::to_string).collect();
         let _ = writeln!(text, "counts {c} {}", counts.join(" "));
         for (run, values) in &part.values[c] {
@@ -129,7 +131,7 @@ fn read_one(file: &Path, plan: &Plan, seed: u64) -> Result<ShardFile, ReproError
             }
             "chain-steps" => part.chain_steps = next()?.parse().map_err(|_| bad())?,
             "threads" => threads = next()?.parse().map_err(|_| bad())?,
-            "diverged" | "counts" | "run" => {
+            "diverged" | "evaluations" | "run-wall-ns" | "counts" | "run" => {
                 let c: usize = next()?.parse().map_err(|_| bad())?;
                 if c >= plan.configs.len() {
                     return Err(bad());

@@ -68,6 +68,15 @@ fn assert_success(out: &Output) {
     );
 }
 
+/// Every text of an SVG figure, trimmed.
+fn svg_texts(doc: &roxmltree::Document) -> HashSet<String> {
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .filter_map(|n| n.text())
+        .map(|t| t.trim().to_string())
+        .collect()
+}
+
 fn num(row: &[String], columns: &[&str], name: &str) -> f64 {
     let i = columns.iter().position(|c| *c == name).unwrap();
     row[i]
@@ -139,12 +148,7 @@ fn quick_all_writes_well_formed_outputs() {
         let doc = roxmltree::Document::parse(&svg)
             .unwrap_or_else(|e| panic!("{}: {e}", svg_path.display()));
         assert_eq!(doc.root_element().tag_name().name(), "svg");
-        let texts: HashSet<String> = doc
-            .descendants()
-            .filter(|n| n.has_tag_name("text"))
-            .filter_map(|n| n.text())
-            .map(|t| t.trim().to_string())
-            .collect();
+        let texts = svg_texts(&doc);
         for panel in &p.panels {
             assert!(
                 texts.contains(&panel.title),
@@ -183,4 +187,50 @@ fn outputs_do_not_depend_on_the_thread_count() {
         (read("summary.csv"), read("curves.csv"), read("e2.svg"))
     };
     assert_eq!(run("1"), run("2"));
+}
+
+/// T3 runs the four peers beside HRLA: its comparison table has a row per
+/// configuration and checkpoint with the copied figures beside the peers
+/// from (1, ..., 1), its cost table a row per configuration, and its
+/// figure one captioned panel per checkpoint.
+#[test]
+fn t3_runs_the_peers_beside_hrla() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = repro(&["t3", "--quick", "--a-high", "4"], dir.path());
+    assert_success(&out);
+    let sub = dir.path().join("t3");
+    let comparison = fs::read_to_string(sub.join("comparison.md")).unwrap();
+    let rows: Vec<&str> = comparison
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| method"))
+        .collect();
+    // (HRLA + 4 peers) x 2 starts x 2 checkpoints (k = 1 and 10).
+    assert_eq!(rows.len(), 5 * 2 * 2);
+    for peer in ["SA", "FSA", "SMC-SA", "CSA"] {
+        let from_one = format!("| {peer} (1,...,1) |");
+        assert_eq!(
+            rows.iter().filter(|r| r.starts_with(&from_one)).count(),
+            2,
+            "{peer}"
+        );
+    }
+    // The quick run reads k = 1 and 10: the paper has no figure there.
+    assert!(rows.iter().all(|r| r.contains("| - | - |")));
+    let cost = fs::read_to_string(sub.join("cost.md")).unwrap();
+    assert_eq!(cost.lines().filter(|l| l.starts_with("| SA ")).count(), 2);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("| CSA N(3·1, 10 I) |"));
+    let svg = fs::read_to_string(sub.join("t3.svg")).unwrap();
+    let texts = svg_texts(&roxmltree::Document::parse(&svg).unwrap());
+    for caption in [
+        "k = 1",
+        "k = 10",
+        "CSA (1,...,1)",
+        "HRLA a_high=4 (1,...,1)",
+    ] {
+        assert!(texts.contains(caption), "no `{caption}` in the figure");
+    }
+    let refused = repro(&["e1", "--quick", "--peers", "sa"], dir.path());
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("apply to T3"));
 }
