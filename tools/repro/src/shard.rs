@@ -137,10 +137,15 @@ fn read_one(file: &Path, plan: &Plan, seed: u64) -> Result<ShardFile, ReproError
                     return Err(bad());
                 }
                 let rest: Vec<&str> = f.collect();
+                let first = rest.first().copied().ok_or_else(bad);
                 match key {
-                    "diverged" => {
-                        part.diverged[c] =
-                            rest.first().ok_or_else(bad)?.parse().map_err(|_| bad())?;
+                    "diverged" => part.diverged[c] = first?.parse().map_err(|_| bad())?,
+                    "evaluations" => {
+                        part.evaluations[c] = first?.parse().map_err(|_| bad())?;
+                    }
+                    "run-wall-ns" => {
+                        let ns = first?.parse().map_err(|_| bad())?;
+                        part.run_wall[c] = Duration::from_nanos(ns);
                     }
                     "counts" => {
                         let counts: Vec<u32> = rest

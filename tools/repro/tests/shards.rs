@@ -1,4 +1,5 @@
-//! A protocol run as three shards in three processes, then merged, writes
+//! A protocol (T1, E1, and T3 with its simulated-annealing peers) run as
+//! three shards in three processes, then merged, writes
 //! the same tables, byte for byte, as one process; a merge refuses shards
 //! that are missing, doubled, or of other options.
 
@@ -25,15 +26,16 @@ fn ok(args: &[&str], out: &Path) {
     );
 }
 
-/// Every output file of a protocol but the metadata (wall time, command)
-/// and the shard files: name and bytes.
+/// Every output file of a protocol but those with measured times (the
+/// metadata, T3's cost table) and the shard files: name and bytes.
 fn tables(dir: &Path) -> Vec<(String, Vec<u8>)> {
     let mut out: Vec<(String, Vec<u8>)> = fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| {
             let name = p.file_name().unwrap().to_str().unwrap();
-            name != "meta.txt" && !name.starts_with("shard-")
+            // Measured times: the metadata and T3's cost table.
+            name != "meta.txt" && name != "cost.md" && !name.starts_with("shard-")
         })
         .map(|p| {
             let bytes = fs::read(&p).unwrap();
@@ -48,7 +50,7 @@ fn tables(dir: &Path) -> Vec<(String, Vec<u8>)> {
 fn three_shards_merge_into_the_single_run() {
     let tmp = tempfile::tempdir().unwrap();
     let (single, sharded) = (tmp.path().join("single"), tmp.path().join("sharded"));
-    for protocol in ["t1", "e1"] {
+    for protocol in ["t1", "e1", "t3"] {
         ok(&[protocol, "--quick"], &single);
         for i in 0..3 {
             ok(
