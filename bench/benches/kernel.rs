@@ -57,6 +57,12 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
         g.bench_function(BenchmarkId::new("floor/normals+value+grad", chains), |b| {
             b.iter(|| black_box(bare.floor(&mut r)))
         });
+        let gens: [_; 4] = core::array::from_fn(|l| rng(SEED + l as u64));
+        let mut lanes = hrla::Xoshiro256Lanes::load(gens.each_ref());
+        g.bench_function(
+            BenchmarkId::new("floor-lanes/normals+value+grad", chains),
+            |b| b.iter(|| black_box(bare.floor_lanes(&mut lanes))),
+        );
         g.bench_function(BenchmarkId::new("floor/normals", chains), |b| {
             b.iter(|| black_box(bare.normals(&mut r)))
         });

@@ -5,8 +5,8 @@ pub mod problems;
 
 use hrla::rand_core::Rng;
 use hrla::{
-    AnyKernel, AnySampler, Builder, Chain, Float, Gaussian, Kernel, Linear, Optimizer, Potential,
-    Rastrigin, Sampler, SamplerKind, Schedule,
+    AnyKernel, AnySampler, Builder, Chain, Float, Gaussian, Kernel, LANES, Linear, Optimizer,
+    Potential, Rastrigin, Sampler, SamplerKind, Schedule, Xoshiro256Lanes,
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -125,6 +125,31 @@ impl<F: Float, const D: usize> Bare<F, D> {
                 acc ^= z1.to_bits_u64() ^ z2.to_bits_u64();
             }
             acc ^= Rastrigin.value_and_gradient(x, g).to_bits_u64();
+        }
+        acc
+    }
+
+    /// The floor with the optimiser's lanes: every group of [`LANES`]
+    /// chains draws its `2 D` normals per chain in lockstep from four
+    /// generators ([`Xoshiro256Lanes`]), then evaluates each chain (the
+    /// unavoidable work of a step in lockstep; a remainder of fewer than
+    /// four chains draws nothing).
+    #[inline]
+    pub fn floor_lanes(&mut self, rng: &mut Xoshiro256Lanes) -> u64 {
+        let mut acc = 0u64;
+        for (xs, gs) in self
+            .x
+            .chunks_exact_mut(LANES)
+            .zip(self.g.chunks_exact_mut(LANES))
+        {
+            for _ in 0..D {
+                for (z1, z2) in F::standard_normal_pair_lanes(rng) {
+                    acc ^= z1.to_bits_u64() ^ z2.to_bits_u64();
+                }
+            }
+            for (x, g) in xs.iter().zip(gs) {
+                acc ^= Rastrigin.value_and_gradient(x, g).to_bits_u64();
+            }
         }
         acc
     }

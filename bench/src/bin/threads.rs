@@ -53,7 +53,16 @@ fn main() {
     let (mut a, mut b, mut r) = (Vec::new(), Vec::new(), Vec::new());
     for p in 0..pairs {
         let mut s = || time(|| serial.step_on(&Serial).expect("valid"));
-        let mut m = || many.install(|| time(|| parallel.step_on(&Threads::new()).expect("valid")));
+        let part: usize = std::env::var("PART").map_or(0, |s| s.parse().expect("PART"));
+        let mut m = || {
+            many.install(|| {
+                time(|| {
+                    parallel
+                        .step_on(&Threads::chains_per_part(part))
+                        .expect("valid")
+                })
+            })
+        };
         let (x, y) = if p % 2 == 0 {
             let x = s();
             (x, m())
