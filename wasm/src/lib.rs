@@ -171,7 +171,7 @@ impl Optimizer {
     }
 
     /// Advances every live chain by `steps` steps; fewer when a stopping
-    /// rule holds first (then [`Optimizer::termination`] says which, and
+    /// rule holds first (then [`Optimizer::stopped`] says which, and
     /// later calls do nothing) or on error: [`hrla::Error::AllDiverged`]
     /// once every chain has diverged, or the sampler's refusal of a
     /// temperature. The buffers show the state reached either way.
