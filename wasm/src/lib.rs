@@ -532,4 +532,91 @@ mod tests {
         assert_eq!(opt.step_n(1), Err(hrla::Error::AllDiverged { chains: 10 }));
         assert_eq!(opt.summary(), &s);
     }
+
+    /// A step budget stops the run there; a target alone stops it when
+    /// reached, and an annealing schedule's length is not a budget.
+    #[test]
+    fn stopping_rules_stop_the_run_and_say_why() {
+        let budget = Settings {
+            stop_steps: Some(30),
+            chains: 8,
+            ..Settings::default()
+        };
+        let mut opt = Optimizer::from_settings(&budget).unwrap();
+        opt.step_n(100).unwrap();
+        assert_eq!(opt.summary()[Summary::Iteration as usize], 30.0);
+        assert_eq!(opt.stopped(), Some(Termination::Steps));
+        assert_eq!(opt.summary()[Summary::Termination as usize], 1.0);
+        opt.step_n(10).unwrap();
+        assert_eq!(opt.summary()[Summary::Iteration as usize], 30.0);
+
+        let annealed_target = Settings {
+            landscape: "quadratic".parse().unwrap(),
+            temperature: Temperature::Linear {
+                a_low: 0.5,
+                a_high: 4.0,
+                steps: 50,
+            },
+            stop_target: Some(1e-12),
+            chains: 8,
+            ..Settings::default()
+        };
+        let mut opt = Optimizer::from_settings(&annealed_target).unwrap();
+        opt.step_n(200).unwrap();
+        assert_eq!(opt.summary()[Summary::Iteration as usize], 200.0);
+        assert_eq!(opt.stopped(), None);
+
+        let target = Settings {
+            stop_target: Some(1.0),
+            ..annealed_target
+        };
+        let mut opt = Optimizer::from_settings(&target).unwrap();
+        opt.step_n(10_000).unwrap();
+        assert_eq!(opt.stopped(), Some(Termination::Target));
+        assert!(opt.summary()[Summary::BestValue as usize] <= 1.0);
+        assert!(opt.summary()[Summary::Iteration as usize] < 10_000.0);
+    }
+
+    #[test]
+    fn errors_name_the_setting_at_fault() {
+        let field = |s: Settings| Optimizer::from_settings(&s).err().unwrap().field();
+        let d = Settings::default();
+        assert_eq!(field(Settings { h: 0.0, ..d }), Some("h"));
+        assert_eq!(field(Settings { h: 1e9, ..d }), Some("alpha h"));
+        assert_eq!(field(Settings { chains: 0, ..d }), Some("chains"));
+        assert_eq!(field(Settings { spread: -1.0, ..d }), Some("std_dev"));
+        assert_eq!(
+            field(Settings {
+                stop_steps: Some(10),
+                temperature: Temperature::Linear {
+                    a_low: 1.0,
+                    a_high: 2.0,
+                    steps: 100
+                },
+                ..d
+            }),
+            Some("stopSteps")
+        );
+        assert_eq!(
+            field(Settings {
+                stop_target: Some(f64::NAN),
+                ..d
+            }),
+            Some("target")
+        );
+    }
+
+    #[test]
+    fn the_summary_carries_the_landscape_minimum() {
+        let settings = Settings {
+            landscape: "styblinski-tang".parse().unwrap(),
+            chains: 4,
+            ..Settings::default()
+        };
+        let opt = Optimizer::from_settings(&settings).unwrap();
+        assert_eq!(
+            opt.summary()[Summary::Minimum as usize],
+            2.0 * -39.166_165_703_771_41
+        );
+    }
 }
