@@ -67,8 +67,9 @@ export function colourScale(grid, mode, a, minimum) {
 }
 
 /**
- * The background: `scale.t` over the plot area (w x h device pixels, row
- * by row from the top), contour lines where the colour level changes,
+ * The background: `scale.t` over the plot area (a w x h grid, row by row
+ * from the top, one value per device pixel unless the area is larger than
+ * the grid), contour lines where the colour level changes,
  * axes, and a cross at each global minimiser. No shading: a colour means
  * one value everywhere.
  */
@@ -99,7 +100,20 @@ export function drawLandscape(canvas, frame, dpr, scale, w, h, minimisers) {
       data[4 * k + 3] = 255;
     }
   }
-  ctx.putImageData(image, Math.round(frame.left * dpr), Math.round(frame.top * dpr));
+  const x0 = Math.round(frame.left * dpr);
+  const y0 = Math.round(frame.top * dpr);
+  const width = Math.round(frame.width * dpr);
+  const height = Math.round(frame.height * dpr);
+  if (w === width && h === height) {
+    ctx.putImageData(image, x0, y0);
+  } else {
+    // A grid coarser than the screen's pixels (very large canvases): scaled.
+    const off = document.createElement("canvas");
+    off.width = w;
+    off.height = h;
+    off.getContext("2d").putImageData(image, 0, 0);
+    ctx.drawImage(off, x0, y0, width, height);
+  }
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   drawAxes(ctx, frame, getComputedStyle(canvas).color);
   for (const [mx, my] of minimisers) {
@@ -148,8 +162,12 @@ export function drawColourBar(canvas, scale) {
   ctx.font = "11px system-ui, sans-serif";
   ctx.textAlign = "left";
   ctx.textBaseline = "middle";
+  let last = Infinity;
   for (const [t, text] of scale.ticks) {
     const y = Math.round(bar.top + (1 - t) * bar.height) + 0.5;
+    // Labels closer than a line of text would overlap: keep the first.
+    if (last - y < 12) continue;
+    last = y;
     ctx.beginPath();
     ctx.moveTo(bar.left + bar.width, y);
     ctx.lineTo(bar.left + bar.width + 4, y);

@@ -17,6 +17,8 @@ const VIEW_INPUTS = ["spf", "eps"];
 const SAMPLERS = ["hrla", "ula", "ola"];
 /** Grid of the exact marginals, per axis. */
 const MARGINAL_GRID = 240;
+/** The background's grid per axis at most: beyond, the picture is scaled. */
+const MAX_PIXELS = 1200;
 /** Histogram bins per axis. */
 const BINS = 40;
 
@@ -247,8 +249,8 @@ function refreshBackground(force) {
   if (!force && Math.abs(a - state.shownA) <= 0.01 * state.shownA) return;
   const mode = radio("show");
   state.shownA = a;
-  const w = Math.round(frame.width * state.dpr);
-  const h = Math.round(frame.height * state.dpr);
+  const w = Math.min(MAX_PIXELS, Math.round(frame.width * state.dpr));
+  const h = Math.min(MAX_PIXELS, Math.round(frame.height * state.dpr));
   if (!state.grid || state.grid.w !== w || state.grid.h !== h) {
     state.grid = { w, h, u: sim.potentialGrid(state.potential, frame.x0, frame.x1, frame.y0, frame.y1, w, h) };
     state.marginalGrid = sim.potentialGrid(state.potential, frame.x0, frame.x1, frame.y0, frame.y1, MARGINAL_GRID, MARGINAL_GRID);
@@ -380,6 +382,7 @@ function readouts(runs, eps) {
   }
   const table = $("compare-table");
   table.hidden = runs.length < 2;
+  $("readouts-for").hidden = runs.length < 2;
   if (runs.length > 1) {
     const body = table.tBodies[0];
     if (body.rows.length !== runs.length) {

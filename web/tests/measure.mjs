@@ -54,5 +54,19 @@ const pauseMs = await page.evaluate(
     }),
 );
 console.log(`pause at 1024 chains, 100000 steps/frame: next frame ${pauseMs.toFixed(1)} ms after the click`);
+// The wasm kernel alone, without drawing: one long advance() per sampler.
+for (const sampler of ["hrla", "ula", "ola"]) {
+  const rate = await page.evaluate(async (sampler) => {
+    const m = await import("/pkg/hrla_wasm.js");
+    const settings = { sampler, a: 4, h: 0.01, chains: 256, centre: [3, 3], spread: Math.sqrt(10), seed: 1 };
+    const opt = new m.Optimizer(settings);
+    const t0 = performance.now();
+    opt.advance(20_000);
+    const dt = (performance.now() - t0) / 1000;
+    opt.free();
+    return (256 * 20_000) / dt;
+  }, sampler);
+  console.log(`${sampler} kernel alone, Rastrigin, 256 chains x 20000 steps: ${(rate / 1e6).toFixed(2)}M chain-steps/s`);
+}
 await browser.close();
 server.close();

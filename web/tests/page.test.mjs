@@ -456,6 +456,7 @@ test("compare mode runs HRLA, ULA and OLA on the same seed and start", async () 
   assert.deepEqual(starts[1][1], starts[0][1]);
   assert.deepEqual(starts[2][1], starts[0][1]);
   assert.equal(await page.isDisabled("#sampler"), true);
+  assert.equal(await page.isVisible("#readouts-for"), true);
   for (let i = 1; i <= 10; i++) await step(100 * i);
   const its = await page.evaluate(() => window.hrlaDemo.state.runs.map((r) => r.iteration));
   assert.deepEqual(its, [1000, 1000, 1000]);
