@@ -94,7 +94,6 @@ function readSettings() {
     stopSteps: num("stopSteps", true),
     stopTarget: gap === null ? null : sim.globalMinimum(potential) + gap,
   };
-  if (!linear) settings.annealing = null;
   return { settings, problems };
 }
 
@@ -530,7 +529,9 @@ function wire() {
       forgetAddressProblem(id);
       $(`err-${id}`).textContent = "";
       $(id).removeAttribute("aria-invalid");
-      if (!Number.isFinite(parseNumber(text(id)))) fieldError(id, "is not a number");
+      const v = parseNumber(text(id));
+      if (id === "spf" && !(Number.isInteger(v) && v >= 1)) fieldError(id, "must be a whole number, 1 or more: 1 is used");
+      if (id === "eps" && !(v >= 0)) fieldError(id, "must be a number, 0 or more");
       writeUrl();
       render();
     });

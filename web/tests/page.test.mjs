@@ -254,6 +254,14 @@ test("changing a control restarts the run from the seed", async () => {
   await setControl("h", 0.02);
   assert.equal(await readout("out-iteration"), 0);
   assert.match(page.url(), /h=0\.02/);
+  // The pace is not a run setting: no restart, but a bad value is named.
+  await step(100);
+  await setControl("spf", 0);
+  assert.equal(await page.textContent("#err-spf"), "must be a whole number, 1 or more: 1 is used");
+  assert.equal(await readout("out-iteration"), 100);
+  await step(101);
+  await setControl("spf", 100);
+  assert.equal(await page.textContent("#err-spf"), "");
 });
 
 test("an invalid h is reported next to its field in plain words, and the page recovers", async () => {
