@@ -6,7 +6,8 @@
 # as scripts/test.sh arranges; without it, a WARNING says what was skipped).
 # Installs what is missing: the rustup target, wasm-bindgen-cli, chromium,
 # playwright-core (npm ci from the committed lock file).
-# Artefacts (screenshots) go to target/web-tests/.
+# Artefacts: build outputs in target/web-tests/, screenshots (desktop,
+# phone, compare mode, each landscape) in target/web-screenshots/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/wasm-tools.sh
@@ -14,6 +15,8 @@ source scripts/wasm-tools.sh
 export HRLA_WEB_OUT="$PWD/$TARGET_DIR/web-tests"
 case "$TARGET_DIR" in /*) HRLA_WEB_OUT="$TARGET_DIR/web-tests" ;; esac
 mkdir -p "$HRLA_WEB_OUT"
+export HRLA_WEB_SHOTS="$PWD/$TARGET_DIR/web-screenshots"
+case "$TARGET_DIR" in /*) HRLA_WEB_SHOTS="$TARGET_DIR/web-screenshots" ;; esac
 
 ensure_wasm_target
 ensure_wasm_bindgen

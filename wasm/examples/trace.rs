@@ -38,8 +38,22 @@ fn main() -> ExitCode {
 /// Runs one case line and renders its trace.
 fn run(line: &str) -> Result<String, String> {
     let f: Vec<&str> = line.split_whitespace().collect();
-    let [name, sampler, a, h, chains, cx, cy, spread, seed, steps] = f[..] else {
-        return Err(format!("expected 10 fields, got {}", f.len()));
+    let [
+        name,
+        potential,
+        sampler,
+        a,
+        h,
+        chains,
+        cx,
+        cy,
+        spread,
+        seed,
+        stop,
+        steps,
+    ] = f[..]
+    else {
+        return Err(format!("expected 12 fields, got {}", f.len()));
     };
     let num = |s: &str| s.parse::<f64>().map_err(|e| format!("`{s}`: {e}"));
     let int = |s: &str| s.parse::<u64>().map_err(|e| format!("`{s}`: {e}"));
@@ -52,7 +66,16 @@ fn run(line: &str) -> Result<String, String> {
         },
         _ => return Err(format!("bad temperature `{a}`")),
     };
+    // `-`, or a step budget and/or `@target`: `500`, `@0.01`, `500@0.01`.
+    let (stop_steps, stop_target) = match stop.split_once('@') {
+        _ if stop == "-" => (None, None),
+        Some((k, t)) => ((!k.is_empty()).then(|| int(k)).transpose()?, Some(num(t)?)),
+        None => (Some(int(stop)?), None),
+    };
     let settings = Settings {
+        landscape: potential
+            .parse()
+            .map_err(|e: hrla_wasm::UnknownLandscape| e.to_string())?,
         sampler: parse_sampler(sampler).map_err(|e| e.to_string())?,
         temperature,
         h: num(h)?,
@@ -60,6 +83,8 @@ fn run(line: &str) -> Result<String, String> {
         centre: [num(cx)?, num(cy)?],
         spread: num(spread)?,
         seed: int(seed)?,
+        stop_steps,
+        stop_target,
     };
     let mut opt = Optimizer::from_settings(&settings).map_err(|e| e.to_string())?;
     let steps = u32::try_from(int(steps)?).map_err(|e| e.to_string())?;
@@ -73,8 +98,9 @@ fn render(name: &str, opt: &Optimizer) -> String {
     let hex = |v: f64| format!("{:016x}", v.to_bits());
     let s = opt.summary();
     let mut out = format!(
-        "{name} iteration {}\n{name} best {} {} {} at {}\n",
+        "{name} iteration {} stopped {}\n{name} best {} {} {} at {}\n",
         s[Summary::Iteration as usize],
+        s[Summary::Termination as usize],
         hex(s[Summary::BestValue as usize]),
         hex(s[Summary::BestX0 as usize]),
         hex(s[Summary::BestX1 as usize]),

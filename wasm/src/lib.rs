@@ -1,8 +1,9 @@
-//! WebAssembly face of the `hrla` kernel for the live 2-D Rastrigin demo.
+//! WebAssembly face of the `hrla` kernel for the live 2-D demo page.
 //!
 //! A thin `wasm-bindgen` layer with no maths of its own: one exported type,
-//! [`Optimizer`], owns the kernel's [`hrla::Optimizer`] on 2-D Rastrigin in
-//! f64 with its chain storage (a `Vec` of up to [`MAX_CHAINS`] chains, each
+//! [`Optimizer`], owns the kernel's [`hrla::Optimizer`] on one of the
+//! kernel's built-in potentials in 2-D ([`Landscape`]), in f64, with its
+//! chain storage (a `Vec` of up to [`MAX_CHAINS`] chains, each
 //! with its own generator), and flat buffers that JavaScript reads through
 //! typed-array views into wasm memory:
 //!
@@ -22,8 +23,16 @@
 //!
 //! Bad settings come back as a JS `Error` whose message is the kernel's
 //! typed [`hrla::Error`] (or a [`SettingsError`] for a malformed object),
-//! never a trap; so does a run that fails on the way (`advance` throws the
-//! kernel's [`hrla::Error::AllDiverged`] once every chain has diverged).
+//! never a trap, with a `field` property naming the setting at fault
+//! (`"h"`, `"a_low"`, ...) when there is one; so does a run that fails on
+//! the way (`advance` throws the kernel's [`hrla::Error::AllDiverged`] once
+//! every chain has diverged). A run given stopping rules (`stopSteps`,
+//! `stopTarget`) stops at the first that holds: `advance` then does
+//! nothing, and `termination()` says why.
+//!
+//! [`potential_grid`] evaluates a landscape on a grid, for the page's heat
+//! map, density and exact marginals: the kernel's own potential, so the
+//! picture is of the function the chains see.
 //!
 //! Seeds are `u64`: a JS number up to `2^53 - 1` or a BigInt. Chain `c`
 //! draws from `Xoshiro256PlusPlus::seed_from_u64(hrla::chain_seed(seed, c))`,
@@ -35,12 +44,14 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+mod landscape;
 mod settings;
 
 use hrla::Kernel as _;
-use hrla::{AnySampler, AnySchedule, Builder, Chain, Gaussian, Rastrigin};
+use hrla::{AnySampler, AnySchedule, Builder, Chain, Gaussian, KnownMinimum, Termination};
 use wasm_bindgen::prelude::*;
 
+pub use landscape::{Landscape, UnknownLandscape};
 pub use settings::{Settings, SettingsError, Temperature, parse_sampler};
 
 /// The most chains a run may have (the page offers up to 1024): more is
@@ -51,7 +62,11 @@ pub const MAX_CHAINS: usize = 1024;
 pub type Chains = Vec<Chain<f64, 2>>;
 
 /// The kernel's optimiser as the page runs it, owning its chains.
-pub type Kernel = hrla::Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, Chains, 2>;
+pub type Kernel = hrla::Optimizer<f64, Landscape, AnySampler<f64>, AnySchedule<f64>, Chains, 2>;
+
+/// The most grid points [`potential_grid`] computes at once (a 2048 x 2048
+/// picture).
+pub const MAX_GRID: usize = 1 << 22;
 
 /// Slots of the summary buffer ([`Optimizer::summary_ptr`]), all f64.
 #[wasm_bindgen]
@@ -72,16 +87,37 @@ pub enum Summary {
     A = 5,
     /// Chains that diverged (frozen, excluded from the best).
     Diverged = 6,
+    /// The landscape's global minimum `U*`.
+    Minimum = 7,
+    /// Why the run stopped ([`termination_code`]): 0 while it runs.
+    Termination = 8,
     /// Number of slots.
-    Len = 7,
+    Len = 9,
 }
 
-/// One run of Algorithm 1 on 2-D Rastrigin, with its chains and the
+/// The code of a stopping reason in [`Summary::Termination`]: 1 step
+/// budget, 2 evaluation budget, 3 target, 4 stalled, 5 observer.
+pub fn termination_code(t: Option<Termination>) -> f64 {
+    match t {
+        None => 0.0,
+        Some(Termination::Steps) => 1.0,
+        Some(Termination::Evaluations) => 2.0,
+        Some(Termination::Target) => 3.0,
+        Some(Termination::Stalled) => 4.0,
+        Some(Termination::Observer) => 5.0,
+    }
+}
+
+/// One run of Algorithm 1 on a 2-D landscape, with its chains and the
 /// buffers that JavaScript views.
 #[wasm_bindgen]
 pub struct Optimizer {
     kernel: Kernel,
     seed: u64,
+    /// Whether the run has stopping rules to consult before each step.
+    stops: bool,
+    /// Why the run stopped, once it has.
+    termination: Option<Termination>,
     /// `x` of chain `c` at `2c`, `2c + 1`.
     positions: Vec<f64>,
     /// `y` of chain `c` at `2c`, `2c + 1` (zero for OLA).
@@ -110,15 +146,21 @@ impl Optimizer {
             .into());
         }
         let chains: Chains = (0..n).map(|_| Chain::new()).collect();
-        // No stopping rule: the page steps the run itself, without end.
-        // Takes the sampler's kernel at a_0: a bad first temperature is
-        // caught here.
-        let kernel = Builder::new(Rastrigin, sampler, schedule, start)
-            .seed(settings.seed)
-            .build(chains)?;
+        // The page steps the run itself; without stopping rules, without
+        // end. Takes the sampler's kernel at a_0: a bad first temperature
+        // is caught here.
+        let builder =
+            Builder::new(settings.landscape, sampler, schedule, start).seed(settings.seed);
+        let stop = settings.stop();
+        let kernel = match stop {
+            Some(stop) => builder.stop(stop).build(chains)?,
+            None => builder.build(chains)?,
+        };
         let mut this = Self {
             kernel,
             seed: settings.seed,
+            stops: stop.is_some(),
+            termination: None,
             positions: vec![0.0; 2 * n],
             velocities: vec![0.0; 2 * n],
             values: vec![0.0; n],
@@ -128,14 +170,31 @@ impl Optimizer {
         Ok(this)
     }
 
-    /// Advances every live chain by `steps` steps (fewer only on error:
-    /// [`hrla::Error::AllDiverged`] once every chain has diverged, or the
-    /// sampler's refusal of a temperature). The buffers show the state
-    /// reached either way.
+    /// Advances every live chain by `steps` steps; fewer when a stopping
+    /// rule holds first (then [`Optimizer::stopped`] says which, and
+    /// later calls do nothing) or on error: [`hrla::Error::AllDiverged`]
+    /// once every chain has diverged, or the sampler's refusal of a
+    /// temperature. The buffers show the state reached either way.
     pub fn step_n(&mut self, steps: u32) -> Result<(), hrla::Error> {
-        let result = (0..steps).try_for_each(|_| self.kernel.step());
+        let result = (0..steps).try_for_each(|_| {
+            if self.stops && self.termination.is_none() {
+                self.termination = self.kernel.termination();
+            }
+            match self.termination {
+                Some(_) => Ok(()),
+                None => self.kernel.step(),
+            }
+        });
+        if self.stops && self.termination.is_none() {
+            self.termination = self.kernel.termination();
+        }
         self.publish();
         result
+    }
+
+    /// Why the run stopped, once a stopping rule held.
+    pub fn stopped(&self) -> Option<Termination> {
+        self.termination
     }
 
     /// The kernel's optimiser.
@@ -181,6 +240,8 @@ impl Optimizer {
             best.iteration as f64,
             self.kernel.kernel().inverse_temperature(),
             self.kernel.diverged_chains() as f64,
+            self.kernel.potential().global_minimum(),
+            termination_code(self.termination),
         ];
     }
 }
@@ -191,10 +252,10 @@ impl Optimizer {
     /// Creates a run from a settings object (see [`Settings::from_js`]);
     /// throws an `Error` with the reason when a setting is refused.
     #[wasm_bindgen(constructor)]
-    pub fn new(settings: &JsValue) -> Result<Optimizer, JsError> {
+    pub fn new(settings: &JsValue) -> Result<Optimizer, JsValue> {
         Settings::from_js(settings)
             .and_then(|s| Self::from_settings(&s))
-            .map_err(|e| JsError::new(&e.to_string()))
+            .map_err(|e| js_error(&e))
     }
 
     /// Advances every live chain by `steps` steps and refreshes the
@@ -202,8 +263,27 @@ impl Optimizer {
     /// chain has diverged (`all N chains diverged ...`, again on every
     /// later call), or if annealing reaches a temperature the sampler
     /// refuses; the buffers then show the state reached.
-    pub fn advance(&mut self, steps: u32) -> Result<(), JsError> {
-        self.step_n(steps).map_err(|e| JsError::new(&e.to_string()))
+    pub fn advance(&mut self, steps: u32) -> Result<(), JsValue> {
+        self.step_n(steps).map_err(|e| js_error(&e.into()))
+    }
+
+    /// Why the run stopped (`"target reached"`, `"step budget spent"`), or
+    /// `undefined` while it runs.
+    #[wasm_bindgen(js_name = termination)]
+    pub fn termination_text(&self) -> Option<String> {
+        self.termination.map(|t| t.to_string())
+    }
+
+    /// The landscape's name.
+    #[wasm_bindgen(js_name = potential)]
+    pub fn potential_name(&self) -> String {
+        self.kernel.potential().name().into()
+    }
+
+    /// The landscape's global minimiser `x*`, `[x0, x1]` (one of them
+    /// when there are several).
+    pub fn minimiser(&self) -> Vec<f64> {
+        self.kernel.potential().global_minimiser().to_vec()
     }
 
     /// Number of chains.
@@ -237,6 +317,63 @@ impl Optimizer {
     pub fn summary_ptr(&self) -> *const f64 {
         self.summary.as_ptr()
     }
+}
+
+/// A JS `Error` with the message, and a `field` property naming the
+/// setting at fault when there is one.
+fn js_error(e: &SettingsError) -> JsValue {
+    let error = js_sys::Error::new(&e.to_string());
+    if let Some(field) = e.field() {
+        // Setting a property on a fresh Error object cannot fail.
+        let _ = js_sys::Reflect::set(&error, &"field".into(), &field.into());
+    }
+    error.into()
+}
+
+/// `U` of the landscape `name` at the cell centres of an `nx` by `ny` grid
+/// over `[x0, x1] x [y0, y1]`, row by row from the top: the kernel's own
+/// potential, for the page's pictures. Throws on an unknown name, an empty
+/// or inverted box, or more than [`MAX_GRID`] points.
+#[wasm_bindgen]
+pub fn potential_grid(
+    name: &str,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    nx: usize,
+    ny: usize,
+) -> Result<Vec<f64>, JsError> {
+    let landscape: Landscape = name
+        .parse()
+        .map_err(|e: UnknownLandscape| JsError::new(&e.to_string()))?;
+    let bounds = [x0, x1, y0, y1];
+    if !(bounds.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
+        return Err(JsError::new(
+            "the grid's box must be finite with x0 < x1 and y0 < y1",
+        ));
+    }
+    if nx == 0 || ny == 0 || nx.saturating_mul(ny) > MAX_GRID {
+        return Err(JsError::new(&format!(
+            "the grid must have between 1 and {MAX_GRID} points"
+        )));
+    }
+    Ok(landscape.grid(x0, x1, y0, y1, nx, ny))
+}
+
+/// The global minimum `U*` of the landscape `name` (the kernel's
+/// [`KnownMinimum`]); throws on an unknown name.
+#[wasm_bindgen]
+pub fn global_minimum(name: &str) -> Result<f64, JsError> {
+    name.parse::<Landscape>()
+        .map(|l| l.global_minimum())
+        .map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// The names of the landscapes, as `potential` takes them.
+#[wasm_bindgen]
+pub fn potential_names() -> Vec<String> {
+    Landscape::NAMES.iter().map(|&n| n.into()).collect()
 }
 
 /// The capacity in chains, [`MAX_CHAINS`].
@@ -394,5 +531,92 @@ mod tests {
         assert!(s[Summary::BestValue as usize].is_finite());
         assert_eq!(opt.step_n(1), Err(hrla::Error::AllDiverged { chains: 10 }));
         assert_eq!(opt.summary(), &s);
+    }
+
+    /// A step budget stops the run there; a target alone stops it when
+    /// reached, and an annealing schedule's length is not a budget.
+    #[test]
+    fn stopping_rules_stop_the_run_and_say_why() {
+        let budget = Settings {
+            stop_steps: Some(30),
+            chains: 8,
+            ..Settings::default()
+        };
+        let mut opt = Optimizer::from_settings(&budget).unwrap();
+        opt.step_n(100).unwrap();
+        assert_eq!(opt.summary()[Summary::Iteration as usize], 30.0);
+        assert_eq!(opt.stopped(), Some(Termination::Steps));
+        assert_eq!(opt.summary()[Summary::Termination as usize], 1.0);
+        opt.step_n(10).unwrap();
+        assert_eq!(opt.summary()[Summary::Iteration as usize], 30.0);
+
+        let annealed_target = Settings {
+            landscape: "quadratic".parse().unwrap(),
+            temperature: Temperature::Linear {
+                a_low: 0.5,
+                a_high: 4.0,
+                steps: 50,
+            },
+            stop_target: Some(1e-12),
+            chains: 8,
+            ..Settings::default()
+        };
+        let mut opt = Optimizer::from_settings(&annealed_target).unwrap();
+        opt.step_n(200).unwrap();
+        assert_eq!(opt.summary()[Summary::Iteration as usize], 200.0);
+        assert_eq!(opt.stopped(), None);
+
+        let target = Settings {
+            stop_target: Some(1.0),
+            ..annealed_target
+        };
+        let mut opt = Optimizer::from_settings(&target).unwrap();
+        opt.step_n(10_000).unwrap();
+        assert_eq!(opt.stopped(), Some(Termination::Target));
+        assert!(opt.summary()[Summary::BestValue as usize] <= 1.0);
+        assert!(opt.summary()[Summary::Iteration as usize] < 10_000.0);
+    }
+
+    #[test]
+    fn errors_name_the_setting_at_fault() {
+        let field = |s: Settings| Optimizer::from_settings(&s).err().unwrap().field();
+        let d = Settings::default();
+        assert_eq!(field(Settings { h: 0.0, ..d }), Some("h"));
+        assert_eq!(field(Settings { h: 1e9, ..d }), Some("alpha h"));
+        assert_eq!(field(Settings { chains: 0, ..d }), Some("chains"));
+        assert_eq!(field(Settings { spread: -1.0, ..d }), Some("std_dev"));
+        assert_eq!(
+            field(Settings {
+                stop_steps: Some(10),
+                temperature: Temperature::Linear {
+                    a_low: 1.0,
+                    a_high: 2.0,
+                    steps: 100
+                },
+                ..d
+            }),
+            Some("stopSteps")
+        );
+        assert_eq!(
+            field(Settings {
+                stop_target: Some(f64::NAN),
+                ..d
+            }),
+            Some("target")
+        );
+    }
+
+    #[test]
+    fn the_summary_carries_the_landscape_minimum() {
+        let settings = Settings {
+            landscape: "styblinski-tang".parse().unwrap(),
+            chains: 4,
+            ..Settings::default()
+        };
+        let opt = Optimizer::from_settings(&settings).unwrap();
+        assert_eq!(
+            opt.summary()[Summary::Minimum as usize],
+            2.0 * -39.166_165_703_771_41
+        );
     }
 }

@@ -3,8 +3,10 @@
 
 use core::fmt;
 
-use hrla::{AnySchedule, Constant, Linear, SamplerKind};
+use hrla::{AnySchedule, Constant, Linear, SamplerKind, Stop};
 use wasm_bindgen::JsValue;
+
+use crate::landscape::{Landscape, UnknownLandscape};
 
 /// Parses a sampler's name, `"hrla"`, `"ula"` or `"ola"` (any case).
 pub fn parse_sampler(name: &str) -> Result<SamplerKind, SettingsError> {
@@ -46,9 +48,11 @@ impl Temperature {
 /// on every target.
 ///
 /// The sampler's other parameters are the paper's (`alpha = beta = 1`,
-/// `b = 10`); the potential is 2-D Rastrigin.
+/// `b = 10`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
+    /// The potential.
+    pub landscape: Landscape,
     /// The sampler.
     pub sampler: SamplerKind,
     /// Constant `a` or an annealing schedule.
@@ -64,13 +68,18 @@ pub struct Settings {
     /// The run's seed: chain `c` draws from its own generator,
     /// `Xoshiro256PlusPlus::seed_from_u64(hrla::chain_seed(seed, c))`.
     pub seed: u64,
+    /// Stop after this many steps (none: never).
+    pub stop_steps: Option<u64>,
+    /// Stop once the best value is at most this (none: never).
+    pub stop_target: Option<f64>,
 }
 
 impl Default for Settings {
-    /// The page's defaults: HRLA at the paper's `a = 4`, `h = 0.01`, 256
-    /// chains from the paper's `N(3·1, 10 I)`, seed 1.
+    /// HRLA on Rastrigin at the paper's `a = 4`, `h = 0.01`, 256 chains
+    /// from the paper's `N(3·1, 10 I)`, seed 1, no stopping rule.
     fn default() -> Self {
         Self {
+            landscape: Landscape::Rastrigin,
             sampler: SamplerKind::Hrla,
             temperature: Temperature::Constant(4.0),
             h: 0.01,
@@ -78,6 +87,8 @@ impl Default for Settings {
             centre: [3.0, 3.0],
             spread: 10f64.sqrt(),
             seed: 1,
+            stop_steps: None,
+            stop_target: None,
         }
     }
 }
@@ -97,6 +108,8 @@ pub enum SettingsError {
     UnknownSampler,
     /// `centre` is not an array of two numbers.
     BadCentre,
+    /// `potential` names no landscape.
+    UnknownPotential(UnknownLandscape),
     /// `seed` is neither a safe non-negative integer nor a BigInt in
     /// `0..2^64`.
     BadSeed,
@@ -111,6 +124,7 @@ impl fmt::Display for SettingsError {
             Self::NotANumber(name) => write!(f, "`{name}` must be a number"),
             Self::NotAnInteger(name) => write!(f, "`{name}` must be a whole number >= 0"),
             Self::UnknownSampler => f.write_str("`sampler` must be \"hrla\", \"ula\" or \"ola\""),
+            Self::UnknownPotential(e) => fmt::Display::fmt(e, f),
             Self::BadCentre => f.write_str("`centre` must be an array of two numbers"),
             Self::BadSeed => f.write_str(
                 "`seed` must be a whole number between 0 and 2^53 - 1, or a BigInt between 0 and 2^64 - 1",
@@ -121,6 +135,38 @@ impl fmt::Display for SettingsError {
 }
 
 impl core::error::Error for SettingsError {}
+
+impl SettingsError {
+    /// The setting at fault, by the name the messages use (`h`,
+    /// `a_low`, ...), when one is: the page marks its field.
+    pub fn field(&self) -> Option<&'static str> {
+        match self {
+            Self::NotAnObject => None,
+            Self::NotANumber(name) | Self::NotAnInteger(name) => Some(name),
+            Self::UnknownSampler => Some("sampler"),
+            Self::UnknownPotential(_) => Some("potential"),
+            Self::BadCentre => Some("mean"),
+            Self::BadSeed => Some("seed"),
+            Self::Kernel(e) => kernel_field(e),
+        }
+    }
+}
+
+/// The setting a kernel error names.
+fn kernel_field(e: &hrla::Error) -> Option<&'static str> {
+    use hrla::Error as E;
+    match *e {
+        E::NotPositive { name, .. }
+        | E::Negative { name, .. }
+        | E::NotFinite { name, .. }
+        | E::Zero { name }
+        | E::Count { name, .. }
+        | E::OutOfRange { name, .. } => Some(name),
+        E::ScheduleLongerThanRun { .. } => Some("stopSteps"),
+        E::AllDiverged { .. } | E::DegenerateCoefficients => Some("h"),
+        _ => None,
+    }
+}
 
 impl From<hrla::Error> for SettingsError {
     fn from(e: hrla::Error) -> Self {
@@ -135,12 +181,14 @@ impl Settings {
     /// Reads settings from a JS object:
     ///
     /// ```text
-    /// { sampler: "hrla" | "ula" | "ola",
+    /// { potential: "rastrigin" | "ackley" | ...,     // optional, default Rastrigin
+    ///   sampler: "hrla" | "ula" | "ola",
     ///   a: number,                                   // constant a, or
     ///   annealing: { aLow, aHigh, steps } | null,    // linear annealing (wins over a)
     ///   h: number, chains: number,
     ///   centre: [number, number], spread: number,
-    ///   seed: number | bigint }
+    ///   seed: number | bigint,
+    ///   stopSteps: number | null, stopTarget: number | null }  // optional
     /// ```
     ///
     /// Numbers are checked only for type here (and for being whole where a
@@ -152,6 +200,14 @@ impl Settings {
         if !value.is_object() {
             return Err(SettingsError::NotAnObject);
         }
+        let landscape = match get(value, "potential") {
+            p if p.is_undefined() || p.is_null() => Landscape::Rastrigin,
+            p => p
+                .as_string()
+                .ok_or(SettingsError::UnknownPotential(UnknownLandscape))?
+                .parse()
+                .map_err(SettingsError::UnknownPotential)?,
+        };
         let sampler = match get(value, "sampler").as_string() {
             Some(name) => parse_sampler(&name)?,
             None => return Err(SettingsError::UnknownSampler),
@@ -176,7 +232,20 @@ impl Settings {
         if !js_sys::Array::is_array(&centre) {
             return Err(SettingsError::BadCentre);
         }
+        let optional = |key: &'static str| {
+            let v = get(value, key);
+            if v.is_undefined() || v.is_null() {
+                Ok(None)
+            } else {
+                v.as_f64().map(Some).ok_or(SettingsError::NotANumber(key))
+            }
+        };
+        let stop_steps = optional("stopSteps")?
+            .map(|v| safe_whole(v).ok_or(SettingsError::NotAnInteger("stopSteps")))
+            .transpose()?;
+        let stop_target = optional("stopTarget")?;
         Ok(Self {
+            landscape,
             sampler,
             temperature,
             h: number(value, "h")?,
@@ -185,6 +254,22 @@ impl Settings {
             centre: [coordinate(0)?, coordinate(1)?],
             spread: number(value, "spread")?,
             seed: seed(&get(value, "seed"))?,
+            stop_steps,
+            stop_target,
+        })
+    }
+
+    /// The kernel's stopping rules, or `None` for a run without end. A
+    /// target alone comes with an unreachable step budget, so that an
+    /// annealing schedule's length does not become one.
+    pub fn stop(&self) -> Option<Stop<f64>> {
+        if self.stop_steps.is_none() && self.stop_target.is_none() {
+            return None;
+        }
+        let stop = Stop::new().steps(self.stop_steps.unwrap_or(u64::MAX));
+        Some(match self.stop_target {
+            Some(t) => stop.target(t),
+            None => stop,
         })
     }
 }

@@ -1,174 +1,236 @@
-// The 2-D Rastrigin landscape: heat map, contours, axes and the global
-// minimum, drawn once per size or view on the background canvas; and the
-// chains, their trails and the best point, redrawn every frame on top.
+// The landscape panel: the background (U on a log colour scale, or the
+// density exp(-a U) at the current a) with contour lines, axes, the global
+// minimisers and a colour bar, drawn when the view, the size or a changes;
+// and the chains, their trails and the running best, redrawn every frame.
 
-import { VIRIDIS } from "./colormap.js";
+import { VIRIDIS, viridisCss } from "./colormap.js";
 
 /** Margins of the plot area inside the canvas, in CSS pixels. */
 const MARGIN = { left: 34, right: 10, top: 10, bottom: 26 };
+/** Colour levels between contour lines. */
+const LEVELS = 12;
+/** One colour per run in compare mode (and the single run's is the first). */
+export const RUN_COLOURS = ["#ffffff", "#4fd1ff", "#ff7ad9"];
 
-const TAU = 2 * Math.PI;
-
-/** Rastrigin in the paper's form, for the picture only (the run is in wasm). */
-function rastrigin(x, y) {
-  return 2 + x * x + y * y - Math.cos(TAU * x) - Math.cos(TAU * y);
-}
-
-/** Relief exaggeration of the hill shading, in units of x. */
-const RELIEF = 4;
-/** Light from the upper left, above the plane (unit vector). */
-const LIGHT = (() => {
-  const v = [-1, 1, 1.6];
-  const n = Math.hypot(...v);
-  return v.map((c) => c / n);
-})();
-
-/**
- * Brightness factor of the surface z = log(1 + U) lit from the upper left:
- * the quadratic bowl dominates the colours far from the origin, and the
- * shading keeps every local minimum visible there.
- */
-function shade(x, y, u) {
-  const gx = (RELIEF * (2 * x + TAU * Math.sin(TAU * x))) / (1 + u);
-  const gy = (RELIEF * (2 * y + TAU * Math.sin(TAU * y))) / (1 + u);
-  const lambert = (-gx * LIGHT[0] - gy * LIGHT[1] + LIGHT[2]) / Math.hypot(gx, gy, 1);
-  return Math.min(1.2, Math.max(0.55, 0.35 + 0.65 * (lambert / LIGHT[2])));
-}
-
-/** Maps the square view [-half, half]^2 to the canvas' plot area. */
+/** Maps the square view [cx - half, cx + half] x [cy - half, cy + half] to the canvas' plot area. */
 export class Frame {
-  constructor(cssSize, half) {
+  constructor(cssSize, view) {
     this.size = cssSize;
-    this.half = half;
+    this.view = view;
+    this.x0 = view.cx - view.half;
+    this.x1 = view.cx + view.half;
+    this.y0 = view.cy - view.half;
+    this.y1 = view.cy + view.half;
     this.left = MARGIN.left;
     this.top = MARGIN.top;
     this.width = cssSize - MARGIN.left - MARGIN.right;
     this.height = cssSize - MARGIN.top - MARGIN.bottom;
   }
   px(x) {
-    return this.left + ((x + this.half) / (2 * this.half)) * this.width;
+    return this.left + ((x - this.x0) / (this.x1 - this.x0)) * this.width;
   }
   py(y) {
-    return this.top + ((this.half - y) / (2 * this.half)) * this.height;
+    return this.top + ((this.y1 - y) / (this.y1 - this.y0)) * this.height;
   }
 }
 
-/** The heat map of log(1 + U) with contour lines, axes and x* = 0. */
-export function drawLandscape(canvas, frame, dpr) {
+/**
+ * The colour scale of the background: t in [0, 1] for each grid value.
+ * "u": log(1 + U - U*) over the view's range, so that low basins get most
+ * of the colours; "density": exp(-a (U - min U)), linear, 1 at the view's
+ * mode. Returns { t: Float32Array, ticks: [[t, label]], title }.
+ */
+export function colourScale(grid, mode, a, minimum) {
+  const t = new Float32Array(grid.length);
+  let lo = Infinity;
+  let hi = -Infinity;
+  for (const u of grid) {
+    if (u < lo) lo = u;
+    if (u > hi) hi = u;
+  }
+  if (mode === "density") {
+    for (let k = 0; k < grid.length; k++) t[k] = Math.exp(-a * (grid[k] - lo));
+    return {
+      t,
+      title: `exp(−aU) / max, a = ${+a.toPrecision(3)}`,
+      ticks: [0, 0.25, 0.5, 0.75, 1].map((v) => [v, String(v)]),
+    };
+  }
+  const scale = 1 / Math.log1p(Math.max(hi - minimum, 1e-12));
+  for (let k = 0; k < grid.length; k++) t[k] = Math.min(1, Math.max(0, Math.log1p(grid[k] - minimum) * scale));
+  const ticks = [];
+  for (const d of [0, 0.1, 0.3, 1, 3, 10, 30, 100, 300, 1000, 3000]) {
+    const v = Math.log1p(d) * scale;
+    if (v <= 1) ticks.push([v, String(d)]);
+  }
+  return { t, ticks, title: "U − U* (log scale)" };
+}
+
+/**
+ * The background: `scale.t` over the plot area (a w x h grid, row by row
+ * from the top, one value per device pixel unless the area is larger than
+ * the grid), contour lines where the colour level changes,
+ * axes, and a cross at each global minimiser. No shading: a colour means
+ * one value everywhere.
+ */
+export function drawLandscape(canvas, frame, dpr, scale, w, h, minimisers) {
   const ctx = canvas.getContext("2d");
   ctx.setTransform(1, 0, 0, 1, 0, 0);
-  ctx.fillStyle = getComputedStyle(canvas).getPropertyValue("--panel") || "#111";
+  ctx.fillStyle = "#171a21";
   ctx.fillRect(0, 0, canvas.width, canvas.height);
-
-  // Pixels of the plot area, in device pixels.
-  const x0 = Math.round(frame.left * dpr);
-  const y0 = Math.round(frame.top * dpr);
-  const w = Math.round(frame.width * dpr);
-  const h = Math.round(frame.height * dpr);
-  const half = frame.half;
-  const uMax = rastrigin(half, half) + 2;
-  const scale = 1 / Math.log1p(uMax);
-  // Contours every 1/12 of the colour range, that is, at geometrically
-  // spaced levels of 1 + U: they crowd where U is small.
-  const levels = 12;
-  const t = new Float32Array(w * h);
-  const light = new Float32Array(w * h);
-  for (let j = 0; j < h; j++) {
-    const y = half - ((j + 0.5) / h) * 2 * half;
-    for (let i = 0; i < w; i++) {
-      const x = ((i + 0.5) / w) * 2 * half - half;
-      const u = rastrigin(x, y);
-      t[j * w + i] = Math.min(1, Math.log1p(u) * scale);
-      light[j * w + i] = shade(x, y, u);
-    }
-  }
+  const t = scale.t;
   const image = ctx.createImageData(w, h);
   const data = image.data;
   for (let j = 0; j < h; j++) {
     for (let i = 0; i < w; i++) {
       const k = j * w + i;
-      const level = Math.floor(t[k] * levels);
+      const level = Math.floor(t[k] * LEVELS);
+      // Neighbours on both sides: a contour is placed the same way under
+      // any mirror of the landscape.
       const edge =
-        (i + 1 < w && Math.floor(t[k + 1] * levels) !== level) ||
-        (j + 1 < h && Math.floor(t[k + w] * levels) !== level);
+        (i + 1 < w && Math.floor(t[k + 1] * LEVELS) !== level) ||
+        (i > 0 && Math.floor(t[k - 1] * LEVELS) !== level) ||
+        (j + 1 < h && Math.floor(t[k + w] * LEVELS) !== level) ||
+        (j > 0 && Math.floor(t[k - w] * LEVELS) !== level);
       const c = 3 * Math.round(255 * t[k]);
-      const dim = (edge ? 0.55 : 1) * light[k];
+      const dim = edge ? 0.6 : 1;
       data[4 * k] = VIRIDIS[c] * dim;
       data[4 * k + 1] = VIRIDIS[c + 1] * dim;
       data[4 * k + 2] = VIRIDIS[c + 2] * dim;
       data[4 * k + 3] = 255;
     }
   }
-  ctx.putImageData(image, x0, y0);
-
+  const x0 = Math.round(frame.left * dpr);
+  const y0 = Math.round(frame.top * dpr);
+  const width = Math.round(frame.width * dpr);
+  const height = Math.round(frame.height * dpr);
+  if (w === width && h === height) {
+    ctx.putImageData(image, x0, y0);
+  } else {
+    // A grid coarser than the screen's pixels (very large canvases): scaled.
+    const off = document.createElement("canvas");
+    off.width = w;
+    off.height = h;
+    off.getContext("2d").putImageData(image, 0, 0);
+    ctx.drawImage(off, x0, y0, width, height);
+  }
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   drawAxes(ctx, frame, getComputedStyle(canvas).color);
-  // The global minimum x* = 0.
-  const cx = frame.px(0);
-  const cy = frame.py(0);
-  ctx.strokeStyle = "#fff";
-  ctx.lineWidth = 1.5;
-  ctx.beginPath();
-  ctx.moveTo(cx - 7, cy);
-  ctx.lineTo(cx + 7, cy);
-  ctx.moveTo(cx, cy - 7);
-  ctx.lineTo(cx, cy + 7);
-  ctx.stroke();
-  ctx.font = "12px system-ui, sans-serif";
-  ctx.fillStyle = "#fff";
+  for (const [mx, my] of minimisers) {
+    const cx = frame.px(mx);
+    const cy = frame.py(my);
+    for (const [colour, width] of [
+      ["#000", 3.5],
+      ["#fff", 1.5],
+    ]) {
+      ctx.strokeStyle = colour;
+      ctx.lineWidth = width;
+      ctx.beginPath();
+      ctx.moveTo(cx - 7, cy);
+      ctx.lineTo(cx + 7, cy);
+      ctx.moveTo(cx, cy - 7);
+      ctx.lineTo(cx, cy + 7);
+      ctx.stroke();
+    }
+  }
+  if (minimisers.length) {
+    const [mx, my] = minimisers[0];
+    label(ctx, "x*", frame.px(mx) + 6, frame.py(my) - 4, "left", "bottom");
+  }
+}
+
+/** The colour bar: the scale's colours bottom to top, with its ticks and title. */
+export function drawColourBar(canvas, scale) {
+  const dpr = window.devicePixelRatio || 1;
+  const w = canvas.clientWidth;
+  const h = canvas.clientHeight;
+  canvas.width = Math.round(w * dpr);
+  canvas.height = Math.round(h * dpr);
+  const ctx = canvas.getContext("2d");
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  ctx.clearRect(0, 0, w, h);
+  const bar = { left: 8, top: 8, width: 14, height: h - 16 };
+  for (let y = 0; y < bar.height; y++) {
+    ctx.fillStyle = viridisCss(1 - y / (bar.height - 1));
+    ctx.fillRect(bar.left, bar.top + y, bar.width, 1);
+  }
+  const colour = getComputedStyle(canvas).color;
+  ctx.strokeStyle = colour;
+  ctx.fillStyle = colour;
+  ctx.lineWidth = 1;
+  ctx.strokeRect(bar.left - 0.5, bar.top - 0.5, bar.width + 1, bar.height + 1);
+  ctx.font = "11px system-ui, sans-serif";
   ctx.textAlign = "left";
-  ctx.textBaseline = "bottom";
-  ctx.fillText("x*", cx + 5, cy - 3);
+  ctx.textBaseline = "middle";
+  let last = Infinity;
+  for (const [t, text] of scale.ticks) {
+    const y = Math.round(bar.top + (1 - t) * bar.height) + 0.5;
+    // Labels closer than a line of text would overlap: keep the first.
+    if (last - y < 12) continue;
+    last = y;
+    ctx.beginPath();
+    ctx.moveTo(bar.left + bar.width, y);
+    ctx.lineTo(bar.left + bar.width + 4, y);
+    ctx.stroke();
+    ctx.fillText(text, bar.left + bar.width + 6, y);
+  }
+  canvas.setAttribute("aria-label", `colour bar: ${scale.title}, ticks ${scale.ticks.map((k) => k[1]).join(", ")}`);
+}
+
+function label(ctx, text, x, y, align, baseline) {
+  ctx.font = "13px system-ui, sans-serif";
+  ctx.lineWidth = 3;
+  ctx.strokeStyle = "rgba(0, 0, 0, 0.75)";
+  ctx.fillStyle = "#fff";
+  ctx.textAlign = align;
+  ctx.textBaseline = baseline;
+  ctx.strokeText(text, x, y);
+  ctx.fillText(text, x, y);
+}
+
+/** Ticks at multiples of a round step, about five per axis. */
+function ticks(lo, hi) {
+  const span = hi - lo;
+  const step = [0.5, 1, 2, 5, 10].find((s) => span / s <= 10) ?? 20;
+  const out = [];
+  for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9; v += step) out.push(+v.toFixed(6));
+  return out;
 }
 
 function drawAxes(ctx, frame, color) {
-  const half = frame.half;
-  const step = half <= 6 ? 1 : half <= 12 ? 2 : 5;
   ctx.strokeStyle = color;
   ctx.fillStyle = color;
   ctx.lineWidth = 1;
   ctx.font = "11px system-ui, sans-serif";
   ctx.strokeRect(frame.left - 0.5, frame.top - 0.5, frame.width + 1, frame.height + 1);
+  const xs = ticks(frame.x0, frame.x1);
+  const ys = ticks(frame.y0, frame.y1);
   ctx.beginPath();
-  for (let v = -Math.floor(half / step) * step; v <= half + 1e-9; v += step) {
-    const x = frame.px(v);
-    const y = frame.py(v);
-    ctx.moveTo(x, frame.top + frame.height);
-    ctx.lineTo(x, frame.top + frame.height + 4);
-    ctx.moveTo(frame.left, y);
-    ctx.lineTo(frame.left - 4, y);
+  for (const v of xs) {
+    ctx.moveTo(frame.px(v), frame.top + frame.height);
+    ctx.lineTo(frame.px(v), frame.top + frame.height + 4);
+  }
+  for (const v of ys) {
+    ctx.moveTo(frame.left, frame.py(v));
+    ctx.lineTo(frame.left - 4, frame.py(v));
   }
   ctx.stroke();
   ctx.textAlign = "center";
   ctx.textBaseline = "top";
-  for (let v = -Math.floor(half / step) * step; v <= half + 1e-9; v += step) {
-    ctx.fillText(String(v), frame.px(v), frame.top + frame.height + 6);
-  }
+  for (const v of xs) ctx.fillText(String(v), frame.px(v), frame.top + frame.height + 6);
   ctx.textAlign = "right";
   ctx.textBaseline = "middle";
-  for (let v = -Math.floor(half / step) * step; v <= half + 1e-9; v += step) {
-    ctx.fillText(String(v), frame.left - 6, frame.py(v));
-  }
-  // Axis names inside the plot, outlined so they read on any colour.
-  ctx.font = "13px system-ui, sans-serif";
-  ctx.lineWidth = 3;
-  ctx.strokeStyle = "rgba(0, 0, 0, 0.75)";
-  ctx.fillStyle = "#fff";
-  ctx.textAlign = "right";
-  ctx.textBaseline = "bottom";
-  ctx.strokeText("x₁", frame.left + frame.width - 4, frame.top + frame.height - 3);
-  ctx.fillText("x₁", frame.left + frame.width - 4, frame.top + frame.height - 3);
-  ctx.textAlign = "left";
-  ctx.textBaseline = "top";
-  ctx.strokeText("x₂", frame.left + 5, frame.top + 4);
-  ctx.fillText("x₂", frame.left + 5, frame.top + 4);
+  for (const v of ys) ctx.fillText(String(v), frame.left - 6, frame.py(v));
+  label(ctx, "x₁", frame.left + frame.width - 4, frame.top + frame.height - 3, "right", "bottom");
+  label(ctx, "x₂", frame.left + 5, frame.top + 4, "left", "top");
 }
 
 /**
- * Trails (oldest faintest), then the chains, then the running best.
- * `trails` is a TrailBuffer; `best` is [x0, x1] or null.
+ * For each run: its trails (oldest faintest; consecutive trail points are
+ * TRAIL_STRIDE steps apart, so a trail is the chain's path), its chains,
+ * and its running best, circled. `runs` is [{ trails, x, n, best: [x0, x1], colour }].
  */
-export function drawChains(canvas, frame, dpr, trails, positions, n, best) {
+export function drawChains(canvas, frame, dpr, runs) {
   const ctx = canvas.getContext("2d");
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.clearRect(0, 0, frame.size, frame.size);
@@ -176,77 +238,55 @@ export function drawChains(canvas, frame, dpr, trails, positions, n, best) {
   ctx.beginPath();
   ctx.rect(frame.left, frame.top, frame.width, frame.height);
   ctx.clip();
-
-  ctx.strokeStyle = "#ffffff";
-  ctx.lineWidth = 1;
-  const ages = trails.count - 1;
-  for (let age = ages; age >= 1; age--) {
-    // Segment from snapshot `age` (older) to `age - 1` (newer).
-    const older = trails.snapshot(age);
-    const newer = trails.snapshot(age - 1);
-    ctx.globalAlpha = 0.55 * (1 - (age - 1) / ages);
+  for (const run of runs) {
+    const { trails, n } = run;
+    ctx.strokeStyle = run.colour;
+    ctx.lineWidth = 1;
+    const ages = trails.count - 1;
+    for (let age = ages; age >= 1; age--) {
+      const older = trails.snapshot(age);
+      const newer = trails.snapshot(age - 1);
+      ctx.globalAlpha = 0.5 * (1 - (age - 1) / ages);
+      ctx.beginPath();
+      for (let c = 0; c < n; c++) {
+        const ax = older[2 * c];
+        const bx = newer[2 * c];
+        if (!(Number.isFinite(ax) && Number.isFinite(bx))) continue;
+        ctx.moveTo(frame.px(ax), frame.py(older[2 * c + 1]));
+        ctx.lineTo(frame.px(bx), frame.py(newer[2 * c + 1]));
+      }
+      ctx.stroke();
+    }
+    ctx.globalAlpha = 1;
+    ctx.fillStyle = run.colour;
+    ctx.strokeStyle = "rgba(0, 0, 0, 0.5)";
+    ctx.lineWidth = 0.75;
     ctx.beginPath();
     for (let c = 0; c < n; c++) {
-      const ax = older[2 * c];
-      const bx = newer[2 * c];
-      if (!(Number.isFinite(ax) && Number.isFinite(bx))) continue;
-      ctx.moveTo(frame.px(ax), frame.py(older[2 * c + 1]));
-      ctx.lineTo(frame.px(bx), frame.py(newer[2 * c + 1]));
+      const x = run.x[2 * c];
+      const y = run.x[2 * c + 1];
+      if (!(Number.isFinite(x) && Number.isFinite(y))) continue;
+      const px = frame.px(x);
+      const py = frame.py(y);
+      ctx.moveTo(px + 2.5, py);
+      ctx.arc(px, py, 2.5, 0, 2 * Math.PI);
     }
+    ctx.fill();
     ctx.stroke();
   }
-  ctx.globalAlpha = 1;
-
-  ctx.fillStyle = "#ffffff";
-  ctx.strokeStyle = "rgba(0, 0, 0, 0.45)";
-  ctx.lineWidth = 0.75;
-  ctx.beginPath();
-  for (let c = 0; c < n; c++) {
-    const x = positions[2 * c];
-    const y = positions[2 * c + 1];
-    if (!(Number.isFinite(x) && Number.isFinite(y))) continue;
-    const px = frame.px(x);
-    const py = frame.py(y);
-    ctx.moveTo(px + 2.5, py);
-    ctx.arc(px, py, 2.5, 0, 2 * Math.PI);
-  }
-  ctx.fill();
-  ctx.stroke();
-
-  if (best) {
-    const px = frame.px(best[0]);
-    const py = frame.py(best[1]);
-    ctx.lineWidth = 2.5;
-    ctx.strokeStyle = "#000";
-    ctx.beginPath();
-    ctx.arc(px, py, 8, 0, 2 * Math.PI);
-    ctx.stroke();
-    ctx.lineWidth = 1.5;
-    ctx.strokeStyle = "#ff5a36";
-    ctx.beginPath();
-    ctx.arc(px, py, 8, 0, 2 * Math.PI);
-    ctx.stroke();
+  for (const run of runs) {
+    const px = frame.px(run.best[0]);
+    const py = frame.py(run.best[1]);
+    for (const [colour, width] of [
+      ["#000", 3],
+      [runs.length > 1 ? run.colour : "#ff5a36", 1.6],
+    ]) {
+      ctx.lineWidth = width;
+      ctx.strokeStyle = colour;
+      ctx.beginPath();
+      ctx.arc(px, py, 8, 0, 2 * Math.PI);
+      ctx.stroke();
+    }
   }
   ctx.restore();
-}
-
-/** The last `length` snapshots of every chain's position, in fixed memory. */
-export class TrailBuffer {
-  constructor(length, chains) {
-    this.length = length;
-    this.stride = 2 * chains;
-    this.data = new Float32Array(length * this.stride);
-    this.head = 0;
-    this.count = 0;
-  }
-  push(positions) {
-    this.head = (this.head + 1) % this.length;
-    this.data.set(positions, this.head * this.stride);
-    this.count = Math.min(this.count + 1, this.length);
-  }
-  /** Snapshot `age` frames ago (0 = newest). */
-  snapshot(age) {
-    const slot = (this.head - age + this.length) % this.length;
-    return this.data.subarray(slot * this.stride, (slot + 1) * this.stride);
-  }
 }

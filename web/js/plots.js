@@ -1,5 +1,6 @@
-// Line plots of a run's history against the iteration: running best U on a
-// log scale, and the empirical probability of being within eps of U*.
+// Plots of a run's history against the iteration (running best U − U* on
+// a log scale, drawn as the staircase it is; the empirical probability),
+// and the marginal histograms of the chains against the exact marginals.
 
 const PAD = { left: 46, right: 10, top: 8, bottom: 22 };
 
@@ -18,10 +19,24 @@ export function fitCanvas(canvas) {
 }
 
 /**
- * Draws y against x (typed arrays, first `count` entries).
- * options: { log: bool, yMin, yMax (linear only), color, yTicks (linear only) }
+ * The polyline of a series: with `stairs`, a value holds until the next
+ * point, where the line drops vertically (the running best only ever steps
+ * down; a slope would show values never reached). Returns [x0, y0, x1, y1, ...].
  */
-export function drawLinePlot(canvas, xs, ys, count, options) {
+export function seriesPoints(xs, ys, count, stairs) {
+  const out = [];
+  for (let i = 0; i < count; i++) {
+    if (stairs && i > 0) out.push(xs[i], ys[i - 1]);
+    out.push(xs[i], ys[i]);
+  }
+  return out;
+}
+
+/**
+ * Draws series against the iteration. `series`: [{ xs, ys, count, color,
+ * stairs }]; options: { log, yMin, yMax, yTicks (linear only) }.
+ */
+export function drawLinePlot(canvas, series, options) {
   const [w, h] = fitCanvas(canvas);
   const ctx = canvas.getContext("2d");
   const style = getComputedStyle(canvas);
@@ -30,18 +45,23 @@ export function drawLinePlot(canvas, xs, ys, count, options) {
   const top = PAD.top;
   const pw = w - PAD.left - PAD.right;
   const ph = h - PAD.top - PAD.bottom;
-
-  const xMax = Math.max(1, count > 0 ? xs[count - 1] : 1);
+  let xMax = 1;
+  for (const s of series) if (s.count > 0) xMax = Math.max(xMax, s.xs[s.count - 1]);
   let yLo;
   let yHi;
   let map;
+  const floor = 1e-12;
   if (options.log) {
     let lo = Infinity;
     let hi = -Infinity;
-    for (let i = 0; i < count; i++) {
-      const v = Math.max(ys[i], 1e-12);
-      lo = Math.min(lo, v);
-      hi = Math.max(hi, v);
+    for (const s of series) {
+      for (let i = 0; i < s.count; i++) {
+        const v = Math.max(s.ys[i], floor);
+        if (Number.isFinite(v)) {
+          lo = Math.min(lo, v);
+          hi = Math.max(hi, v);
+        }
+      }
     }
     if (!Number.isFinite(lo)) {
       lo = 1e-3;
@@ -49,7 +69,7 @@ export function drawLinePlot(canvas, xs, ys, count, options) {
     }
     yLo = Math.floor(Math.log10(lo));
     yHi = Math.max(yLo + 1, Math.ceil(Math.log10(hi)));
-    map = (v) => top + ph * (1 - (Math.log10(Math.max(v, 1e-12)) - yLo) / (yHi - yLo));
+    map = (v) => top + ph * (1 - (Math.log10(Math.max(v, floor)) - yLo) / (yHi - yLo));
   } else {
     yLo = options.yMin;
     yHi = options.yMax;
@@ -57,7 +77,6 @@ export function drawLinePlot(canvas, xs, ys, count, options) {
   }
   const mapX = (v) => left + (pw * v) / xMax;
 
-  // Grid and ticks.
   ctx.strokeStyle = style.getPropertyValue("--grid") || "#333";
   ctx.fillStyle = style.color;
   ctx.font = "11px system-ui, sans-serif";
@@ -88,17 +107,116 @@ export function drawLinePlot(canvas, xs, ys, count, options) {
   ctx.strokeStyle = style.color;
   ctx.strokeRect(left - 0.5, top - 0.5, pw + 1, ph + 1);
 
-  // The series.
-  ctx.strokeStyle = options.color;
-  ctx.lineWidth = 1.5;
+  for (const s of series) {
+    const p = seriesPoints(s.xs, s.ys, s.count, s.stairs);
+    ctx.strokeStyle = s.color;
+    ctx.lineWidth = 1.5;
+    ctx.beginPath();
+    for (let i = 0; i < p.length; i += 2) {
+      if (i === 0) ctx.moveTo(mapX(p[i]), map(p[i + 1]));
+      else ctx.lineTo(mapX(p[i]), map(p[i + 1]));
+    }
+    ctx.stroke();
+  }
+}
+
+/**
+ * A histogram of `values` (positions, every `step`-th entry from `offset`)
+ * over [lo, hi] in `bins` bins, as a density against the exact one.
+ * Only chains inside the view box count (`inside(c)`), the exact marginal
+ * being of the density restricted to the same box. Returns the counts.
+ */
+export function histogram(values, offset, n, inside, lo, hi, bins) {
+  const counts = new Float64Array(bins);
+  for (let c = 0; c < n; c++) {
+    if (!inside(c)) continue;
+    const v = values[2 * c + offset];
+    const b = Math.min(bins - 1, Math.floor(((v - lo) / (hi - lo)) * bins));
+    counts[b]++;
+  }
+  return counts;
+}
+
+/**
+ * Bars: each histogram (counts, colour) scaled to a density; the exact
+ * marginal (values at `exact.length` evenly spaced points over [lo, hi])
+ * as a line.
+ */
+export function drawHistogram(canvas, lo, hi, hists, exact) {
+  const [w, h] = fitCanvas(canvas);
+  const ctx = canvas.getContext("2d");
+  const style = getComputedStyle(canvas);
+  ctx.clearRect(0, 0, w, h);
+  const left = 10;
+  const top = PAD.top;
+  const pw = w - 20;
+  const ph = h - PAD.top - PAD.bottom;
+  const densities = hists.map(({ counts }) => {
+    const total = counts.reduce((s, v) => s + v, 0);
+    const width = (hi - lo) / counts.length;
+    return counts.map((v) => (total > 0 ? v / (total * width) : 0));
+  });
+  let yMax = 0;
+  for (const v of exact) yMax = Math.max(yMax, v);
+  for (const d of densities) for (const v of d) yMax = Math.max(yMax, v);
+  yMax = yMax > 0 ? yMax * 1.08 : 1;
+  const mapX = (v) => left + ((v - lo) / (hi - lo)) * pw;
+  const mapY = (v) => top + ph * (1 - v / yMax);
+  densities.forEach((d, k) => {
+    ctx.fillStyle = hists[k].colour;
+    ctx.globalAlpha = hists.length > 1 ? 0.35 : 0.55;
+    const width = pw / d.length;
+    for (let b = 0; b < d.length; b++) {
+      if (d[b] > 0) ctx.fillRect(left + b * width + 0.5, mapY(d[b]), width - 1, top + ph - mapY(d[b]));
+    }
+  });
+  ctx.globalAlpha = 1;
+  ctx.strokeStyle = "#ffb000";
+  ctx.lineWidth = 2;
   ctx.beginPath();
-  for (let i = 0; i < count; i++) {
-    const x = mapX(xs[i]);
-    const y = map(ys[i]);
-    if (i === 0) ctx.moveTo(x, y);
-    else ctx.lineTo(x, y);
+  for (let i = 0; i < exact.length; i++) {
+    const x = mapX(lo + ((i + 0.5) / exact.length) * (hi - lo));
+    if (i === 0) ctx.moveTo(x, mapY(exact[i]));
+    else ctx.lineTo(x, mapY(exact[i]));
   }
   ctx.stroke();
+  ctx.strokeStyle = style.color;
+  ctx.lineWidth = 1;
+  ctx.strokeRect(left - 0.5, top - 0.5, pw + 1, ph + 1);
+  ctx.fillStyle = style.color;
+  ctx.font = "11px system-ui, sans-serif";
+  ctx.textBaseline = "top";
+  ctx.textAlign = "left";
+  ctx.fillText(String(+lo.toFixed(2)), left, top + ph + 5);
+  ctx.textAlign = "right";
+  ctx.fillText(String(+hi.toFixed(2)), left + pw, top + ph + 5);
+}
+
+/**
+ * The exact marginals of exp(-a U) restricted to the view, from U on an
+ * nx x ny grid of cell centres (rows from the top): each a density over
+ * its axis (sum * cell width = 1), by the midpoint rule. Returns { x, y }
+ * with x from left to right and y from bottom to top.
+ */
+export function exactMarginals(grid, nx, ny, a, width, height) {
+  let lo = Infinity;
+  for (const u of grid) if (u < lo) lo = u;
+  const mx = new Float64Array(nx);
+  const my = new Float64Array(ny);
+  for (let j = 0; j < ny; j++) {
+    for (let i = 0; i < nx; i++) {
+      // Relative to the lowest value: no underflow of the whole density.
+      const p = Math.exp(-a * (grid[j * nx + i] - lo));
+      mx[i] += p;
+      my[ny - 1 - j] += p;
+    }
+  }
+  const dx = width / nx;
+  const dy = height / ny;
+  const total = mx.reduce((s, v) => s + v, 0) * dx * dy;
+  for (let i = 0; i < nx; i++) mx[i] *= dy / total;
+  for (let j = 0; j < ny; j++) my[j] *= dx / total;
+  return { x: mx, y: my };
 }
 
 function niceStep(raw) {

@@ -1,8 +1,18 @@
 // One run of the wasm optimiser as the page sees it: typed-array views into
-// wasm memory, fading trails, and a bounded history for the plots.
+// wasm memory, trails that follow the chains' paths, and a bounded history
+// for the plots. Imported dynamically by main.js, so that a missing
+// web/pkg/ is reported on the page rather than leaving it blank.
 
-import init, { Optimizer, Summary, max_chains, random_seed, wasm_memory } from "../pkg/hrla_wasm.js";
-import { TrailBuffer } from "./landscape.js";
+import init, {
+  Optimizer,
+  Summary,
+  global_minimum,
+  max_chains,
+  potential_grid,
+  potential_names,
+  random_seed,
+  wasm_memory,
+} from "../pkg/hrla_wasm.js";
 
 export { Summary };
 
@@ -12,25 +22,40 @@ export const loadKernel = () => init();
 export const maxChains = () => max_chains();
 /** A seed from the browser's crypto, as a BigInt. */
 export const randomSeed = () => random_seed();
+/** The landscapes' names, in the kernel's order. */
+export const potentialNames = () => potential_names();
+/** The landscape's U* (the kernel's). */
+export const globalMinimum = (name) => global_minimum(name);
+/** The kernel's U on a grid (see the wrapper's potential_grid). */
+export const potentialGrid = (name, x0, x1, y0, y1, nx, ny) => potential_grid(name, x0, x1, y0, y1, nx, ny);
 
 /** Points kept per plotted series; the history is halved when full. */
 const HISTORY = 1024;
+/** Steps between two trail points: short enough to follow the path. */
+export const TRAIL_STRIDE = 2;
+/** Trail points kept per chain. */
+export const TRAIL_POINTS = 40;
 
 /**
  * The chains are read as `groups = floor(N / n)` independent runs of `n`
  * chains each (the paper's M runs of N = 10 chains), so that the fraction of
- * groups whose current best chain has U <= eps estimates the paper's
- * empirical probability. Leftover chains (N mod n) are not in any group.
+ * groups whose current best chain has U - U* <= eps estimates the paper's
+ * empirical probability. Leftover chains (N mod n) are not in any group; a
+ * group size above N is taken as N (one group).
  */
 export class Run {
-  constructor(settings, groupSize, trailLength) {
-    // Throws an Error with the kernel's message when a setting is refused.
+  constructor(settings, groupSize) {
+    // Throws an Error with the kernel's message (and `field`) when a
+    // setting is refused.
     this.opt = new Optimizer(settings);
+    this.sampler = settings.sampler;
     this.n = this.opt.chains();
     this.seed = this.opt.seed();
-    this.groupSize = groupSize;
-    this.groups = Math.floor(this.n / groupSize);
-    this.trails = new TrailBuffer(trailLength, this.n);
+    this.groupSize = Math.min(groupSize, this.n);
+    this.groups = Math.floor(this.n / this.groupSize);
+    this.trails = new TrailBuffer(TRAIL_POINTS, this.n);
+    this.sinceTrail = 0;
+    this.failure = null;
     this.iters = new Float64Array(HISTORY);
     this.best = new Float64Array(HISTORY);
     this.groupBest = new Float64Array(HISTORY * Math.max(1, this.groups));
@@ -38,7 +63,8 @@ export class Run {
     this.every = 1;
     this.snapshots = 0;
     this.bind();
-    this.trails.push(this.x);
+    this.minimum = this.s[Summary.Minimum];
+    this.trails.push(this.x, this.iteration);
     this.record();
   }
 
@@ -51,24 +77,60 @@ export class Run {
     this.s = new Float64Array(buffer, this.opt.summary_ptr(), Summary.Len);
   }
 
+  /** Whether the run can go on: not failed, not stopped by a rule. */
+  get live() {
+    return !this.failure && this.s[Summary.Termination] === 0;
+  }
+
+  /** Why a stopping rule ended the run, or undefined. */
+  get termination() {
+    return this.opt.termination();
+  }
+
   /**
-   * `steps` more steps of every live chain. Throws the kernel's Error once
-   * every chain has diverged (and on every later call), or on a refused
-   * temperature; the state reached is recorded first, so what the page
-   * draws is where the run stopped.
+   * `steps` more steps of every live chain. Trail points are taken every
+   * TRAIL_STRIDE steps over the last TRAIL_POINTS of them; steps before
+   * that window go in one call, and the trail restarts after them, so a
+   * trail never joins two points further apart than the stride. On the
+   * kernel's error (every chain diverged, a refused temperature) the run
+   * keeps the state reached, records the error in `failure` and throws it.
    */
   advance(steps) {
-    let failure = null;
+    if (!this.live) return;
+    const window = TRAIL_POINTS * TRAIL_STRIDE;
     try {
-      this.opt.advance(steps);
+      if (steps > window + TRAIL_STRIDE) {
+        const bulk = steps - window;
+        this.opt.advance(bulk);
+        steps -= bulk;
+        this.rebind();
+        this.trails.clear();
+        this.trails.push(this.x, this.iteration);
+        this.sinceTrail = 0;
+      }
+      while (steps > 0) {
+        const k = Math.min(steps, TRAIL_STRIDE - this.sinceTrail);
+        this.opt.advance(k);
+        steps -= k;
+        this.sinceTrail += k;
+        if (this.sinceTrail === TRAIL_STRIDE) {
+          this.rebind();
+          this.trails.push(this.x, this.iteration);
+          this.sinceTrail = 0;
+        }
+        if (!this.live) break;
+      }
     } catch (e) {
-      failure = e;
+      this.failure = e;
     }
-    // A grown memory detaches the old buffer: its views read as empty.
-    if (this.s.length === 0) this.bind();
-    this.trails.push(this.x);
+    this.rebind();
     this.record();
-    if (failure) throw failure;
+    if (this.failure) throw this.failure;
+  }
+
+  /** A grown memory detaches the old buffer: its views read as empty. */
+  rebind() {
+    if (this.s.length === 0) this.bind();
   }
 
   get iteration() {
@@ -79,19 +141,42 @@ export class Run {
     this.opt.free();
   }
 
-  /** Fraction of groups whose current best chain has U <= eps, at history point i. */
+  /** Fraction of groups whose current best chain has U - U* <= eps, at history point i. */
   fractionWithin(eps, i = this.count - 1) {
     if (this.groups === 0 || i < 0) return NaN;
+    return this.groupsWithin(eps, i) / this.groups;
+  }
+
+  /** How many groups have their best chain within eps of U*, at history point i. */
+  groupsWithin(eps, i = this.count - 1) {
     let hit = 0;
     const row = this.groupBest.subarray(i * this.groups, (i + 1) * this.groups);
-    for (const v of row) if (v <= eps) hit++;
-    return hit / this.groups;
+    for (const v of row) if (v - this.minimum <= eps) hit++;
+    return hit;
   }
 
   /** The whole probability series at eps, in `out` (length >= count). */
   probabilitySeries(eps, out) {
     for (let i = 0; i < this.count; i++) out[i] = this.fractionWithin(eps, i);
     return out;
+  }
+
+  /** Chains with a finite position outside the box [x0, x1] x [y0, y1]. */
+  outside(x0, x1, y0, y1) {
+    let n = 0;
+    for (let c = 0; c < this.n; c++) {
+      const x = this.x[2 * c];
+      const y = this.x[2 * c + 1];
+      if (Number.isFinite(x) && Number.isFinite(y) && !(x >= x0 && x <= x1 && y >= y0 && y <= y1)) n++;
+    }
+    return n;
+  }
+
+  /** The largest |x_i| of a live chain. */
+  reach() {
+    let r = 0;
+    for (const v of this.x) if (Number.isFinite(v)) r = Math.max(r, Math.abs(v));
+    return r;
   }
 
   record() {
@@ -119,5 +204,38 @@ export class Run {
       }
       this.groupBest[i * this.groups + g] = m;
     }
+  }
+}
+
+/** The last `length` trail points of every chain, with their iterations, in fixed memory. */
+export class TrailBuffer {
+  constructor(length, chains) {
+    this.length = length;
+    this.stride = 2 * chains;
+    this.data = new Float32Array(length * this.stride);
+    this.iterations = new Float64Array(length);
+    this.head = 0;
+    this.count = 0;
+  }
+  clear() {
+    this.count = 0;
+  }
+  push(positions, iteration) {
+    this.head = (this.head + 1) % this.length;
+    this.data.set(positions, this.head * this.stride);
+    this.iterations[this.head] = iteration;
+    this.count = Math.min(this.count + 1, this.length);
+  }
+  slot(age) {
+    return (this.head - age + this.length) % this.length;
+  }
+  /** Trail point `age` points ago (0 = newest). */
+  snapshot(age) {
+    const slot = this.slot(age);
+    return this.data.subarray(slot * this.stride, (slot + 1) * this.stride);
+  }
+  /** The iteration of trail point `age`. */
+  iteration(age) {
+    return this.iterations[this.slot(age)];
   }
 }

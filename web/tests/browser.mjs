@@ -10,6 +10,8 @@ import { chromium } from "playwright-core";
 export const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), "..", "..");
 /** Where test artefacts (screenshots, traces) go: $HRLA_WEB_OUT or target/web-tests. */
 export const OUT = process.env.HRLA_WEB_OUT ?? join(ROOT, "target", "web-tests");
+/** Where the screenshots go: $HRLA_WEB_SHOTS or target/web-screenshots. */
+export const SHOTS = process.env.HRLA_WEB_SHOTS ?? join(ROOT, "target", "web-screenshots");
 
 const FLAGS = [
   "--headless",

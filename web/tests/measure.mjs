@@ -1,6 +1,8 @@
-// Measures the demo page's speed in headless Chromium: frames per second and
-// chain-steps per second, as the page's own meters show them, for 256 chains
-// at several steps per frame. A measurement for the README, not a test.
+// Measures the demo page's speed in headless Chromium: frames per second
+// and steps per second, as the page's own meters show them, at the
+// defaults, at 1024 chains (also with 100 000 steps asked per frame, which
+// the frame's time budget cuts), and in compare mode. A measurement for the
+// README, not a test.
 //
 //   node web/tests/measure.mjs        (after scripts/serve.sh or test-web.sh built web/pkg)
 import { join } from "node:path";
@@ -13,25 +15,45 @@ const browser = await launch();
 const page = browser.context.pages()[0] ?? (await browser.context.newPage());
 const read = async (id) => Number(await page.getAttribute(`#${id}`, "data-value"));
 
-console.log("sampler  chains  steps/frame  frames/s  chain-steps/s");
-for (const sampler of ["hrla", "ola"]) {
-  for (const spf of [100, 200, 400]) {
-    await page.goto(`${base}?sampler=${sampler}&chains=256&spf=${spf}`);
-    await page.waitForSelector("body[data-ready=true]");
-    // Warm up, then average the page's one-second meters over 5 seconds.
-    await page.waitForTimeout(2000);
-    let fps = 0;
-    let rate = 0;
-    for (let i = 0; i < 5; i++) {
-      await page.waitForTimeout(1000);
-      fps += (await read("out-fps")) / 5;
-      rate += (await read("out-chain-rate")) / 5;
-    }
-    console.log(
-      `${sampler.padEnd(8)} ${"256".padStart(6)}  ${String(spf).padStart(11)}  ${fps.toFixed(1).padStart(8)}  ${(rate / 1e6).toFixed(2).padStart(11)}M`,
-    );
+const CASES = [
+  ["defaults (HRLA, 256 chains, 2 steps/frame)", ""],
+  ["256 chains, 100 steps/frame", "?spf=100"],
+  ["1024 chains, 2 steps/frame", "?chains=1024"],
+  ["1024 chains, 100 steps/frame", "?chains=1024&spf=100"],
+  ["1024 chains, 100000 steps/frame (time budget)", "?chains=1024&spf=100000"],
+  ["compare mode, 256 chains x 3, 100 steps/frame", "?compare=1&spf=100"],
+  ["density shown, annealing 0.1 -> 4 over 10000", "?show=density&schedule=linear&spf=100"],
+];
+console.log("case | frames/s | steps/s | chain-steps/s");
+for (const [name, query] of CASES) {
+  await page.goto(base + query);
+  await page.waitForSelector("body[data-ready=true]");
+  // Warm up, then average the page's one-second meters over 5 seconds.
+  await page.waitForTimeout(2000);
+  let fps = 0;
+  let rate = 0;
+  for (let i = 0; i < 5; i++) {
+    await page.waitForTimeout(1000);
+    fps += (await read("out-fps")) / 5;
+    rate += (await read("out-rate")) / 5;
   }
+  const chains = await page.evaluate(() => window.hrlaDemo.state.runs.reduce((s, r) => s + r.n, 0));
+  console.log(`${name} | ${fps.toFixed(1)} | ${Math.round(rate)} | ${((rate * chains) / 1e6).toFixed(2)}M`);
 }
+// How long a click on Pause waits at the heaviest setting: the time from
+// the click until the next frame has been drawn.
+await page.goto(`${base}?chains=1024&spf=100000`);
+await page.waitForSelector("body[data-ready=true]");
+await page.waitForTimeout(2000);
+const pauseMs = await page.evaluate(
+  () =>
+    new Promise((done) => {
+      const t0 = performance.now();
+      document.getElementById("play").click();
+      requestAnimationFrame(() => done(performance.now() - t0));
+    }),
+);
+console.log(`pause at 1024 chains, 100000 steps/frame: next frame ${pauseMs.toFixed(1)} ms after the click`);
 // The wasm kernel alone, without drawing: one long advance() per sampler.
 for (const sampler of ["hrla", "ula", "ola"]) {
   const rate = await page.evaluate(async (sampler) => {
@@ -44,7 +66,7 @@ for (const sampler of ["hrla", "ula", "ola"]) {
     opt.free();
     return (256 * 20_000) / dt;
   }, sampler);
-  console.log(`${sampler} kernel alone, 256 chains x 20000 steps: ${(rate / 1e6).toFixed(2)}M chain-steps/s`);
+  console.log(`${sampler} kernel alone, Rastrigin, 256 chains x 20000 steps: ${(rate / 1e6).toFixed(2)}M chain-steps/s`);
 }
 await browser.close();
 server.close();

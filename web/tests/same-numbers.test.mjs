@@ -24,12 +24,15 @@ function hex(v) {
 
 /** One line of trace-cases.txt as the wrapper's settings object. */
 function parseCase(line) {
-  const [name, sampler, a, h, chains, cx, cy, spread, seed, steps] = line.split(/\s+/);
+  const [name, potential, sampler, a, h, chains, cx, cy, spread, seed, stop, steps] = line.split(/\s+/);
   const t = a.split(":").map(Number);
+  // `-`, a step budget `N`, a target `@T`, or both `N@T`.
+  const [k, target] = stop === "-" ? ["", undefined] : stop.split("@");
   return {
     name,
     steps: Number(steps),
     settings: {
+      potential,
       sampler,
       a: t[0],
       annealing: t.length === 3 ? { aLow: t[0], aHigh: t[1], steps: t[2] } : null,
@@ -38,6 +41,8 @@ function parseCase(line) {
       centre: [Number(cx), Number(cy)],
       spread: Number(spread),
       seed: BigInt(seed),
+      stopSteps: k === "" ? null : Number(k),
+      stopTarget: target === undefined ? null : Number(target),
     },
   };
 }
@@ -52,7 +57,7 @@ function trace(name, opt) {
   const u = new Float64Array(mem, opt.values_ptr(), n);
   const S = wasm.Summary;
   const lines = [
-    `${name} iteration ${s[S.Iteration]}`,
+    `${name} iteration ${s[S.Iteration]} stopped ${s[S.Termination]}`,
     `${name} best ${hex(s[S.BestValue])} ${hex(s[S.BestX0])} ${hex(s[S.BestX1])} at ${s[S.BestIteration]}`,
   ];
   for (let c = 0; c < n; c++) {
@@ -69,7 +74,10 @@ test("wasm in Node and native give bit-identical runs", () => {
     .map((l) => l.trim())
     .filter((l) => l && !l.startsWith("#"))
     .map(parseCase);
-  assert.ok(cases.length >= 3);
+  assert.ok(cases.length >= 10);
+  // Every landscape and both stopping rules are covered.
+  assert.deepEqual([...new Set(cases.map((c) => c.settings.potential))].sort(), [...wasm.potential_names()].sort());
+  assert.ok(cases.some((c) => c.settings.stopSteps !== null) && cases.some((c) => c.settings.stopTarget !== null));
   const native = readFileSync(join(OUT, "native-trace.txt"), "utf8").trimEnd().split("\n");
   const ours = [];
   for (const { name, steps, settings } of cases) {
@@ -108,6 +116,20 @@ test("bad settings throw an Error with the kernel's message, and the module stil
       return true;
     });
   refuse({ h: -1 }, "`h` must be finite and > 0, got -1");
+  refuse({ potential: "sphere" }, /`potential` must be one of rastrigin, ackley/);
+  refuse({ stopSteps: 0 }, "`step budget` must be at least 1, got 0");
+  refuse({ stopSteps: 2.5 }, "`stopSteps` must be a whole number >= 0");
+  refuse({ stopTarget: NaN }, "`target` must be finite, got NaN");
+  // The setting at fault, for the page to mark its field.
+  for (const [patch, field] of [
+    [{ h: -1 }, "h"],
+    [{ chains: 0 }, "chains"],
+    [{ spread: -1 }, "std_dev"],
+    [{ annealing: { aLow: -1, aHigh: 4, steps: 10 } }, "a_low"],
+    [{ potential: "sphere" }, "potential"],
+  ]) {
+    assert.throws(() => new wasm.Optimizer({ ...ok, ...patch }), (e) => e.field === field);
+  }
   refuse({ h: NaN }, "`h` must be finite and > 0, got NaN");
   refuse({ sampler: "ola", h: 0 }, "`h` must be finite and > 0, got 0");
   refuse({ chains: 5000 }, `\`chains\` must be between 1 and ${wasm.max_chains()}, got 5000`);
