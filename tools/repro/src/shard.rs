@@ -1,6 +1,6 @@
 //! A shard's runs on disk, and their merge: how a protocol runs as many
 //! processes (a SLURM job array, `tools/repro/slurm/`), one
-//! [`Shard`](crate::exec::Shard) each, and becomes one result.
+//! [`Shard`] each, and becomes one result.
 //!
 //! `repro ID --shard i/n` writes `OUT/id/shard-i-of-n.txt` instead of the
 //! tables; `repro ID --merge` (with the same options) reads the `n` files,
