@@ -16,4 +16,4 @@ git show "$base:Cargo.toml" \
   | sed -e 's/^members = .*/members = ["core"]/' -e '/^exclude = /d' > target/ab-base/Cargo.toml
 sed -i 's/^name = "hrla"$/name = "hrla-base"/' target/ab-base/core/Cargo.toml
 cd bench/ab
-RUSTFLAGS="-C target-cpu=native" cargo run --quiet --release -- "${2:-60}"
+RUSTFLAGS="-C target-cpu=native" cargo run --quiet --release --target-dir ../../target/ab -- "${2:-60}"
