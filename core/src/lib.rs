@@ -147,7 +147,8 @@
 //!
 //! - **Vector lanes.** On targets with float vectors, the optimiser steps
 //!   groups of [`LANES`] live chains whose generator is the default
-//!   `Xoshiro256PlusPlus` in lockstep: their generators advance in one
+//!   `Xoshiro256PlusPlus` in lockstep where that measured faster (`f32`
+//!   always; `f64` from `D = 16` in AVX-512 builds, `D = 8` in others): their generators advance in one
 //!   vector per state word ([`Xoshiro256Lanes`]), the Ziggurat's fast path
 //!   runs in all lanes at once, and a lane the fast path rejects finishes
 //!   from its own stream. Each chain draws exactly the words it draws

@@ -7,8 +7,10 @@
 //! sweeps associatively, so one step gives the same bits however the
 //! chains are cut into parts and wherever the parts run.
 //!
-//! Where the target has float vectors and the chains use the default
-//! generator, a sweep steps groups of [`LANES`] live chains in lockstep
+//! Where the target has float vectors, the chains use the default
+//! generator and the point is large enough to pay
+//! ([`LOCKSTEP_F64_FROM`] for `f64`), a sweep steps groups of [`LANES`]
+//! live chains in lockstep
 //! ([`Kernel::step_lanes`]); elsewhere chain after chain. Each chain draws
 //! the same words either way.
 
@@ -26,11 +28,17 @@ use crate::potential::Potential;
 use crate::sampler::{ChainState, Kernel};
 
 /// The smallest point size at which `f64` chains step in lockstep. Measured
-/// on 10-D Rastrigin with AVX-512 (interleaved A/B, `bench/ab`, time
-/// lockstep/serial): d = 2 1.05, d = 10 1.09-1.12, d = 32 0.88, d = 100
-/// 0.93-0.95; `f32` gains at every size measured (d = 10 0.82, d = 32
-/// 0.86). Bits are the same either way.
-const LOCKSTEP_F64_FROM: usize = 16;
+/// on 10-D Rastrigin (interleaved A/B, `bench/ab`, time in lockstep over
+/// time one by one): built for AVX2, d = 2 1.07, d = 10 0.94, d = 32 0.88,
+/// d = 100 0.93; built for AVX-512 on the same machine, d = 2 1.05, d = 10
+/// 1.09-1.13, d = 32 0.89, d = 100 0.91-0.95 (why AVX-512 code loses at
+/// d = 10 is not known). `f32` gains or breaks even everywhere measured.
+/// Bits are the same either way.
+const LOCKSTEP_F64_FROM: usize = if cfg!(target_feature = "avx512f") {
+    16
+} else {
+    8
+};
 
 /// Chains stepped before they are evaluated.
 const TILE: usize = 16 * LANES;
