@@ -40,9 +40,6 @@ const LOCKSTEP_F64_FROM: usize = if cfg!(target_feature = "avx512f") {
     8
 };
 
-/// Chains stepped before they are evaluated.
-const TILE: usize = 16 * LANES;
-
 /// What one step of some chains found.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Sweep<F> {
@@ -116,22 +113,17 @@ where
         0
     };
     let (groups, rest) = chains.split_at_mut(grouped);
-    // A tile's chains are all stepped before any is evaluated: a chain's
-    // new position, written lane by lane, has left the store buffer by the
-    // time the potential reads it back in vectors.
-    for (t, tile) in groups.chunks_mut(TILE).enumerate() {
-        for group in tile.chunks_exact_mut(LANES) {
-            let Ok(group) = <&mut [Chain<F, D, R>; LANES]>::try_from(group) else {
-                continue;
-            };
-            if group.iter().any(|c| c.diverged) || !step_lockstep(cx.kernel, group) {
-                for c in group.iter_mut().filter(|c| !c.diverged) {
-                    cx.kernel.step(&mut c.x, &mut c.y, &c.grad, &mut c.rng);
-                }
+    for (g, group) in groups.chunks_exact_mut(LANES).enumerate() {
+        let Ok(group) = <&mut [Chain<F, D, R>; LANES]>::try_from(group) else {
+            continue;
+        };
+        if group.iter().any(|c| c.diverged) || !step_lockstep(cx.kernel, group) {
+            for c in group.iter_mut().filter(|c| !c.diverged) {
+                cx.kernel.step(&mut c.x, &mut c.y, &c.grad, &mut c.rng);
             }
         }
-        let first = first + t * TILE;
-        for (i, c) in tile.iter_mut().enumerate() {
+        let first = first + g * LANES;
+        for (i, c) in group.iter_mut().enumerate() {
             if !c.diverged {
                 evaluate(cx, c, first + i, &mut found);
             }
