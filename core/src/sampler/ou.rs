@@ -349,7 +349,7 @@ impl<F: Float> OuKernel<F> {
         }
     }
 
-    /// Coordinates `start..start + B` (at most) of `L` chains: every
+    /// Coordinates `start..start + B` (at most) of [`LANES`] chains: every
     /// chain's normals in lockstep first, then each chain's update, which
     /// vectorises over its coordinates.
     #[inline]
@@ -360,6 +360,8 @@ impl<F: Float> OuKernel<F> {
         rng_out: &mut Xoshiro256Lanes,
     ) {
         let n = D.min(start + B) - start;
+        // A local copy: its address never escapes, so the generators stay
+        // in vector registers.
         let mut lanes = *rng_out;
         let mut z1 = [[F::ZERO; B]; LANES];
         let mut z2 = [[F::ZERO; B]; LANES];
