@@ -131,7 +131,7 @@ pub struct Optimizer {
     positions: Vec<f64>,
     /// `y` of chain `c` at `2c`, `2c + 1` (zero for OLA).
     velocities: Vec<f64>,
-    /// `U(x)` of each chain; non-finite once a chain diverged.
+    /// `U(x)` of each chain; NaN once a chain diverged.
     values: Vec<f64>,
     summary: [f64; Summary::Len as usize],
 }
@@ -230,7 +230,7 @@ impl Optimizer {
         &self.velocities
     }
 
-    /// `U(x)` per chain.
+    /// `U(x)` per chain; NaN for a diverged chain.
     pub fn values(&self) -> &[f64] {
         &self.values
     }
@@ -247,7 +247,14 @@ impl Optimizer {
         for (c, chain) in self.kernel.chains().iter().enumerate() {
             self.positions[2 * c..2 * c + 2].copy_from_slice(chain.x());
             self.velocities[2 * c..2 * c + 2].copy_from_slice(chain.y());
-            self.values[c] = chain.value();
+            // The kernel keeps a diverged chain's last value, finite when
+            // only the position or gradient overflowed; the buffer promises
+            // a non-finite value, so that no reader takes the chain for live.
+            self.values[c] = if chain.is_diverged() {
+                f64::NAN
+            } else {
+                chain.value()
+            };
         }
         let best = self.kernel.best();
         self.summary = [
@@ -333,7 +340,8 @@ impl Optimizer {
         self.velocities.as_ptr()
     }
 
-    /// Address of the per-chain values, `chains()` f64.
+    /// Address of the per-chain values, `chains()` f64: NaN for a chain
+    /// that diverged, finite for every other.
     pub fn values_ptr(&self) -> *const f64 {
         self.values.as_ptr()
     }
@@ -628,6 +636,40 @@ mod tests {
             }),
             Some("target")
         );
+    }
+
+    /// The kernel keeps a diverged chain's last value, which may be finite
+    /// (a finite `U` beside an overflowing gradient); the published value
+    /// is not, so that no diverged chain counts as near the minimum.
+    #[test]
+    fn a_diverged_chain_publishes_no_finite_value() {
+        // Levy with a step far too long: within 100 steps a chain diverges
+        // with a finite last value (found by search; the run is seeded).
+        let settings = Settings {
+            landscape: "levy".parse().unwrap(),
+            h: 1.0,
+            chains: 64,
+            ..Settings::default()
+        };
+        let mut opt = Optimizer::from_settings(&settings).unwrap();
+        let mut seen = false;
+        for _ in 0..100 {
+            opt.step_n(1).unwrap();
+            for (c, chain) in opt.kernel().chains().iter().enumerate() {
+                seen |= chain.is_diverged() && chain.value().is_finite();
+                assert_eq!(
+                    opt.values()[c].is_finite(),
+                    !chain.is_diverged(),
+                    "chain {c}"
+                );
+            }
+        }
+        assert!(
+            seen,
+            "no diverged chain with a finite value: the case tests nothing"
+        );
+        let live = opt.values().iter().filter(|u| u.is_finite()).count();
+        assert_eq!(live, 64 - opt.kernel().diverged_chains());
     }
 
     #[test]

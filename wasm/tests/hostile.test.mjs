@@ -204,3 +204,19 @@ test("an argument that is not a landscape's name is refused, not a trap", () => 
   assert.equal(wasm.global_minimum("rastrigin"), 0);
   assert.deepEqual(reference(), before);
 });
+
+test("a diverged chain's published value is never finite, even when the kernel's last U was", () => {
+  // Levy with a step far too long: chains diverge within 100 steps, some
+  // with a finite last U beside an overflowing gradient (seeded: the same
+  // chains every run). The page counts a chain with a finite value as live.
+  const opt = new wasm.Optimizer({ ...OK, potential: "levy", h: 1, chains: 64, spread: Math.sqrt(10) });
+  let diverged = 0;
+  for (let k = 0; k < 100; k++) {
+    opt.advance(1);
+    const s = summary(opt);
+    diverged = s[S.Diverged];
+    assert.equal(values(opt).filter(Number.isFinite).length, 64 - diverged, `after ${k + 1} steps`);
+  }
+  assert.ok(diverged > 0, "no chain diverged: the case tests nothing");
+  opt.free();
+});
