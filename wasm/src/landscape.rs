@@ -5,6 +5,8 @@
 use core::fmt;
 use core::str::FromStr;
 
+use crate::error::Num;
+
 use hrla::{
     Ackley, DoubleWell, KnownMinimum, Levy, Potential, Quadratic, Rastrigin, StyblinskiTang,
 };
@@ -57,18 +59,126 @@ impl Landscape {
     /// `U` at each cell centre of an `nx` by `ny` grid over
     /// `[x0, x1] x [y0, y1]`, row by row from the top (`y1`) down, as the
     /// page's canvases are laid out.
-    pub fn grid(&self, x0: f64, x1: f64, y0: f64, y1: f64, nx: usize, ny: usize) -> Vec<f64> {
+    ///
+    /// Every value returned is finite. Refused, with nothing computed: a
+    /// box that is not finite or not increasing, or so wide that its width
+    /// overflows (the cell centres would be NaN), and a grid of no points
+    /// or more than [`MAX_GRID`]. Refused on the way: a cell centre where
+    /// `U` itself is not finite (it overflows far out, `x^4` in
+    /// Styblinski-Tang beyond about `1e77`).
+    pub fn grid(
+        &self,
+        x0: f64,
+        x1: f64,
+        y0: f64,
+        y1: f64,
+        nx: usize,
+        ny: usize,
+    ) -> Result<Vec<f64>, GridError> {
+        let bounds = [x0, x1, y0, y1];
+        if !(bounds.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
+            return Err(GridError::Box(bounds));
+        }
+        let (width, height) = (x1 - x0, y1 - y0);
+        if !(width.is_finite() && height.is_finite()) {
+            return Err(GridError::TooWide(bounds));
+        }
+        if nx == 0 || ny == 0 || nx.saturating_mul(ny) > MAX_GRID {
+            return Err(GridError::Points { nx, ny });
+        }
         let mut out = Vec::with_capacity(nx * ny);
-        let (dx, dy) = ((x1 - x0) / nx as f64, (y1 - y0) / ny as f64);
+        let (dx, dy) = (width / nx as f64, height / ny as f64);
         for j in 0..ny {
             let y = y1 - (j as f64 + 0.5) * dy;
             for i in 0..nx {
-                out.push(self.value(&[x0 + (i as f64 + 0.5) * dx, y]));
+                let x = [x0 + (i as f64 + 0.5) * dx, y];
+                let u = self.value(&x);
+                if !u.is_finite() {
+                    return Err(GridError::NotFinite { x, value: u });
+                }
+                out.push(u);
             }
         }
-        out
+        Ok(out)
     }
 }
+
+/// The most grid points [`Landscape::grid`] computes at once (a 2048 x 2048
+/// picture).
+pub const MAX_GRID: usize = 1 << 22;
+
+/// Why [`Landscape::grid`] refused a grid.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum GridError {
+    /// The box `[x0, x1, y0, y1]` is not finite, or not `x0 < x1` and
+    /// `y0 < y1`.
+    Box([f64; 4]),
+    /// The box `[x0, x1, y0, y1]` is finite but its width or height
+    /// overflows.
+    TooWide([f64; 4]),
+    /// No points, or more than [`MAX_GRID`].
+    Points {
+        /// Columns.
+        nx: usize,
+        /// Rows.
+        ny: usize,
+    },
+    /// `U` is not finite at a cell centre.
+    NotFinite {
+        /// The cell centre.
+        x: [f64; 2],
+        /// `U` there.
+        value: f64,
+    },
+}
+
+impl GridError {
+    /// The argument at fault: `box`, or `nx` for the number of points.
+    pub fn field(&self) -> &'static str {
+        match self {
+            Self::Points { .. } => "nx",
+            _ => "box",
+        }
+    }
+}
+
+impl fmt::Display for GridError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let n = Num;
+        match *self {
+            Self::Box([x0, x1, y0, y1]) => write!(
+                f,
+                "the grid's `box` must be finite with x0 < x1 and y0 < y1, got [{}, {}] x [{}, {}]",
+                n(x0),
+                n(x1),
+                n(y0),
+                n(y1)
+            ),
+            Self::TooWide([x0, x1, y0, y1]) => write!(
+                f,
+                "the grid's `box` [{}, {}] x [{}, {}] is too wide: its width or height overflows",
+                n(x0),
+                n(x1),
+                n(y0),
+                n(y1)
+            ),
+            Self::Points { nx, ny } => write!(
+                f,
+                "the grid must have between 1 and {MAX_GRID} points, got `nx` x `ny` = {nx} x {ny}"
+            ),
+            Self::NotFinite { x, value } => write!(
+                f,
+                "U = {} at ({}, {}) in the grid's `box`: choose a smaller box",
+                n(value),
+                n(x[0]),
+                n(x[1])
+            ),
+        }
+    }
+}
+
+impl core::error::Error for GridError {}
 
 /// Why a landscape's name was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -153,7 +263,9 @@ mod tests {
             let u = l.value(&x);
             assert!((u - l.global_minimum()).abs() < 1e-9, "{name}: U(x*) = {u}");
             // Nothing on a coarse grid around x* is lower.
-            let g = l.grid(x[0] - 6.0, x[0] + 6.0, x[1] - 6.0, x[1] + 6.0, 61, 61);
+            let g = l
+                .grid(x[0] - 6.0, x[0] + 6.0, x[1] - 6.0, x[1] + 6.0, 61, 61)
+                .unwrap();
             assert!(g.iter().all(|&v| v >= u - 1e-9), "{name}");
         }
         assert_eq!("sphere".parse::<Landscape>(), Err(UnknownLandscape));
@@ -162,10 +274,54 @@ mod tests {
     #[test]
     fn the_grid_is_laid_out_from_the_top_left() {
         let g = Landscape::Quadratic(Quadratic::new(1.0, [0.0, 0.0]).unwrap())
-            .grid(0.0, 4.0, 0.0, 2.0, 4, 2);
+            .grid(0.0, 4.0, 0.0, 2.0, 4, 2)
+            .unwrap();
         // Cell centres x = 0.5, 1.5, 2.5, 3.5; y = 1.5 (first row), 0.5.
         assert_eq!(g[0], 0.5 * (0.25 + 2.25));
         assert_eq!(g[3], 0.5 * (12.25 + 2.25));
         assert_eq!(g[4], 0.5 * (0.25 + 0.25));
+    }
+
+    /// Every value returned is finite; what cannot be is refused.
+    #[test]
+    fn a_grid_that_cannot_be_finite_is_refused() {
+        let r = Landscape::Rastrigin;
+        let m = f64::MAX;
+        assert_eq!(
+            r.grid(-1e308, 1e308, -1.0, 1.0, 4, 4),
+            Err(GridError::TooWide([-1e308, 1e308, -1.0, 1.0]))
+        );
+        assert_eq!(
+            r.grid(-1.0, 1.0, -m, m, 4, 4),
+            Err(GridError::TooWide([-1.0, 1.0, -m, m]))
+        );
+        assert!(matches!(
+            r.grid(-1e200, 1e200, -1.0, 1.0, 4, 4),
+            Err(GridError::NotFinite { value, .. }) if value == f64::INFINITY
+        ));
+        assert!(matches!(
+            r.grid(f64::NAN, 1.0, -1.0, 1.0, 4, 4),
+            Err(GridError::Box(_))
+        ));
+        assert!(matches!(
+            r.grid(1.0, 1.0, -1.0, 1.0, 4, 4),
+            Err(GridError::Box(_))
+        ));
+        assert_eq!(
+            r.grid(0.0, 1.0, 0.0, 1.0, 0, 4),
+            Err(GridError::Points { nx: 0, ny: 4 })
+        );
+        assert_eq!(
+            r.grid(0.0, 1.0, 0.0, 1.0, 4096, 4096),
+            Err(GridError::Points { nx: 4096, ny: 4096 })
+        );
+        let far = r.grid(-m / 2.0, m / 2.0, -1e150, 1e150, 3, 3);
+        assert!(matches!(far, Err(GridError::NotFinite { .. })));
+        let g = r.grid(-1e150, 1e150, -1e150, 1e150, 9, 9).unwrap();
+        assert!(g.iter().all(|u| u.is_finite()));
+        assert_eq!(
+            GridError::TooWide([-1e308, 1e308, -1.0, 1.0]).to_string(),
+            "the grid's `box` [-1e308, 1e308] x [-1, 1] is too wide: its width or height overflows"
+        );
     }
 }

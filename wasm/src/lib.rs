@@ -21,18 +21,24 @@
 //! Views stay valid until wasm memory grows (creating an optimiser may grow
 //! it): rebuild them when `view.buffer !== wasm_memory().buffer`.
 //!
-//! Bad settings come back as a JS `Error` whose message is the kernel's
-//! typed [`hrla::Error`] (or a [`SettingsError`] for a malformed object),
-//! never a trap, with a `field` property naming the setting at fault
-//! (`"h"`, `"a_low"`, ...) when there is one; so does a run that fails on
-//! the way (`advance` throws the kernel's [`hrla::Error::AllDiverged`] once
-//! every chain has diverged). A run given stopping rules (`stopSteps`,
-//! `stopTarget`) stops at the first that holds: `advance` then does
-//! nothing, and `termination()` says why.
+//! Bad input comes back as a JS `Error` (an [`Error`]: the kernel's typed
+//! [`hrla::Error`], or the wrapper's own refusal of a malformed settings
+//! object or argument), never a trap, with a `field` property naming the
+//! setting or argument at fault (`"h"`, `"a_low"`, `"steps"`, ...) when
+//! there is one; so does a run that fails on the way (`advance` throws the
+//! kernel's [`hrla::Error::AllDiverged`] once every chain has diverged).
+//! Nothing is coerced or guessed: numbers must be JS numbers, counts whole
+//! numbers in their range, an unknown key is refused, and an exception
+//! thrown by a getter or a `Proxy` while the settings are read is rethrown
+//! as an `Error` naming the setting, with the thrown message. A run given
+//! stopping rules (`stopSteps`, `stopTarget`) stops at the first that
+//! holds: `advance` then returns at once having done nothing, and
+//! `termination()` says why.
 //!
 //! [`potential_grid`] evaluates a landscape on a grid, for the page's heat
 //! map, density and exact marginals: the kernel's own potential, so the
-//! picture is of the function the chains see.
+//! picture is of the function the chains see. Every value it returns is
+//! finite; a box whose grid cannot be computed finitely is refused.
 //!
 //! Seeds are `u64`: a JS number up to `2^53 - 1` or a BigInt. Chain `c`
 //! draws from `Xoshiro256PlusPlus::seed_from_u64(hrla::chain_seed(seed, c))`,
@@ -44,15 +50,18 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+mod error;
 mod landscape;
+mod read;
 mod settings;
 
 use hrla::Kernel as _;
 use hrla::{AnySampler, AnySchedule, Builder, Chain, Gaussian, KnownMinimum, Termination};
 use wasm_bindgen::prelude::*;
 
-pub use landscape::{Landscape, UnknownLandscape};
-pub use settings::{Settings, SettingsError, Temperature, parse_sampler};
+pub use error::Error;
+pub use landscape::{GridError, Landscape, MAX_GRID, UnknownLandscape};
+pub use settings::{KEYS, Settings, Temperature, parse_sampler};
 
 /// The most chains a run may have (the page offers up to 1024): more is
 /// refused with [`hrla::Error::Count`].
@@ -64,9 +73,9 @@ pub type Chains = Vec<Chain<f64, 2>>;
 /// The kernel's optimiser as the page runs it, owning its chains.
 pub type Kernel = hrla::Optimizer<f64, Landscape, AnySampler<f64>, AnySchedule<f64>, Chains, 2>;
 
-/// The most grid points [`potential_grid`] computes at once (a 2048 x 2048
-/// picture).
-pub const MAX_GRID: usize = 1 << 22;
+/// The most steps one call of `advance` asks for, `2^32 - 1`: more is
+/// refused with [`Error::NotACount`] (the page asks for at most `1e9`).
+pub const MAX_STEPS: u32 = u32::MAX;
 
 /// Slots of the summary buffer ([`Optimizer::summary_ptr`]), all f64.
 #[wasm_bindgen]
@@ -122,7 +131,7 @@ pub struct Optimizer {
     positions: Vec<f64>,
     /// `y` of chain `c` at `2c`, `2c + 1` (zero for OLA).
     velocities: Vec<f64>,
-    /// `U(x)` of each chain; non-finite once a chain diverged.
+    /// `U(x)` of each chain; NaN once a chain diverged.
     values: Vec<f64>,
     summary: [f64; Summary::Len as usize],
 }
@@ -132,7 +141,7 @@ pub struct Optimizer {
 impl Optimizer {
     /// Makes the chains, draws their initial points and evaluates them, as
     /// the kernel does.
-    pub fn from_settings(settings: &Settings) -> Result<Self, SettingsError> {
+    pub fn from_settings(settings: &Settings) -> Result<Self, Error> {
         let schedule = settings.temperature.schedule()?;
         let sampler = AnySampler::paper(settings.sampler, settings.h)?;
         let start = Gaussian::new(settings.centre, settings.spread)?;
@@ -170,26 +179,35 @@ impl Optimizer {
         Ok(this)
     }
 
-    /// Advances every live chain by `steps` steps; fewer when a stopping
-    /// rule holds first (then [`Optimizer::stopped`] says which, and
-    /// later calls do nothing) or on error: [`hrla::Error::AllDiverged`]
-    /// once every chain has diverged, or the sampler's refusal of a
-    /// temperature. The buffers show the state reached either way.
-    pub fn step_n(&mut self, steps: u32) -> Result<(), hrla::Error> {
-        let result = (0..steps).try_for_each(|_| {
+    /// Advances every live chain by `steps` steps and returns the steps
+    /// done; fewer when a stopping rule holds first (then
+    /// [`Optimizer::stopped`] says which, and later calls return 0 at
+    /// once) or on error: [`hrla::Error::AllDiverged`] once every chain
+    /// has diverged, or the sampler's refusal of a temperature. The
+    /// buffers show the state reached either way.
+    pub fn step_n(&mut self, steps: u32) -> Result<u32, hrla::Error> {
+        let mut done = 0;
+        let mut result = Ok(());
+        while done < steps {
             if self.stops && self.termination.is_none() {
                 self.termination = self.kernel.termination();
             }
-            match self.termination {
-                Some(_) => Ok(()),
-                None => self.kernel.step(),
+            // An ended run has nothing left to do: no spinning through the
+            // rest of the count.
+            if self.termination.is_some() {
+                break;
             }
-        });
+            result = self.kernel.step();
+            if result.is_err() {
+                break;
+            }
+            done += 1;
+        }
         if self.stops && self.termination.is_none() {
             self.termination = self.kernel.termination();
         }
         self.publish();
-        result
+        result.map(|()| done)
     }
 
     /// Why the run stopped, once a stopping rule held.
@@ -212,7 +230,7 @@ impl Optimizer {
         &self.velocities
     }
 
-    /// `U(x)` per chain.
+    /// `U(x)` per chain; NaN for a diverged chain.
     pub fn values(&self) -> &[f64] {
         &self.values
     }
@@ -229,7 +247,14 @@ impl Optimizer {
         for (c, chain) in self.kernel.chains().iter().enumerate() {
             self.positions[2 * c..2 * c + 2].copy_from_slice(chain.x());
             self.velocities[2 * c..2 * c + 2].copy_from_slice(chain.y());
-            self.values[c] = chain.value();
+            // The kernel keeps a diverged chain's last value, finite when
+            // only the position or gradient overflowed; the buffer promises
+            // a non-finite value, so that no reader takes the chain for live.
+            self.values[c] = if chain.is_diverged() {
+                f64::NAN
+            } else {
+                chain.value()
+            };
         }
         let best = self.kernel.best();
         self.summary = [
@@ -255,16 +280,23 @@ impl Optimizer {
     pub fn new(settings: &JsValue) -> Result<Optimizer, JsValue> {
         Settings::from_js(settings)
             .and_then(|s| Self::from_settings(&s))
-            .map_err(|e| js_error(&e))
+            .map_err(|e| e.to_js())
     }
 
-    /// Advances every live chain by `steps` steps and refreshes the
-    /// buffers. Throws an `Error` with the kernel's message once every
-    /// chain has diverged (`all N chains diverged ...`, again on every
-    /// later call), or if annealing reaches a temperature the sampler
-    /// refuses; the buffers then show the state reached.
-    pub fn advance(&mut self, steps: u32) -> Result<(), JsValue> {
-        self.step_n(steps).map_err(|e| js_error(&e.into()))
+    /// Advances every live chain by `steps` steps, refreshes the buffers
+    /// and returns the steps done: fewer once a stopping rule holds, and 0
+    /// at once when one already held. `steps` must be a JS number holding
+    /// a whole number from 0 to [`MAX_STEPS`], else it throws an `Error`
+    /// with `field` `"steps"` and nothing is done. Throws an `Error` with
+    /// the kernel's message once every chain has diverged (`all N chains
+    /// diverged ...`, again on every later call), or if annealing reaches
+    /// a temperature the sampler refuses; the buffers then show the state
+    /// reached.
+    pub fn advance(&mut self, steps: &JsValue) -> Result<u32, JsValue> {
+        let steps = read::count(steps, "steps", 0, MAX_STEPS.into()).map_err(|e| e.to_js())?;
+        // In range by the check above.
+        let steps = u32::try_from(steps).unwrap_or(MAX_STEPS);
+        self.step_n(steps).map_err(|e| Error::from(e).to_js())
     }
 
     /// Why the run stopped (`"target reached"`, `"step budget spent"`), or
@@ -308,7 +340,8 @@ impl Optimizer {
         self.velocities.as_ptr()
     }
 
-    /// Address of the per-chain values, `chains()` f64.
+    /// Address of the per-chain values, `chains()` f64: NaN for a chain
+    /// that diverged, finite for every other.
     pub fn values_ptr(&self) -> *const f64 {
         self.values.as_ptr()
     }
@@ -319,55 +352,55 @@ impl Optimizer {
     }
 }
 
-/// A JS `Error` with the message, and a `field` property naming the
-/// setting at fault when there is one.
-fn js_error(e: &SettingsError) -> JsValue {
-    let error = js_sys::Error::new(&e.to_string());
-    if let Some(field) = e.field() {
-        // Setting a property on a fresh Error object cannot fail.
-        let _ = js_sys::Reflect::set(&error, &"field".into(), &field.into());
-    }
-    error.into()
+/// The landscape a JS value names: a string among [`Landscape::NAMES`].
+fn landscape(name: &JsValue) -> Result<Landscape, Error> {
+    name.as_string()
+        .ok_or(UnknownLandscape)
+        .and_then(|n| n.parse())
+        .map_err(Error::UnknownPotential)
 }
 
 /// `U` of the landscape `name` at the cell centres of an `nx` by `ny` grid
 /// over `[x0, x1] x [y0, y1]`, row by row from the top: the kernel's own
-/// potential, for the page's pictures. Throws on an unknown name, an empty
-/// or inverted box, or more than [`MAX_GRID`] points.
+/// potential, for the page's pictures (see [`Landscape::grid`]). Every
+/// value is finite. Throws an `Error` with a `field` (`potential`, `x0`,
+/// ..., `nx`, `ny`, `box`) on a name that is not a landscape's, a bound
+/// that is not a JS number, a count that is not a whole number in
+/// `1..=MAX_GRID`, a box that is not finite and increasing or whose width
+/// overflows, more than [`MAX_GRID`] points, or a cell where `U` is not
+/// finite.
 #[wasm_bindgen]
 pub fn potential_grid(
-    name: &str,
-    x0: f64,
-    x1: f64,
-    y0: f64,
-    y1: f64,
-    nx: usize,
-    ny: usize,
-) -> Result<Vec<f64>, JsError> {
-    let landscape: Landscape = name
-        .parse()
-        .map_err(|e: UnknownLandscape| JsError::new(&e.to_string()))?;
-    let bounds = [x0, x1, y0, y1];
-    if !(bounds.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
-        return Err(JsError::new(
-            "the grid's box must be finite with x0 < x1 and y0 < y1",
-        ));
-    }
-    if nx == 0 || ny == 0 || nx.saturating_mul(ny) > MAX_GRID {
-        return Err(JsError::new(&format!(
-            "the grid must have between 1 and {MAX_GRID} points"
-        )));
-    }
-    Ok(landscape.grid(x0, x1, y0, y1, nx, ny))
+    name: &JsValue,
+    x0: &JsValue,
+    x1: &JsValue,
+    y0: &JsValue,
+    y1: &JsValue,
+    nx: &JsValue,
+    ny: &JsValue,
+) -> Result<Vec<f64>, JsValue> {
+    let grid = || -> Result<Vec<f64>, Error> {
+        let landscape = landscape(name)?;
+        let max = MAX_GRID as u64;
+        // Counts up to MAX_GRID fit a usize on every target.
+        let [nx, ny] =
+            [(nx, "nx"), (ny, "ny")].map(|(v, n)| read::count(v, n, 1, max).map(|c| c as usize));
+        let (nx, ny) = (nx?, ny?);
+        let [x0, x1, y0, y1] =
+            [(x0, "x0"), (x1, "x1"), (y0, "y0"), (y1, "y1")].map(|(v, n)| read::number(v, n));
+        Ok(landscape.grid(x0?, x1?, y0?, y1?, nx, ny)?)
+    };
+    grid().map_err(|e| e.to_js())
 }
 
 /// The global minimum `U*` of the landscape `name` (the kernel's
-/// [`KnownMinimum`]); throws on an unknown name.
+/// [`KnownMinimum`]); throws an `Error` with `field` `"potential"` when
+/// `name` is not a landscape's name.
 #[wasm_bindgen]
-pub fn global_minimum(name: &str) -> Result<f64, JsError> {
-    name.parse::<Landscape>()
+pub fn global_minimum(name: &JsValue) -> Result<f64, JsValue> {
+    landscape(name)
         .map(|l| l.global_minimum())
-        .map_err(|e| JsError::new(&e.to_string()))
+        .map_err(|e| e.to_js())
 }
 
 /// The names of the landscapes, as `potential` takes them.
@@ -430,10 +463,7 @@ mod tests {
         };
         assert!(matches!(
             Optimizer::from_settings(&bad_h),
-            Err(SettingsError::Kernel(hrla::Error::NotPositive {
-                name: "h",
-                ..
-            }))
+            Err(Error::Kernel(hrla::Error::NotPositive { name: "h", .. }))
         ));
         for sampler in hrla::SamplerKind::ALL {
             let nan_h = Settings {
@@ -543,11 +573,13 @@ mod tests {
             ..Settings::default()
         };
         let mut opt = Optimizer::from_settings(&budget).unwrap();
-        opt.step_n(100).unwrap();
+        assert_eq!(opt.step_n(100), Ok(30));
         assert_eq!(opt.summary()[Summary::Iteration as usize], 30.0);
         assert_eq!(opt.stopped(), Some(Termination::Steps));
         assert_eq!(opt.summary()[Summary::Termination as usize], 1.0);
-        opt.step_n(10).unwrap();
+        assert_eq!(opt.step_n(10), Ok(0));
+        // An ended run returns at once, however many steps are asked.
+        assert_eq!(opt.step_n(MAX_STEPS), Ok(0));
         assert_eq!(opt.summary()[Summary::Iteration as usize], 30.0);
 
         let annealed_target = Settings {
@@ -604,6 +636,40 @@ mod tests {
             }),
             Some("target")
         );
+    }
+
+    /// The kernel keeps a diverged chain's last value, which may be finite
+    /// (a finite `U` beside an overflowing gradient); the published value
+    /// is not, so that no diverged chain counts as near the minimum.
+    #[test]
+    fn a_diverged_chain_publishes_no_finite_value() {
+        // Levy with a step far too long: within 100 steps a chain diverges
+        // with a finite last value (found by search; the run is seeded).
+        let settings = Settings {
+            landscape: "levy".parse().unwrap(),
+            h: 1.0,
+            chains: 64,
+            ..Settings::default()
+        };
+        let mut opt = Optimizer::from_settings(&settings).unwrap();
+        let mut seen = false;
+        for _ in 0..100 {
+            opt.step_n(1).unwrap();
+            for (c, chain) in opt.kernel().chains().iter().enumerate() {
+                seen |= chain.is_diverged() && chain.value().is_finite();
+                assert_eq!(
+                    opt.values()[c].is_finite(),
+                    !chain.is_diverged(),
+                    "chain {c}"
+                );
+            }
+        }
+        assert!(
+            seen,
+            "no diverged chain with a finite value: the case tests nothing"
+        );
+        let live = opt.values().iter().filter(|u| u.is_finite()).count();
+        assert_eq!(live, 64 - opt.kernel().diverged_chains());
     }
 
     #[test]

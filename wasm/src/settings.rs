@@ -1,16 +1,34 @@
 //! The settings of a run, as plain Rust values, and how they are read from
 //! the JavaScript object the page passes in.
 
-use core::fmt;
-
 use hrla::{AnySchedule, Constant, Linear, SamplerKind, Stop};
 use wasm_bindgen::JsValue;
 
+use crate::error::Error;
 use crate::landscape::{Landscape, UnknownLandscape};
+use crate::read::{get, get_as, get_index, is_array, number, only_keys};
+
+/// The keys a settings object may have.
+pub const KEYS: [&str; 11] = [
+    "potential",
+    "sampler",
+    "a",
+    "annealing",
+    "h",
+    "chains",
+    "centre",
+    "spread",
+    "seed",
+    "stopSteps",
+    "stopTarget",
+];
+
+/// The keys of the `annealing` object.
+const ANNEALING_KEYS: [&str; 3] = ["aLow", "aHigh", "steps"];
 
 /// Parses a sampler's name, `"hrla"`, `"ula"` or `"ola"` (any case).
-pub fn parse_sampler(name: &str) -> Result<SamplerKind, SettingsError> {
-    name.parse().map_err(|_| SettingsError::UnknownSampler)
+pub fn parse_sampler(name: &str) -> Result<SamplerKind, Error> {
+    name.parse().map_err(|_| Error::UnknownSampler)
 }
 
 /// The inverse temperature along the run.
@@ -93,87 +111,6 @@ impl Default for Settings {
     }
 }
 
-/// Why settings from JavaScript were refused before reaching the kernel
-/// (the kernel's own refusals are [`hrla::Error`]).
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum SettingsError {
-    /// The settings value is not an object.
-    NotAnObject,
-    /// A field is missing or is not a number.
-    NotANumber(&'static str),
-    /// A count (`chains`, `steps`) is not a non-negative integer.
-    NotAnInteger(&'static str),
-    /// `sampler` is not one of `"hrla"`, `"ula"`, `"ola"`.
-    UnknownSampler,
-    /// `centre` is not an array of two numbers.
-    BadCentre,
-    /// `potential` names no landscape.
-    UnknownPotential(UnknownLandscape),
-    /// `seed` is neither a safe non-negative integer nor a BigInt in
-    /// `0..2^64`.
-    BadSeed,
-    /// The kernel refused a parameter.
-    Kernel(hrla::Error),
-}
-
-impl fmt::Display for SettingsError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::NotAnObject => f.write_str("settings must be an object"),
-            Self::NotANumber(name) => write!(f, "`{name}` must be a number"),
-            Self::NotAnInteger(name) => write!(f, "`{name}` must be a whole number >= 0"),
-            Self::UnknownSampler => f.write_str("`sampler` must be \"hrla\", \"ula\" or \"ola\""),
-            Self::UnknownPotential(e) => fmt::Display::fmt(e, f),
-            Self::BadCentre => f.write_str("`centre` must be an array of two numbers"),
-            Self::BadSeed => f.write_str(
-                "`seed` must be a whole number between 0 and 2^53 - 1, or a BigInt between 0 and 2^64 - 1",
-            ),
-            Self::Kernel(e) => fmt::Display::fmt(e, f),
-        }
-    }
-}
-
-impl core::error::Error for SettingsError {}
-
-impl SettingsError {
-    /// The setting at fault, by the name the messages use (`h`,
-    /// `a_low`, ...), when one is: the page marks its field.
-    pub fn field(&self) -> Option<&'static str> {
-        match self {
-            Self::NotAnObject => None,
-            Self::NotANumber(name) | Self::NotAnInteger(name) => Some(name),
-            Self::UnknownSampler => Some("sampler"),
-            Self::UnknownPotential(_) => Some("potential"),
-            Self::BadCentre => Some("mean"),
-            Self::BadSeed => Some("seed"),
-            Self::Kernel(e) => kernel_field(e),
-        }
-    }
-}
-
-/// The setting a kernel error names.
-fn kernel_field(e: &hrla::Error) -> Option<&'static str> {
-    use hrla::Error as E;
-    match *e {
-        E::NotPositive { name, .. }
-        | E::Negative { name, .. }
-        | E::NotFinite { name, .. }
-        | E::Zero { name }
-        | E::Count { name, .. }
-        | E::OutOfRange { name, .. } => Some(name),
-        E::ScheduleLongerThanRun { .. } => Some("stopSteps"),
-        E::AllDiverged { .. } | E::DegenerateCoefficients => Some("h"),
-        _ => None,
-    }
-}
-
-impl From<hrla::Error> for SettingsError {
-    fn from(e: hrla::Error) -> Self {
-        Self::Kernel(e)
-    }
-}
-
 /// Largest integer a JS number holds exactly, `2^53 - 1`.
 const MAX_SAFE_INTEGER: f64 = 9_007_199_254_740_991.0;
 
@@ -196,64 +133,70 @@ impl Settings {
     /// `h` comes back as the kernel's own message. A `seed` is a u64: a JS
     /// number is accepted when it is a whole number up to `2^53 - 1` (so it
     /// is exact), a BigInt for the full range.
-    pub fn from_js(value: &JsValue) -> Result<Self, SettingsError> {
-        if !value.is_object() {
-            return Err(SettingsError::NotAnObject);
+    ///
+    /// Nothing is guessed: a key that is no setting, a `centre` that is not
+    /// exactly two numbers, or an `annealing` that is neither an object nor
+    /// `null` is refused, and an exception thrown while reading a setting
+    /// (a getter, a `Proxy` trap) is [`Error::Threw`] with its message.
+    /// Each setting is read once.
+    pub fn from_js(value: &JsValue) -> Result<Self, Error> {
+        if !value.is_object() || is_array(value, "settings")? {
+            return Err(Error::NotAnObject);
         }
-        let landscape = match get(value, "potential") {
+        only_keys(value, &KEYS, "settings")?;
+        let landscape = match get(value, "potential")? {
             p if p.is_undefined() || p.is_null() => Landscape::Rastrigin,
             p => p
                 .as_string()
-                .ok_or(SettingsError::UnknownPotential(UnknownLandscape))?
+                .ok_or(Error::UnknownPotential(UnknownLandscape))?
                 .parse()
-                .map_err(SettingsError::UnknownPotential)?,
+                .map_err(Error::UnknownPotential)?,
         };
-        let sampler = match get(value, "sampler").as_string() {
+        let sampler = match get(value, "sampler")?.as_string() {
             Some(name) => parse_sampler(&name)?,
-            None => return Err(SettingsError::UnknownSampler),
+            None => return Err(Error::UnknownSampler),
         };
-        let annealing = get(value, "annealing");
-        let temperature = if annealing.is_object() {
+        let annealing = get(value, "annealing")?;
+        let temperature = if annealing.is_undefined() || annealing.is_null() {
+            Temperature::Constant(number(&get(value, "a")?, "a")?)
+        } else if annealing.is_object() && !is_array(&annealing, "annealing")? {
+            only_keys(&annealing, &ANNEALING_KEYS, "annealing")?;
             Temperature::Linear {
-                a_low: number(&annealing, "aLow")?,
-                a_high: number(&annealing, "aHigh")?,
-                steps: whole(&annealing, "steps")?,
+                a_low: number(&get(&annealing, "aLow")?, "aLow")?,
+                a_high: number(&get(&annealing, "aHigh")?, "aHigh")?,
+                steps: whole(&get(&annealing, "steps")?, "steps")?,
             }
         } else {
-            Temperature::Constant(number(value, "a")?)
+            return Err(Error::BadAnnealing);
         };
-        let centre = get(value, "centre");
-        let coordinate = |i: u32| {
-            js_sys::Reflect::get_u32(&centre, i)
-                .ok()
-                .and_then(|v| v.as_f64())
-                .ok_or(SettingsError::BadCentre)
-        };
-        if !js_sys::Array::is_array(&centre) {
-            return Err(SettingsError::BadCentre);
-        }
+        let h = number(&get(value, "h")?, "h")?;
+        // Saturates: a huge count then meets the kernel's own limit.
+        let chains =
+            usize::try_from(whole(&get(value, "chains")?, "chains")?).unwrap_or(usize::MAX);
+        let centre = centre(&get(value, "centre")?)?;
+        let spread = number(&get(value, "spread")?, "spread")?;
+        let seed = seed(&get(value, "seed")?)?;
         let optional = |key: &'static str| {
-            let v = get(value, key);
+            let v = get(value, key)?;
             if v.is_undefined() || v.is_null() {
                 Ok(None)
             } else {
-                v.as_f64().map(Some).ok_or(SettingsError::NotANumber(key))
+                number(&v, key).map(Some)
             }
         };
         let stop_steps = optional("stopSteps")?
-            .map(|v| safe_whole(v).ok_or(SettingsError::NotAnInteger("stopSteps")))
+            .map(|v| safe_whole(v).ok_or(Error::NotAnInteger("stopSteps")))
             .transpose()?;
         let stop_target = optional("stopTarget")?;
         Ok(Self {
             landscape,
             sampler,
             temperature,
-            h: number(value, "h")?,
-            // Saturates: a huge count then meets the kernel's own limit.
-            chains: usize::try_from(whole(value, "chains")?).unwrap_or(usize::MAX),
-            centre: [coordinate(0)?, coordinate(1)?],
-            spread: number(value, "spread")?,
-            seed: seed(&get(value, "seed"))?,
+            h,
+            chains,
+            centre,
+            spread,
+            seed,
             stop_steps,
             stop_target,
         })
@@ -274,33 +217,32 @@ impl Settings {
     }
 }
 
-fn get(object: &JsValue, key: &str) -> JsValue {
-    js_sys::Reflect::get(object, &JsValue::from_str(key)).unwrap_or(JsValue::UNDEFINED)
-}
-
-/// Any JS number, NaN and infinities included: the kernel judges them.
-fn number(object: &JsValue, key: &'static str) -> Result<f64, SettingsError> {
-    get(object, key)
-        .as_f64()
-        .ok_or(SettingsError::NotANumber(key))
-}
-
 /// `v` as a u64 when it is a whole number in `0..=2^53 - 1`, where the
 /// conversion is exact.
 fn safe_whole(v: f64) -> Option<u64> {
     ((0.0..=MAX_SAFE_INTEGER).contains(&v) && v.fract() == 0.0).then_some(v as u64)
 }
 
-fn whole(object: &JsValue, key: &'static str) -> Result<u64, SettingsError> {
-    safe_whole(number(object, key)?).ok_or(SettingsError::NotAnInteger(key))
+fn whole(value: &JsValue, key: &'static str) -> Result<u64, Error> {
+    safe_whole(number(value, key)?).ok_or(Error::NotAnInteger(key))
 }
 
-fn seed(value: &JsValue) -> Result<u64, SettingsError> {
-    if value.is_bigint() {
-        return u64::try_from(value.clone()).map_err(|_| SettingsError::BadSeed);
+/// Exactly two numbers: a third would otherwise be dropped unseen.
+fn centre(value: &JsValue) -> Result<[f64; 2], Error> {
+    if !is_array(value, "centre")? || get_as(value, "length", "centre")?.as_f64() != Some(2.0) {
+        return Err(Error::BadCentre);
     }
-    value
-        .as_f64()
-        .and_then(safe_whole)
-        .ok_or(SettingsError::BadSeed)
+    let coordinate = |i| {
+        get_index(value, i, "centre")?
+            .as_f64()
+            .ok_or(Error::BadCentre)
+    };
+    Ok([coordinate(0)?, coordinate(1)?])
+}
+
+fn seed(value: &JsValue) -> Result<u64, Error> {
+    if value.is_bigint() {
+        return u64::try_from(value.clone()).map_err(|_| Error::BadSeed);
+    }
+    value.as_f64().and_then(safe_whole).ok_or(Error::BadSeed)
 }

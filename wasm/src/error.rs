@@ -1,0 +1,186 @@
+//! Everything the wrapper refuses, and how a refusal reaches JavaScript: a
+//! real `Error` whose message says what is wrong, with a `field` property
+//! naming the setting or argument at fault.
+
+use core::fmt;
+
+use wasm_bindgen::JsValue;
+
+use crate::landscape::{GridError, UnknownLandscape};
+
+/// Why the wrapper refused a settings object or an argument, or why the
+/// kernel did ([`Error::Kernel`]).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Error {
+    /// The settings value is not an object.
+    NotAnObject,
+    /// The settings (or their `annealing`) have a key that is no setting:
+    /// a misspelt setting would otherwise be ignored without a word.
+    UnknownSetting {
+        /// The key.
+        key: String,
+        /// The keys allowed there.
+        known: &'static [&'static str],
+    },
+    /// Reading a setting threw (a getter, or a `Proxy` trap): the message
+    /// of what was thrown.
+    Threw {
+        /// The setting being read (`settings` while listing its keys).
+        field: &'static str,
+        /// The thrown error's message.
+        message: String,
+    },
+    /// A field is missing or is not a number.
+    NotANumber(&'static str),
+    /// A setting that counts (`chains`, `steps`, `stopSteps`) is not a
+    /// whole number in `0..=2^53 - 1`.
+    NotAnInteger(&'static str),
+    /// An argument that counts (`steps` of `advance`, `nx`, `ny`) is not a
+    /// JS number holding a whole number in `min..=max`.
+    NotACount {
+        /// The argument.
+        name: &'static str,
+        /// The value given (NaN when it was not a number at all).
+        value: f64,
+        /// The smallest count allowed.
+        min: u64,
+        /// The largest count allowed.
+        max: u64,
+    },
+    /// `sampler` is not one of `"hrla"`, `"ula"`, `"ola"`.
+    UnknownSampler,
+    /// `annealing` is neither an object `{ aLow, aHigh, steps }` nor
+    /// `null` or absent.
+    BadAnnealing,
+    /// `centre` is not an array of exactly two numbers.
+    BadCentre,
+    /// `potential` names no landscape.
+    UnknownPotential(UnknownLandscape),
+    /// `seed` is neither a safe non-negative integer nor a BigInt in
+    /// `0..2^64`.
+    BadSeed,
+    /// A grid of the potential cannot be computed finitely.
+    Grid(GridError),
+    /// The kernel refused a parameter, or a run failed.
+    Kernel(hrla::Error),
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotAnObject => f.write_str("settings must be an object"),
+            Self::UnknownSetting { key, known } => write!(
+                f,
+                "`{key}` is not a setting; the settings are {}",
+                known.join(", ")
+            ),
+            Self::Threw { field, message } => write!(f, "reading `{field}` threw: {message}"),
+            Self::NotANumber(name) => write!(f, "`{name}` must be a number"),
+            Self::NotAnInteger(name) => write!(f, "`{name}` must be a whole number >= 0"),
+            Self::NotACount {
+                name,
+                value,
+                min,
+                max,
+            } => write!(
+                f,
+                "`{name}` must be a whole number between {min} and {max}, got {}",
+                Num(*value)
+            ),
+            Self::UnknownSampler => f.write_str("`sampler` must be \"hrla\", \"ula\" or \"ola\""),
+            Self::BadAnnealing => f.write_str(
+                "`annealing` must be an object { aLow, aHigh, steps }, or null for a constant `a`",
+            ),
+            Self::UnknownPotential(e) => fmt::Display::fmt(e, f),
+            Self::BadCentre => f.write_str("`centre` must be an array of two numbers"),
+            Self::BadSeed => f.write_str(
+                "`seed` must be a whole number between 0 and 2^53 - 1, or a BigInt between 0 and 2^64 - 1",
+            ),
+            Self::Grid(e) => fmt::Display::fmt(e, f),
+            Self::Kernel(e) => fmt::Display::fmt(e, f),
+        }
+    }
+}
+
+impl core::error::Error for Error {}
+
+impl Error {
+    /// The setting or argument at fault, by the name the messages use
+    /// (`h`, `a_low`, `steps`, ...), when there is one: the page marks its
+    /// field.
+    pub fn field(&self) -> Option<&'static str> {
+        match self {
+            Self::NotAnObject | Self::UnknownSetting { .. } => None,
+            Self::Threw { field, .. } => Some(field),
+            Self::NotANumber(name) | Self::NotAnInteger(name) => Some(name),
+            Self::NotACount { name, .. } => Some(name),
+            Self::UnknownSampler => Some("sampler"),
+            Self::BadAnnealing => Some("annealing"),
+            Self::UnknownPotential(_) => Some("potential"),
+            Self::BadCentre => Some("centre"),
+            Self::BadSeed => Some("seed"),
+            Self::Grid(e) => Some(e.field()),
+            Self::Kernel(e) => kernel_field(e),
+        }
+    }
+
+    /// The JS `Error` thrown for this refusal: the message, and a `field`
+    /// property when [`Error::field`] names one.
+    pub fn to_js(&self) -> JsValue {
+        let error = js_sys::Error::new(&self.to_string());
+        if let Some(field) = self.field() {
+            // Setting a property on a fresh Error object cannot fail.
+            let _ = js_sys::Reflect::set(&error, &"field".into(), &field.into());
+        }
+        error.into()
+    }
+}
+
+/// The setting a kernel error names.
+fn kernel_field(e: &hrla::Error) -> Option<&'static str> {
+    use hrla::Error as E;
+    match *e {
+        E::NotPositive { name, .. }
+        | E::Negative { name, .. }
+        | E::NotFinite { name, .. }
+        | E::Zero { name }
+        | E::Count { name, .. }
+        | E::OutOfRange { name, .. } => Some(name),
+        E::ScheduleLongerThanRun { .. } => Some("stopSteps"),
+        E::AllDiverged { .. } | E::DegenerateCoefficients => Some("h"),
+        _ => None,
+    }
+}
+
+impl From<hrla::Error> for Error {
+    fn from(e: hrla::Error) -> Self {
+        Self::Kernel(e)
+    }
+}
+
+impl From<GridError> for Error {
+    fn from(e: GridError) -> Self {
+        Self::Grid(e)
+    }
+}
+
+/// A number as a person reads it: whole numbers in full up to `2^53`,
+/// others in exponent form when very large or small (so that `1e308` is
+/// not 309 digits).
+pub(crate) struct Num(pub(crate) f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (v, a) = (self.0, self.0.abs());
+        let plain = a == 0.0
+            || !a.is_finite()
+            || (v.fract() == 0.0 && a < 9_007_199_254_740_992.0)
+            || (1e-4..1e6).contains(&a);
+        if plain {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
+    }
+}

@@ -1,0 +1,116 @@
+//! Reading values handed in from JavaScript strictly: a number must be a
+//! JS number (no coercion of strings, BigInts or objects), a count a whole
+//! number in its range, and an exception thrown while reading (a getter, a
+//! `Proxy` trap) comes back as [`Error::Threw`] instead of being taken for
+//! a missing value.
+
+use wasm_bindgen::prelude::*;
+
+use crate::error::Error;
+
+/// `object[key]`; a throw while reading it is [`Error::Threw`] naming `key`.
+pub(crate) fn get(object: &JsValue, key: &'static str) -> Result<JsValue, Error> {
+    get_as(object, key, key)
+}
+
+/// `object[key]` as [`get`], a throw named `name` (a part of a setting,
+/// such as the `length` of `centre`, is reported as the setting).
+pub(crate) fn get_as(
+    object: &JsValue,
+    key: &'static str,
+    name: &'static str,
+) -> Result<JsValue, Error> {
+    js_sys::Reflect::get(object, &JsValue::from_str(key)).map_err(|e| threw(name, &e))
+}
+
+/// `array[index]`, as [`get`], a throw named `name`.
+pub(crate) fn get_index(array: &JsValue, index: u32, name: &'static str) -> Result<JsValue, Error> {
+    js_sys::Reflect::get_u32(array, index).map_err(|e| threw(name, &e))
+}
+
+#[wasm_bindgen]
+extern "C" {
+    /// `Array.isArray`, which throws on a revoked `Proxy`: caught, unlike
+    /// js-sys's binding, so that nothing thrown crosses the wasm frames
+    /// unhandled.
+    #[wasm_bindgen(js_namespace = Array, js_name = isArray, catch)]
+    fn array_is_array(value: &JsValue) -> Result<bool, JsValue>;
+}
+
+/// Whether `value` is an array (a `Proxy` of one included); a throw is
+/// [`Error::Threw`] naming `name`.
+pub(crate) fn is_array(value: &JsValue, name: &'static str) -> Result<bool, Error> {
+    array_is_array(value).map_err(|e| threw(name, &e))
+}
+
+/// Refuses an object with an own string key outside `known`: a misspelt
+/// setting is an error, not a default. Symbol keys are not settings and
+/// are left alone.
+pub(crate) fn only_keys(
+    object: &JsValue,
+    known: &'static [&'static str],
+    name: &'static str,
+) -> Result<(), Error> {
+    let keys = js_sys::Reflect::own_keys(object).map_err(|e| threw(name, &e))?;
+    for key in keys.iter() {
+        if let Some(key) = key.as_string()
+            && !known.contains(&key.as_str())
+        {
+            return Err(Error::UnknownSetting { key, known });
+        }
+    }
+    Ok(())
+}
+
+/// `value` when it is a JS number (NaN and infinities included: the
+/// kernel judges ranges).
+pub(crate) fn number(value: &JsValue, name: &'static str) -> Result<f64, Error> {
+    value.as_f64().ok_or(Error::NotANumber(name))
+}
+
+/// `value` when it is a JS number holding a whole number in `min..=max`
+/// (`max` at most `2^53 - 1`, so the number is exact). `-0` is 0.
+pub(crate) fn count(value: &JsValue, name: &'static str, min: u64, max: u64) -> Result<u64, Error> {
+    let v = value.as_f64().unwrap_or(f64::NAN);
+    if v.fract() == 0.0 && v >= min as f64 && v <= max as f64 {
+        Ok(v as u64)
+    } else {
+        Err(Error::NotACount {
+            name,
+            value: v,
+            min,
+            max,
+        })
+    }
+}
+
+/// [`Error::Threw`] for `thrown`, with its message.
+fn threw(field: &'static str, thrown: &JsValue) -> Error {
+    Error::Threw {
+        field,
+        message: message_of(thrown),
+    }
+}
+
+/// The message of a thrown value, read without running any more of the
+/// thrower's code than one property read (no `toString`, no `instanceof`,
+/// which a `Proxy` can also make throw): an `Error`'s `message` when it is
+/// a string, a thrown string or number itself, else a placeholder.
+fn message_of(thrown: &JsValue) -> String {
+    if let Some(s) = thrown.as_string() {
+        return s;
+    }
+    if let Some(v) = thrown.as_f64() {
+        return v.to_string();
+    }
+    if thrown.is_object() {
+        // Reading `message` may itself throw: the placeholder then.
+        let message = js_sys::Reflect::get(thrown, &JsValue::from_str("message"))
+            .ok()
+            .and_then(|m| m.as_string());
+        if let Some(m) = message {
+            return m;
+        }
+    }
+    "a thrown value without a message".into()
+}
