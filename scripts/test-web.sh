@@ -67,6 +67,6 @@ firmware_warning() {
 }
 firmware_warning
 status=0
-node --test web/tests/*.test.mjs || status=$?
+node --test web/tests/*.test.mjs wasm/tests/*.test.mjs || status=$?
 firmware_warning
 exit "$status"
