@@ -288,9 +288,9 @@ impl<F: Float> Auto<F> {
 
     /// [`minimize`](Auto::minimize) with an observer: called once after
     /// the initial points, then after every step of the chains, every
-    /// quench and every round's restarts (so at least every
-    /// `max(N, quench, restarts)` evaluations), with the best so far and
-    /// whether it fell since the last call. Returning
+    /// quench and every restart (so at least every `max(N, quench)`
+    /// evaluations), with the best so far and whether it fell since the
+    /// last call. Returning
     /// `ControlFlow::Break(())` ends the run at once with the best so far
     /// and [`Termination::Observer`]: a time limit, a cancellation (Ctrl-C)
     /// or a target.
@@ -501,6 +501,7 @@ impl<F: Float> Auto<F> {
                         break 'run;
                     }
                     basins[c] = F::INFINITY;
+                    observe!('run);
                 }
                 for c in tracked..n {
                     if opt.chains()[c].is_diverged() {
@@ -509,10 +510,8 @@ impl<F: Float> Auto<F> {
                         if !revive(&mut opt, c, &x, &best)? {
                             break 'run;
                         }
+                        observe!('run);
                     }
-                }
-                if restarts > 0 || opt.diverged_chains() > 0 {
-                    observe!('run);
                 }
                 let rate = F::from_u64(moved as u64) / F::from_u64(live.max(1) as u64);
                 let a = opt.schedule().0;
