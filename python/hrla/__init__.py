@@ -53,6 +53,7 @@ from ._hrla import (
     DIMENSIONS,
     Ackley,
     Auto,
+    BusyError,
     Constant,
     DimensionError,
     DivergedError,
@@ -61,6 +62,7 @@ from ._hrla import (
     Geometric,
     HrlaError,
     Hrla,
+    InternalError,
     Interval,
     Levy,
     Linear,
@@ -81,12 +83,17 @@ from ._hrla import (
 )
 
 __all__ = [
-    "DIMENSIONS", "Ackley", "Auto", "Builder", "Constant", "DimensionError",
-    "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla", "HrlaError",
-    "Interval", "Levy", "Linear", "Ola", "OptimizeResult", "Optimizer", "Point",
-    "Polished", "PolishSettings", "Potential", "Quadratic", "Rastrigin", "Report",
-    "Solution", "Stop", "StyblinskiTang", "Ula", "UnboundedBelowError", "minimize",
+    "DIMENSIONS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
+    "DimensionError", "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla",
+    "HrlaError", "InternalError", "Interval", "Levy", "Linear", "Ola", "OptimizeResult",
+    "Optimizer", "Point", "Polished", "PolishSettings", "Potential", "Quadratic", "Rastrigin",
+    "Report", "Solution", "Stop", "StyblinskiTang", "Ula", "UnboundedBelowError", "minimize",
 ]
+
+#: Why a run ended, indexed by :class:`OptimizeResult`'s ``status``: the
+#: kernel's ``Termination`` names, and ``"Diverged"`` (every chain diverged;
+#: ``success`` is then ``False``).
+TERMINATIONS = ("Steps", "Evaluations", "Target", "Stalled", "Observer", "Diverged")
 
 Fun = Union[Potential, Callable[[np.ndarray], Tuple[Any, Any]]]
 
@@ -98,9 +105,15 @@ class OptimizeResult(dict):
     ``x`` the best point, ``fun`` ``U(x)``, ``nfev`` the evaluations of
     ``U`` (all counted: initial points, steps, polish), ``njev`` the same
     (every evaluation computes ``U`` and ``∇U`` together), ``nit`` the
-    steps (``"auto"``: rounds), ``success``, ``termination`` (the kernel's
-    ``Termination`` name: ``"Steps"``, ``"Evaluations"``, ``"Target"``,
-    ``"Stalled"``), ``message`` (the kernel's report), ``method``, ``seed``.
+    steps (``"auto"``: rounds), ``success``, ``termination`` (why it ended:
+    the kernel's ``Termination`` name, ``"Steps"``, ``"Evaluations"``,
+    ``"Target"``, ``"Stalled"``, or ``"Diverged"``), ``status`` (its index
+    in :data:`TERMINATIONS`), ``all_diverged`` (whether every chain
+    diverged: ``success`` is then ``False`` and ``x`` only the best point
+    seen before), ``diverged_chains``, ``chains``, ``message`` (the
+    kernel's report of the final state, after the polish), ``method``,
+    ``seed``. ``success`` is ``True`` only when ``fun`` is finite and the
+    run ended by one of its rules.
     """
 
     def __getattr__(self, name: str) -> Any:
@@ -113,7 +126,7 @@ class OptimizeResult(dict):
     __delattr__ = dict.__delitem__  # type: ignore[assignment]
 
     def __repr__(self) -> str:
-        keys = ("fun", "x", "nfev", "nit", "success", "termination", "message")
+        keys = ("fun", "x", "nfev", "nit", "success", "status", "termination", "message")
         return "OptimizeResult(" + ", ".join(f"{k}={self[k]!r}" for k in keys if k in self) + ")"
 
 
@@ -125,7 +138,11 @@ def _box(bounds: Any, dim: Optional[int]) -> Tuple[Optional[Interval], Optional[
         return None, dim
     if isinstance(bounds, Interval):
         return bounds, dim
-    b = np.asarray(bounds, dtype=np.float64)
+    b = np.asarray(bounds)
+    if b.dtype.kind not in "fiu":
+        # numpy would parse "1" and turn True into 1 or drop an imaginary part.
+        raise TypeError(f"bounds must be real numbers (floats or ints), got {bounds!r} (dtype {b.dtype})")
+    b = b.astype(np.float64)
     if b.shape == (2,):
         return Interval(float(b[0]), float(b[1])), dim
     if b.ndim == 2 and b.shape[1] == 2 and b.shape[0] >= 1:
@@ -189,15 +206,17 @@ def minimize(
     """
     box, dim = _box(bounds, dim)
     method = method.lower()
+    if polish < 0:
+        raise ValueError(f"polish must be >= 0 evaluations, got {polish}")
     if method == "auto":
         if box is None:
             raise ValueError('method="auto" needs bounds: (lo, hi) with dim=, or D (lo, hi) pairs')
         s = Auto().minimize(fun, box, budget, seed, chains=chains, dim=dim)
         spent = s.evaluations + 2 * s.chains > budget
-        return OptimizeResult(
-            x=np.asarray(s.x), fun=s.value, nfev=s.evaluations, njev=s.evaluations,
-            nit=s.rounds, success=spent,
-            termination="Evaluations" if spent else "Diverged",
+        termination = "Evaluations" if spent else "Diverged"
+        return _result(
+            x=np.asarray(s.x), fun=s.value, nfev=s.evaluations, nit=s.rounds, termination=termination,
+            diverged_chains=0 if spent else s.chains, chains=s.chains,
             message=(f"evaluation budget spent: best U = {s.value!r} after {s.rounds} rounds "
                      f"and {s.evaluations} evaluations" if spent else
                      "every chain diverged before the budget was spent; x is the best point found"),
@@ -229,11 +248,28 @@ def minimize(
     report = opt.run()
     if polish > 0:
         opt.polish(opt.best_chain, PolishSettings(polish))
+        # The report of the polished state: its rule still holds (the
+        # polish only adds evaluations and lowers the best), unless a
+        # target is now reached, which comes first.
+        report = opt.report() or report
     x, value, _ = opt.best
-    return OptimizeResult(
-        x=x, fun=value, nfev=opt.evaluations, njev=opt.evaluations, nit=report.iterations,
-        success=True, termination=report.termination, message=report.message,
+    return _result(
+        x=x, fun=value, nfev=opt.evaluations, nit=report.iterations, termination=report.termination,
+        diverged_chains=report.diverged_chains, chains=report.chains, message=report.message,
         method=method, seed=seed,
+    )
+
+
+def _result(*, fun: float, nfev: int, termination: str, diverged_chains: int, chains: int,
+            **rest: Any) -> OptimizeResult:
+    """An :class:`OptimizeResult` whose ``success`` and ``status`` follow
+    from the termination and the value."""
+    return OptimizeResult(
+        fun=fun, nfev=nfev, njev=nfev,
+        success=termination != "Diverged" and bool(np.isfinite(fun)),
+        status=TERMINATIONS.index(termination), termination=termination,
+        all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
+        **rest,
     )
 
 

@@ -1,13 +1,13 @@
 //! `hrla.Auto`: the kernel's default solver.
 
-use hrla::{Auto, Chain, Lbfgs};
+use hrla::{Auto, Lbfgs};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
 use crate::config::PyInterval;
 use crate::dims::with_dim;
-use crate::engine::{MEMORY, dimension};
-use crate::errors::kernel;
+use crate::engine::{MEMORY, dimension, storage};
+use crate::errors::{guard, kernel};
 use crate::potential::{Pot, PotentialSpec};
 
 /// The default solver: rounds of HRLA steps, each followed by an L-BFGS
@@ -101,6 +101,22 @@ impl PyAuto {
         chains: Option<usize>,
         dim: Option<usize>,
     ) -> PyResult<PySolution> {
+        guard(|| self.solve(py, potential, domain, budget, seed, chains, dim))
+    }
+}
+
+impl PyAuto {
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &self,
+        py: Python<'_>,
+        potential: &Bound<'_, PyAny>,
+        domain: PyInterval,
+        budget: u64,
+        seed: u64,
+        chains: Option<usize>,
+        dim: Option<usize>,
+    ) -> PyResult<PySolution> {
         let spec = PotentialSpec::from_py(potential)?;
         let d = dimension(&[("dim", dim), ("the potential", spec.dimension())])?;
         let n = chains.unwrap_or_else(|| Auto::<f64>::chains_for(budget));
@@ -115,7 +131,7 @@ impl PyAuto {
         };
         with_dim!(d, D => {
             let pot = spec.build::<D>(py)?;
-            let mut storage: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
+            let mut storage = storage::<D>(n)?;
             let mut lbfgs: Box<Lbfgs<f64, D, MEMORY>> = Box::default();
             let mut solve = || auto.minimize(&pot, domain.0, budget, seed, &mut storage, &mut lbfgs);
             let found = match &pot {

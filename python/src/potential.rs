@@ -19,11 +19,11 @@ use hrla::{
     Ackley, DoubleWell, KnownMinimum, Levy, Potential, Quadratic, Rastrigin, StyblinskiTang,
 };
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
-use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::dims::with_dim;
-use crate::errors::kernel;
+use crate::errors::{guard, internal, kernel};
 
 /// A built-in potential whose dimension is not yet fixed.
 #[derive(Clone, Debug)]
@@ -126,14 +126,16 @@ impl PyBuiltin {
         py: Python<'py>,
         x: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Batch<'py>> {
-        let (n, d) = (x.shape()[0], x.shape()[1]);
-        let points: Vec<f64> = x.as_array().iter().copied().collect();
-        let (values, grads) = with_dim!(d, D => {
-            let p = self.0.build::<D>()?;
-            Ok::<_, PyErr>(py.detach(|| evaluate_rows::<D>(&p, &points)))
-        })?;
-        let grads = PyArray1::from_vec(py, grads).reshape([n, d])?;
-        Ok((PyArray1::from_vec(py, values), grads))
+        guard(|| {
+            let (n, d) = (x.shape()[0], x.shape()[1]);
+            let points: Vec<f64> = x.as_array().iter().copied().collect();
+            let (values, grads) = with_dim!(d, D => {
+                let p = self.0.build::<D>()?;
+                Ok::<_, PyErr>(py.detach(|| evaluate_rows::<D>(&p, &points)))
+            })?;
+            let grads = PyArray1::from_vec(py, grads).reshape([n, d])?;
+            Ok((PyArray1::from_vec(py, values), grads))
+        })
     }
 
     /// The global minimum `U*` in dimension `dim`.
@@ -344,7 +346,7 @@ impl<const D: usize> PyPotential<D> {
             && b.next != b.values.len()
             && state.error.is_none()
         {
-            state.error = Some(PyRuntimeError::new_err(format!(
+            state.error = Some(internal(&format!(
                 "hrla internal error: the step read {} of the {} batched answers",
                 b.next,
                 b.values.len()
@@ -372,7 +374,7 @@ impl<const D: usize> PyPotential<D> {
                     grad.copy_from_slice(&b.grads[at]);
                     Ok(b.values[row])
                 } else {
-                    Err(PyRuntimeError::new_err(format!(
+                    Err(internal(&format!(
                         "hrla internal error: evaluation {row} of a batch is not at the point \
                          the batch computed"
                     )))
@@ -423,20 +425,45 @@ fn call(
         ))
     })?;
     let numpy = py.import("numpy")?;
-    let as_f64 = |v: &Bound<'_, PyAny>| -> PyResult<Vec<f64>> {
-        let a = numpy.call_method1("ascontiguousarray", (v, "float64"))?;
-        let a = a.cast_into::<numpy::PyArrayDyn<f64>>()?;
-        Ok(a.readonly().as_slice()?.to_vec())
-    };
-    let u_shape: Vec<usize> = numpy.call_method1("shape", (&u,))?.extract()?;
-    let g_shape: Vec<usize> = numpy.call_method1("shape", (&g,))?.extract()?;
+    let u = real(&numpy, &u, "U")?;
+    let g = real(&numpy, &g, "G")?;
+    let u_shape: Vec<usize> = u.getattr("shape")?.extract()?;
+    let g_shape: Vec<usize> = g.getattr("shape")?.extract()?;
     if u_shape != [n] || g_shape != [n, d] {
         return Err(PyValueError::new_err(format!(
             "the potential must return U of shape ({n},) and G of shape ({n}, {d}); \
              got {u_shape:?} and {g_shape:?}"
         )));
     }
-    Ok((as_f64(&u)?, as_f64(&g)?))
+    let flat = |a: &Bound<'_, PyAny>| -> PyResult<Vec<f64>> {
+        let a = numpy.call_method1("ascontiguousarray", (a, "float64"))?;
+        let a = a.cast_into::<numpy::PyArrayDyn<f64>>()?;
+        Ok(a.readonly().as_slice()?.to_vec())
+    };
+    Ok((flat(&u)?, flat(&g)?))
+}
+
+/// `v` as a numpy array of real numbers: a float or integer dtype (numpy
+/// arrays, Python floats and ints, sequences of them). Booleans, complex
+/// numbers, strings and objects are refused with `TypeError`: numpy would
+/// turn `True` into 1, drop an imaginary part, or parse `"1.5"`, each a
+/// wrong value that would pass unnoticed.
+fn real<'py>(
+    numpy: &Bound<'py, PyModule>,
+    v: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let a = numpy.call_method1("asarray", (v,))?;
+    let dtype = a.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    if matches!(kind.as_str(), "f" | "i" | "u") {
+        Ok(a)
+    } else {
+        Err(PyTypeError::new_err(format!(
+            "the potential's {what} must be real numbers (a float or integer array), got dtype {}",
+            dtype.str()?
+        )))
+    }
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
