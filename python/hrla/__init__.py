@@ -204,6 +204,8 @@ def minimize(
     Returns an :class:`OptimizeResult`. Bad input and failed runs raise
     :class:`HrlaError` (with the kernel's message) or a subclass.
     """
+    if not isinstance(method, str):
+        raise TypeError(f"method must be a str (auto hrla ula ola), got {type(method).__name__}")
     box, dim = _box(bounds, dim)
     method = method.lower()
     if polish < 0:
