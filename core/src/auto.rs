@@ -36,12 +36,15 @@
 //! of [`Auto::default`] were chosen on the quality benchmark
 //! (`bench/quality`, `docs/QUALITY.md`), the same for every function.
 
+use core::fmt;
+use core::ops::ControlFlow;
+
 use rand_core::{Rng, SeedableRng};
 
 use crate::domain::Interval;
 use crate::error::Error;
 use crate::float::Float;
-use crate::optimizer::{Builder, Chain, Stop, Termination};
+use crate::optimizer::{Builder, Chain, Optimizer, Stop, Termination, splitmix64};
 use crate::polish::{Lbfgs, PolishSettings};
 use crate::potential::traits::Potential;
 use crate::sampler::Hrla;
@@ -116,6 +119,104 @@ pub struct Solution<F, const D: usize> {
     pub step: F,
     /// The inverse temperature at the end.
     pub inverse_temperature: F,
+    /// Why the run ended: [`Termination::Evaluations`] (the budget is
+    /// spent) or [`Termination::Observer`].
+    pub termination: Termination,
+    /// Chains diverged at the end (each restarts after its round, so this
+    /// counts those that diverged in the last one).
+    pub diverged_chains: usize,
+    /// Chains in the run.
+    pub chains: usize,
+}
+
+impl<F, const D: usize> Solution<F, D> {
+    /// Whether every chain had diverged at the end: the best point is then
+    /// the lowest feasible point found before, and the last round found
+    /// nowhere feasible to go.
+    pub fn all_diverged(&self) -> bool {
+        self.diverged_chains == self.chains
+    }
+}
+
+impl<F: Float, const D: usize> fmt::Display for Solution<F, D> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}: best U = {} after {} evaluations in {} rounds (h = {}, a = {}); \
+             {} of {} chains diverged",
+            self.termination,
+            self.value,
+            self.evaluations,
+            self.rounds,
+            self.step,
+            self.inverse_temperature,
+            self.diverged_chains,
+            self.chains,
+        )?;
+        if self.all_diverged() {
+            f.write_str(" (all: the best is the last feasible point found)")?;
+        }
+        Ok(())
+    }
+}
+
+/// What the observer of [`Auto::minimize_with`] sees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AutoProgress<'a, F, const D: usize> {
+    /// Evaluations so far, all included.
+    pub evaluations: u64,
+    /// Rounds of sampling done.
+    pub rounds: u64,
+    /// The best point so far.
+    pub x: &'a [F; D],
+    /// `U` there.
+    pub value: F,
+    /// Whether the best value fell since the observer's last call (`true`
+    /// at the first call).
+    pub improved: bool,
+    /// The inverse temperature now.
+    pub inverse_temperature: F,
+    /// Chains diverged now.
+    pub diverged_chains: usize,
+}
+
+/// The observer of a run and what it has seen.
+struct Watch<O, F> {
+    observer: O,
+    /// The best value at the last call; `None` before the first.
+    seen: Option<F>,
+    /// Evaluations of the curvature probes, done outside the optimiser.
+    probes: u64,
+}
+
+impl<O, F: Float> Watch<O, F> {
+    fn call<P, S, C, St, const D: usize, R, B>(
+        &mut self,
+        opt: &Optimizer<F, P, S, C, St, D, R, B>,
+        rounds: u64,
+    ) -> ControlFlow<()>
+    where
+        O: FnMut(&AutoProgress<'_, F, D>) -> ControlFlow<()>,
+        P: Potential<F, D>,
+        S: crate::sampler::Sampler<F>,
+        C: Schedule<F>,
+        St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
+        R: Rng + 'static,
+        B: crate::domain::Domain<F, D>,
+    {
+        let best = opt.best();
+        let improved = self.seen.is_none_or(|v| best.value < v);
+        self.seen = Some(best.value);
+        (self.observer)(&AutoProgress {
+            evaluations: opt.evaluations() + self.probes,
+            rounds,
+            x: &best.x,
+            value: best.value,
+            improved,
+            inverse_temperature: opt.schedule().inverse_temperature(0),
+            diverged_chains: opt.diverged_chains(),
+        })
+    }
 }
 
 impl<F: Float> Auto<F> {
@@ -155,11 +256,18 @@ impl<F: Float> Auto<F> {
     /// # Ok::<(), hrla::Error>(())
     /// ```
     ///
+    /// A point where the potential or its gradient is not finite (a NaN,
+    /// `+inf`) is infeasible, never fatal: initial points are redrawn
+    /// there (see [`Builder::build`]); a chain that steps there diverges
+    /// and restarts after its round, like the chains in the worst basins;
+    /// a quench's trial points there count as `+inf`. The best point is
+    /// always one where `U` and its gradient were finite.
+    ///
     /// Errors: those of [`Builder::build`] (no chains, a budget below
-    /// twice the number of chains: [`Error::Budget`]), a bad constant
-    /// ([`Error::Zero`], [`Error::NotPositive`]), and a potential that is
-    /// unbounded below ([`Error::UnboundedBelow`]). Chains that all
-    /// diverge end the run with the best point found so far.
+    /// twice the number of chains: [`Error::Budget`], no feasible initial
+    /// point: [`Error::NonFiniteStart`]), a bad constant ([`Error::Zero`],
+    /// [`Error::NotPositive`]), and a potential that is unbounded below
+    /// ([`Error::UnboundedBelow`]).
     pub fn minimize<P, const D: usize, R, const M: usize>(
         &self,
         potential: &P,
@@ -173,15 +281,41 @@ impl<F: Float> Auto<F> {
         P: Potential<F, D> + ?Sized,
         R: Rng + SeedableRng + 'static,
     {
-        self.minimize_with(potential, domain, budget, seed, chains, lbfgs, |_, _| {})
+        self.minimize_with(potential, domain, budget, seed, chains, lbfgs, |_| {
+            ControlFlow::Continue(())
+        })
     }
 
-    /// [`minimize`](Auto::minimize), calling `improved(evaluations, value)`
-    /// whenever the best value falls (after the step or quench that
-    /// lowered it, with every evaluation so far counted): for progress, or
-    /// to measure how fast a level is reached.
+    /// [`minimize`](Auto::minimize) with an observer: called once after
+    /// the initial points, then after every step of the chains, every
+    /// quench and every round's restarts (so at least every
+    /// `max(N, quench, restarts)` evaluations), with the best so far and
+    /// whether it fell since the last call. Returning
+    /// `ControlFlow::Break(())` ends the run at once with the best so far
+    /// and [`Termination::Observer`]: a time limit, a cancellation (Ctrl-C)
+    /// or a target.
+    ///
+    /// ```
+    /// use core::ops::ControlFlow;
+    /// use hrla::{Auto, Chain, Interval, Lbfgs, Rastrigin, Termination};
+    ///
+    /// let mut chains: Vec<Chain<f64, 4>> = (0..8).map(|_| Chain::new()).collect();
+    /// let mut lbfgs: Lbfgs<f64, 4, 8> = Lbfgs::new();
+    /// // A budget that never runs out: the observer ends the run.
+    /// let found = Auto::default().minimize_with(
+    ///     &Rastrigin,
+    ///     Interval::new(-5.12, 5.12)?,
+    ///     u64::MAX,
+    ///     1,
+    ///     &mut chains,
+    ///     &mut lbfgs,
+    ///     |p| if p.evaluations > 50_000 { ControlFlow::Break(()) } else { ControlFlow::Continue(()) },
+    /// )?;
+    /// assert_eq!(found.termination, Termination::Observer);
+    /// # Ok::<(), hrla::Error>(())
+    /// ```
     #[allow(clippy::too_many_arguments)]
-    pub fn minimize_with<P, const D: usize, R, const M: usize>(
+    pub fn minimize_with<P, const D: usize, R, const M: usize, O>(
         &self,
         potential: &P,
         domain: Interval<F>,
@@ -189,11 +323,12 @@ impl<F: Float> Auto<F> {
         seed: u64,
         chains: &mut [Chain<F, D, R>],
         lbfgs: &mut Lbfgs<F, D, M>,
-        mut improved: impl FnMut(u64, F),
+        observer: O,
     ) -> Result<Solution<F, D>, Error>
     where
         P: Potential<F, D> + ?Sized,
         R: Rng + SeedableRng + 'static,
+        O: FnMut(&AutoProgress<'_, F, D>) -> ControlFlow<()>,
     {
         self.validate()?;
         let n = chains.len();
@@ -260,61 +395,88 @@ impl<F: Float> Auto<F> {
         let mut basins = [F::INFINITY; 64];
         let tracked = n.min(64);
         let quench = PolishSettings::new(self.quench);
-        let round = (budget / (self.rounds * n as u64)).max(10);
+        // Saturating: a product past `u64::MAX` means rounds of the
+        // shortest length.
+        let round = (budget / self.rounds.saturating_mul(n as u64)).max(10);
         let mut rounds = 0;
-        let mut best = opt.best().value;
-        improved(opt.evaluations() + probes, best);
-        let mut report = |value: F, evaluations: u64| {
-            if value < best {
-                best = value;
-                improved(evaluations + probes, value);
-            }
+        let mut watch = Watch {
+            observer,
+            seen: None,
+            probes,
         };
+        let mut termination = Termination::Evaluations;
+        // Ends the run when the observer asks to.
+        macro_rules! observe {
+            ($run:lifetime) => {
+                if watch.call(&opt, rounds).is_break() {
+                    termination = Termination::Observer;
+                    break $run;
+                }
+            };
+        }
         // Quench first (the initial points' basins), then sample: on a
         // problem with few minima the quenches alone find the answer.
         let mut first = true;
-        'run: loop {
-            for _ in 0..if first { 0 } else { round } {
-                if opt.termination().is_some() {
-                    break 'run;
+        'run: {
+            observe!('run);
+            loop {
+                for _ in 0..if first { 0 } else { round } {
+                    if opt.termination().is_some() {
+                        break 'run;
+                    }
+                    match opt.step() {
+                        Ok(()) => {}
+                        // Every chain stepped where `U` is not finite: they
+                        // all restart below.
+                        Err(Error::AllDiverged { .. }) => {
+                            opt.forgive_divergence();
+                            break;
+                        }
+                        Err(e) => return Err(e),
+                    }
+                    observe!('run);
                 }
-                match opt.step() {
-                    Ok(()) => {}
-                    Err(Error::AllDiverged { .. }) => break 'run,
-                    Err(e) => return Err(e),
-                }
-                report(opt.best().value, opt.evaluations());
-            }
-            rounds += u64::from(!first);
-            first = false;
-            let (mut moved, mut live) = (0usize, 0usize);
-            #[allow(clippy::needless_range_loop)] // `c` indexes the optimiser's chains too
-            for c in 0..n {
-                if opt.chains()[c].is_diverged() {
-                    continue;
-                }
-                let done = opt.quench(c, lbfgs, quench)?;
-                if done.evaluations == 0 {
-                    break 'run;
-                }
-                report(opt.best().value, opt.evaluations());
-                if c < tracked {
-                    live += 1;
-                    let scale = if done.value.abs() > F::ONE {
-                        done.value.abs()
-                    } else {
-                        F::ONE
+                rounds += u64::from(!first);
+                first = false;
+                let (mut moved, mut live) = (0usize, 0usize);
+                #[allow(clippy::needless_range_loop)] // `c` indexes the optimiser's chains too
+                for c in 0..n {
+                    if opt.chains()[c].is_diverged() {
+                        // The worst basin: restarted first.
+                        if c < tracked {
+                            basins[c] = F::INFINITY;
+                        }
+                        continue;
+                    }
+                    let done = match opt.quench(c, lbfgs, quench) {
+                        Ok(done) => done,
+                        // The potential is not finite where it was (a
+                        // noisy or failing evaluation): infeasible now, and
+                        // the chain goes on from there.
+                        Err(Error::NotFinite { .. }) => continue,
+                        Err(e) => return Err(e),
                     };
-                    let stayed = (done.value - basins[c]).abs() <= same * scale;
-                    moved += usize::from(!stayed);
-                    basins[c] = done.value;
+                    if done.evaluations == 0 {
+                        break 'run;
+                    }
+                    observe!('run);
+                    if c < tracked {
+                        live += 1;
+                        let scale = if done.value.abs() > F::ONE {
+                            done.value.abs()
+                        } else {
+                            F::ONE
+                        };
+                        let stayed = (done.value - basins[c]).abs() <= same * scale;
+                        moved += usize::from(!stayed);
+                        basins[c] = done.value;
+                    }
                 }
-            }
-            // Global moves: the chains in the worst basins restart from the
-            // best point with one coordinate redrawn uniformly in the box
-            // (the next round's quench finds that point's basin).
-            let restarts = self.restarts.min(tracked);
-            if restarts > 0 {
+                // Global moves: the chains in the worst basins restart from
+                // the best point with one coordinate redrawn uniformly in
+                // the box (the next round's quench finds that point's
+                // basin); diverged chains restart in any case.
+                let restarts = self.restarts.min(tracked);
                 let mut order = [0usize; 64];
                 let m = tracked;
                 for (i, o) in order.iter_mut().enumerate().take(m) {
@@ -329,33 +491,41 @@ impl<F: Float> Auto<F> {
                     }
                 }
                 let best = opt.best().x;
-                for (r, &c) in order.iter().take(restarts).enumerate() {
-                    let h1 = crate::optimizer::splitmix64(
-                        seed ^ crate::optimizer::splitmix64(rounds * 64 + r as u64),
-                    );
-                    let h2 = crate::optimizer::splitmix64(h1);
-                    let j = (h1 % D.max(1) as u64) as usize;
-                    let u = F::from_u64(h2 >> 11) * F::from_f64(1.0 / (1u64 << 53) as f64);
-                    let mut x = best;
-                    x[j] = domain.lo() + (domain.hi() - domain.lo()) * u;
-                    if !opt.restart(c, &x) {
+                for (r, &c) in order.iter().take(m).enumerate() {
+                    if r >= restarts && !opt.chains()[c].is_diverged() {
+                        continue;
+                    }
+                    let x = redrawn(&best, domain, seed, rounds, r as u64);
+                    if !revive(&mut opt, c, &x, &best)? {
                         break 'run;
                     }
                     basins[c] = F::INFINITY;
                 }
-            }
-            let rate = F::from_u64(moved as u64) / F::from_u64(live.max(1) as u64);
-            let a = opt.schedule().0;
-            let next = if rate < self.low_rate {
-                a / self.factor
-            } else if rate > self.high_rate {
-                a * self.factor
-            } else {
-                a
-            };
-            opt.schedule_mut().0 = clamp(next, F::from_f64(1e-6), F::from_f64(1e6));
-            if opt.termination() == Some(Termination::Evaluations) {
-                break;
+                for c in tracked..n {
+                    if opt.chains()[c].is_diverged() {
+                        // Streams apart from those of the tracked chains.
+                        let x = redrawn(&best, domain, !seed, rounds, c as u64);
+                        if !revive(&mut opt, c, &x, &best)? {
+                            break 'run;
+                        }
+                    }
+                }
+                if restarts > 0 || opt.diverged_chains() > 0 {
+                    observe!('run);
+                }
+                let rate = F::from_u64(moved as u64) / F::from_u64(live.max(1) as u64);
+                let a = opt.schedule().0;
+                let next = if rate < self.low_rate {
+                    a / self.factor
+                } else if rate > self.high_rate {
+                    a * self.factor
+                } else {
+                    a
+                };
+                opt.schedule_mut().0 = clamp(next, F::from_f64(1e-6), F::from_f64(1e6));
+                if opt.termination() == Some(Termination::Evaluations) {
+                    break;
+                }
             }
         }
         let best = opt.best();
@@ -366,6 +536,9 @@ impl<F: Float> Auto<F> {
             rounds,
             step: h,
             inverse_temperature: opt.schedule().0,
+            termination,
+            diverged_chains: opt.diverged_chains(),
+            chains: n,
         })
     }
 
@@ -396,6 +569,51 @@ impl<F: Float> Auto<F> {
         }
         Ok(())
     }
+}
+
+/// The best point with one coordinate redrawn uniformly in the box, from
+/// a stream of `(seed, rounds, r)`.
+fn redrawn<F: Float, const D: usize>(
+    best: &[F; D],
+    domain: Interval<F>,
+    seed: u64,
+    rounds: u64,
+    r: u64,
+) -> [F; D] {
+    let h1 = splitmix64(seed ^ splitmix64(rounds.wrapping_mul(64).wrapping_add(r)));
+    let h2 = splitmix64(h1);
+    let j = (h1 % D.max(1) as u64) as usize;
+    let u = F::from_u64(h2 >> 11) * F::from_f64(1.0 / (1u64 << 53) as f64);
+    let mut x = *best;
+    x[j] = domain.lo() + (domain.hi() - domain.lo()) * u;
+    x
+}
+
+/// Restarts chain `c` at `x`, or at the best point itself (feasible: its
+/// value was finite) when `x` is infeasible; `false` when the budget is
+/// spent.
+fn revive<F, P, S, C, St, const D: usize, R, B>(
+    opt: &mut Optimizer<F, P, S, C, St, D, R, B>,
+    c: usize,
+    x: &[F; D],
+    best: &[F; D],
+) -> Result<bool, Error>
+where
+    F: Float,
+    P: Potential<F, D>,
+    S: crate::sampler::Sampler<F>,
+    C: Schedule<F>,
+    St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
+    R: Rng + 'static,
+    B: crate::domain::Domain<F, D>,
+{
+    if !opt.restart(c, x)? {
+        return Ok(false);
+    }
+    if opt.chains()[c].is_diverged() {
+        return opt.restart(c, best);
+    }
+    Ok(true)
 }
 
 fn clamp<F: Float>(v: F, lo: F, hi: F) -> F {

@@ -114,14 +114,40 @@ fn reflect<F: Float>(v: F, lo: F, hi: F) -> (F, bool) {
     let w = hi - lo;
     // Position in the unfolded line, in periods of 2w.
     let t = v - lo;
-    let periods = floor(t / (w + w));
-    let r = t - periods * (w + w);
+    let period = w + w;
+    if !(t.is_finite() && period.is_finite()) {
+        return reflect_halved(v, lo, hi);
+    }
+    let periods = floor(t / period);
+    let r = t - periods * period;
     let (out, flipped) = if r <= w {
         (lo + r, false)
     } else {
         (hi - (r - w), true)
     };
     // Rounding may leave the result a hair outside: clamp.
+    (clamp(out, lo, hi), flipped)
+}
+
+/// [`reflect`] for a box or a distance so wide that `2 (hi - lo)` or
+/// `v - lo` overflows: the same folding on halved values, which cannot
+/// overflow (halving is exact away from subnormals, which such widths do
+/// not meet). Kept apart so that ordinary boxes keep their bits.
+#[cold]
+fn reflect_halved<F: Float>(v: F, lo: F, hi: F) -> (F, bool) {
+    let (v, lo2, hi2) = (v * F::HALF, lo * F::HALF, hi * F::HALF);
+    let w = hi2 - lo2;
+    let period = w + w;
+    let t = v - lo2;
+    let periods = floor(t / period);
+    let r = t - periods * period;
+    // An overflowing ratio (a tiny box, a huge distance) leaves `r`
+    // infinite: the clamp brings it to an end.
+    let (out, flipped) = if r <= w {
+        (lo + (r + r), false)
+    } else {
+        (hi - ((r - w) + (r - w)), true)
+    };
     (clamp(out, lo, hi), flipped)
 }
 
@@ -216,6 +242,39 @@ mod tests {
             assert_eq!(flipped, flip, "{v}");
         }
         assert!(reflect(f64::NAN, lo, hi).0.is_nan());
+    }
+
+    #[test]
+    fn reflection_in_a_box_of_width_near_max_stays_finite() {
+        let (lo, hi) = (-6e307f64, 6e307);
+        // (input, output, flipped): 6.5e307 is 5e306 past hi.
+        for (v, want, flip) in [
+            (6.5e307, 5.5e307, true),
+            (-6.5e307, -5.5e307, true),
+            (f64::MAX, 6e307 - (f64::MAX - 6e307), true),
+            (-f64::MAX, -6e307 + (f64::MAX - 6e307), true),
+        ] {
+            let (got, flipped) = reflect(v, lo, hi);
+            assert!(
+                (got - want).abs() <= 1e-15 * want.abs(),
+                "{v}: {got} != {want}"
+            );
+            assert_eq!(flipped, flip, "{v}");
+        }
+        // Widest box: every finite input lands inside.
+        let (lo, hi) = (-f64::MAX, f64::MAX);
+        for v in [f64::MAX, -f64::MAX, 1e308, 0.0] {
+            let (got, _) = reflect(v, lo, hi);
+            assert!(got.is_finite() && got >= lo && got <= hi, "{v}: {got}");
+        }
+        // A tiny box far away: the ratio overflows, the result is an end.
+        let (lo, hi) = (0.0f64, 1e-300);
+        for v in [f64::MAX, -f64::MAX] {
+            let (got, _) = reflect(v, lo, hi);
+            assert!(got.is_finite() && got >= lo && got <= hi, "{v}: {got}");
+        }
+        let (got, _) = reflect(3e38f32, -2e38, 2e38);
+        assert!(got.is_finite() && (-2e38..=2e38).contains(&got), "{got}");
     }
 
     #[test]

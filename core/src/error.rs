@@ -59,14 +59,33 @@ pub enum Error {
         /// The names known, each after a space.
         expected: &'static str,
     },
-    /// An initial point, or the potential or its gradient there, is not
-    /// finite.
+    /// No feasible initial point: every point drawn for a chain from the
+    /// start law (up to [`START_TRIES`](crate::START_TRIES), within the
+    /// evaluation budget) had a non-finite position, potential or
+    /// gradient.
     NonFiniteStart {
-        /// The chain whose initial point was bad.
+        /// The chain whose initial points were all bad.
         chain: usize,
-        /// What was not finite: `position`, `value` or `gradient`.
+        /// What was not finite at the last one: `position`, `value` or
+        /// `gradient`.
         what: &'static str,
+        /// The points drawn for that chain.
+        tries: u32,
     },
+    /// An index outside `0..len`, such as a chain's.
+    Index {
+        /// What was indexed (`chain`).
+        name: &'static str,
+        /// The index given.
+        index: usize,
+        /// The number of items: valid indices are `0..len`.
+        len: usize,
+    },
+    /// A potential panicked while the optimiser was evaluating it: the
+    /// chains may be partly stepped and the counters stale, so every later
+    /// step, run, polish, quench or restart refuses to go on. Rebuild the
+    /// optimiser.
+    Poisoned,
     /// A parameter lies outside the range the crate's accuracy is
     /// documented and tested for.
     OutOfRange {
@@ -139,9 +158,22 @@ impl fmt::Display for Error {
             Error::Unknown { what, expected } => {
                 write!(f, "unknown {what}; expected one of:{expected}")
             }
-            Error::NonFiniteStart { chain, what } => write!(
+            Error::NonFiniteStart { chain, what, tries } => write!(
                 f,
-                "the initial point of chain {chain}: its {what} is not finite"
+                "no feasible initial point for chain {chain}: {tries} drawn, \
+                 the last one's {what} is not finite"
+            ),
+            Error::Index { name, index, len } => match len {
+                0 => write!(f, "`{name}` = {index} is out of range: there are none"),
+                _ => write!(
+                    f,
+                    "`{name}` must be between 0 and {}, got {index}",
+                    len - 1
+                ),
+            },
+            Error::Poisoned => f.write_str(
+                "the potential panicked during an evaluation: the optimiser's state is \
+                 inconsistent and it refuses to go on; build a new one",
             ),
             Error::OutOfRange {
                 name,
@@ -243,4 +275,13 @@ pub(crate) fn in_range<F: Float>(name: &'static str, v: F, range: (f64, f64)) ->
             max: range.1,
         })
     }
+}
+
+/// The lowest value a potential may take before the crate calls it
+/// unbounded below: `-sqrt(MAX)` of the float type, far below any
+/// meaningful minimum and far enough above `-MAX` that differences of
+/// values near it do not overflow.
+#[inline(always)]
+pub(crate) fn floor<F: Float>() -> F {
+    -(F::MAX.sqrt())
 }

@@ -12,7 +12,7 @@
 //! [`Lbfgs`] value, which the caller owns: `2 M + 3` arrays of `D` floats.
 
 use crate::domain::{Domain, Unbounded};
-use crate::error::{Error, finite};
+use crate::error::{Error, finite, floor};
 use crate::float::Float;
 use crate::potential::traits::Potential;
 
@@ -114,7 +114,10 @@ pub struct Lbfgs<F, const D: usize, const M: usize> {
 }
 
 impl<F: Float, const D: usize, const M: usize> Default for Lbfgs<F, D, M> {
+    /// Empty memory. A memory of `M = 0` pairs would not be L-BFGS: it does
+    /// not compile.
     fn default() -> Self {
+        const { assert!(M > 0, "L-BFGS needs a memory of at least one pair: M > 0") };
         Self {
             s: [[F::ZERO; D]; M],
             y: [[F::ZERO; D]; M],
@@ -165,6 +168,18 @@ fn cubic_step<F: Float>(a: F, fa: F, da: F, b: F, fb: F, db: F) -> F {
     }
 }
 
+/// [`Error::UnboundedBelow`] for a value below the floor.
+fn unbounded<F: Float>(value: F) -> Result<(), Error> {
+    if value < floor() {
+        Err(Error::UnboundedBelow {
+            chain: 0,
+            value: value.to_f64(),
+        })
+    } else {
+        Ok(())
+    }
+}
+
 /// A point of the line: step, value, directional derivative.
 #[derive(Clone, Copy)]
 struct LinePoint<F> {
@@ -174,7 +189,11 @@ struct LinePoint<F> {
 }
 
 impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
-    /// Empty memory.
+    /// Empty memory. `M = 0` is refused at compile time:
+    ///
+    /// ```compile_fail
+    /// let lbfgs: hrla::Lbfgs<f64, 2, 0> = hrla::Lbfgs::new();
+    /// ```
     pub fn new() -> Self {
         Self::default()
     }
@@ -218,7 +237,8 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
     }
 
     /// Evaluates `U` and its slope along the direction at `x + step d`, into
-    /// the trial buffers; a non-finite value counts as `+inf`.
+    /// the trial buffers; a non-finite value counts as `+inf`, except below
+    /// the floor at a finite point (`-inf` included), kept as it is.
     fn probe<P: Potential<F, D> + ?Sized, B: Domain<F, D> + ?Sized>(
         &mut self,
         potential: &P,
@@ -234,7 +254,9 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
         // Along the path actually taken (the projection may have shortened
         // the step in some coordinates): the derivative in the direction.
         let slope = dot(&self.trial_grad, &self.direction);
-        if value.is_finite() && slope.is_finite() {
+        if value < floor() && self.trial.iter().all(|t| t.is_finite()) {
+            LinePoint { step, value, slope }
+        } else if value.is_finite() && slope.is_finite() {
             LinePoint { step, value, slope }
         } else {
             LinePoint {
@@ -247,7 +269,8 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
 
     /// A step satisfying the strong Wolfe conditions from `(0, f0, d0)`,
     /// with the trial buffers holding its point and gradient; `None` when
-    /// none was found within the trials or the budget.
+    /// none was found within the trials or the budget. A point below the
+    /// floor ends the search at once, returned as it is.
     #[allow(clippy::too_many_arguments)]
     fn line_search<P: Potential<F, D> + ?Sized, B: Domain<F, D> + ?Sized>(
         &mut self,
@@ -260,6 +283,7 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
         budget: &mut u64,
     ) -> Option<LinePoint<F>> {
         let (c1, c2) = (F::from_f64(C1), F::from_f64(C2));
+        let floor = floor::<F>();
         let armijo = |p: &LinePoint<F>| p.value <= f0 + c1 * p.step * d0;
         let curvature = |p: &LinePoint<F>| p.slope.abs() <= -c2 * d0;
         let mut prev = LinePoint {
@@ -275,6 +299,9 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
             }
             *budget -= 1;
             let p = self.probe(potential, domain, x, step);
+            if p.value < floor {
+                return Some(p);
+            }
             if !armijo(&p) || (i > 0 && p.value >= prev.value) {
                 (lo, hi) = (Some(prev), Some(p));
                 break;
@@ -304,6 +331,9 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
             }
             *budget -= 1;
             let p = self.probe(potential, domain, x, step);
+            if p.value < floor {
+                return Some(p);
+            }
             if !armijo(&p) || p.value >= lo.value {
                 hi = p;
             } else {
@@ -333,7 +363,9 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
     /// line search fails or the budget is spent.
     ///
     /// Errors: [`Error::Zero`] for a zero budget, [`Error::NotFinite`] if
-    /// `x`, `U(x)` or `∇U(x)` is not finite.
+    /// `x`, `U(x)` or `∇U(x)` is not finite, [`Error::UnboundedBelow`]
+    /// (chain 0) if `U` falls to `-inf` or below `-sqrt(F::MAX)` at a point
+    /// it evaluates (`x` is then the last point above it).
     pub fn minimize<P: Potential<F, D> + ?Sized>(
         &mut self,
         potential: &P,
@@ -364,7 +396,9 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
         domain.project(x);
         self.reset();
         let mut grad = [F::ZERO; D];
-        let mut value = finite("U(x)", potential.value_and_gradient(x, &mut grad))?;
+        let value = potential.value_and_gradient(x, &mut grad);
+        unbounded(value)?;
+        let mut value = finite("U(x)", value)?;
         for &g in &grad {
             finite("gradient", g)?;
         }
@@ -408,6 +442,7 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
                     PolishEnd::LineSearch
                 };
             };
+            unbounded(p.value)?;
             // The new pair, kept when its curvature is positive.
             let k = self.next;
             for j in 0..D {

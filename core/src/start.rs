@@ -8,7 +8,9 @@ use crate::float::Float;
 /// Draws the initial position of each chain (the velocity starts at 0).
 pub trait Start<F: Float, const D: usize> {
     /// Writes the initial position of chain `chain` into `x`, drawing from
-    /// that chain's own generator `rng`.
+    /// that chain's own generator `rng`. Called again for the same chain,
+    /// with the generator where the last call left it, when the point was
+    /// infeasible.
     fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]);
 }
 
@@ -77,7 +79,9 @@ impl<F: Float, const D: usize> Start<F, D> for Gaussian<F, D> {
 }
 
 /// Initial points from a closure `(chain, rng) -> x_0`. A non-finite point
-/// is rejected by the optimiser with [`Error::NonFiniteStart`].
+/// is infeasible: the optimiser calls the closure again for that chain (see
+/// [`Builder::build`](crate::Builder::build)), and fails with
+/// [`Error::NonFiniteStart`] when none of its tries is feasible.
 #[derive(Clone, Copy, Debug)]
 pub struct FromFn<G>(pub G);
 

@@ -436,7 +436,7 @@ impl<const D: usize> Engine for Run<D> {
         })?;
         let done = self.opt.restart(chain, &x);
         self.finish()?;
-        Ok(done)
+        done.map_err(kernel)
     }
 
     fn dim(&self) -> usize {

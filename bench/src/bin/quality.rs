@@ -128,10 +128,11 @@ fn default<const D: usize>(
         seed,
         &mut chains,
         &mut lbfgs,
-        |evaluations, value| {
-            if to_1e3.is_none() && value - minimum < 1e-3 {
-                to_1e3 = Some(evaluations);
+        |p| {
+            if to_1e3.is_none() && p.value - minimum < 1e-3 {
+                to_1e3 = Some(p.evaluations);
             }
+            std::ops::ControlFlow::Continue(())
         },
     )?;
     Ok(Outcome {

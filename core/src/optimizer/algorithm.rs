@@ -11,9 +11,9 @@ use super::chain::{Best, Chain};
 use super::executor::Executor;
 use super::report::{Progress, Report};
 use super::stop::{Stop, Termination};
-use super::sweep::{Context, Sweep, all_finite, sweep};
+use super::sweep::{Context, Sweep, Verdict, judge, sweep};
 use crate::domain::{Domain, Unbounded};
-use crate::error::Error;
+use crate::error::{Error, floor};
 use crate::float::Float;
 use crate::polish::{Lbfgs, PolishEnd, PolishSettings, Polished};
 use crate::potential::Potential;
@@ -62,7 +62,8 @@ pub struct Optimizer<
     stall_value: F,
     stall_since: u64,
     /// The error that ended the run, returned again by every later step:
-    /// a failed run stays failed.
+    /// a failed run stays failed. [`Error::Poisoned`] while the potential
+    /// is being evaluated, so that it stays if the potential panics.
     failed: Option<Error>,
     rng: PhantomData<fn() -> R>,
 }
@@ -101,10 +102,10 @@ where
         schedule: C,
         chains: St,
         best: usize,
+        evaluations: u64,
         stride: u64,
         stop: Stop<F>,
     ) -> Self {
-        let evaluations = chains.as_ref().len() as u64;
         let stall_value = chains.as_ref()[best].best.value;
         Self {
             potential,
@@ -133,8 +134,10 @@ where
     /// Errors: the sampler's, if it refuses the schedule's `a_k` (the state
     /// is then unchanged); [`Error::UnboundedBelow`] if a chain's potential
     /// fell to `-inf` or below `-sqrt(F::MAX)`; [`Error::AllDiverged`] once
-    /// every chain has diverged. After either, every later call returns
-    /// the same error: a failed run never turns into a report.
+    /// every chain has diverged; [`Error::Poisoned`] if the potential
+    /// panicked during an earlier call. After any of these, every later
+    /// call returns the same error: a failed run never turns into a
+    /// report.
     pub fn step(&mut self) -> Result<(), Error> {
         self.advance().map(drop)
     }
@@ -148,13 +151,23 @@ where
     where
         T: FnOnce(&Context<'_, S::Kernel, P, B, F>, &mut [Chain<F, D, R>]) -> Sweep<F>,
     {
+        self.guarded(|opt| opt.advance_live(step_chains))
+    }
+
+    /// `work`, which evaluates the potential, unless the run has failed.
+    /// The run is marked poisoned while it runs, so that a panic in the
+    /// potential leaves it poisoned (the chains may be partly stepped, the
+    /// counters stale); a run that fails in it stays failed.
+    fn guarded<T>(&mut self, work: impl FnOnce(&mut Self) -> Result<T, Error>) -> Result<T, Error> {
         if let Some(e) = self.failed {
             return Err(e);
         }
-        let result = self.advance_live(step_chains);
-        if let Err(e @ (Error::UnboundedBelow { .. } | Error::AllDiverged { .. })) = result {
-            self.failed = Some(e);
-        }
+        self.failed = Some(Error::Poisoned);
+        let result = work(self);
+        self.failed = match result {
+            Err(e @ (Error::UnboundedBelow { .. } | Error::AllDiverged { .. })) => Some(e),
+            _ => None,
+        };
         result
     }
 
@@ -175,7 +188,7 @@ where
             domain: &self.domain,
             k,
             record: k.is_multiple_of(self.stride),
-            floor: -(F::MAX.sqrt()),
+            floor: floor(),
         };
         let before = self.chains.as_ref()[self.best].best.value;
         let found = step_chains(&cx, self.chains.as_mut());
@@ -345,8 +358,9 @@ where
     /// # Ok::<(), hrla::Error>(())
     /// ```
     ///
-    /// Errors: [`Error::Count`] for a chain index out of range, and those of
-    /// [`Lbfgs::minimize`].
+    /// Errors: [`Error::Index`] for a chain index out of range; those of
+    /// [`Lbfgs::minimize`] ([`Error::UnboundedBelow`] naming the chain, the
+    /// run then failed); the error of a run that has failed.
     pub fn polish<const M: usize>(
         &mut self,
         chain: usize,
@@ -363,9 +377,8 @@ where
     /// its evaluations count in the run's, within what is left of the
     /// evaluation budget (as [`polish`](Optimizer::polish)).
     ///
-    /// Errors: [`Error::Count`] for a chain index out of range; a diverged
-    /// chain gives a quench of no evaluation; those of
-    /// [`Lbfgs::minimize`].
+    /// Errors: as [`polish`](Optimizer::polish); a diverged chain gives a
+    /// quench of no evaluation.
     pub fn quench<const M: usize>(
         &mut self,
         chain: usize,
@@ -384,23 +397,15 @@ where
         lbfgs: &mut Lbfgs<F, D, M>,
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
-        let n = self.chains.as_ref().len();
-        let Some(c) = self.chains.as_ref().get(chain) else {
-            return Err(Error::Count {
-                name: "chain",
-                value: chain,
-                max: n - 1,
-            });
-        };
+        let c = self.chain_at(chain)?;
+        if let Some(e) = self.failed {
+            return Err(e);
+        }
         let (mut x, value) = match from {
             Origin::Best => (c.best.x, c.best.value),
             Origin::Current => (c.x, c.value),
         };
-        let left = self
-            .stop
-            .evaluations
-            .map_or(u64::MAX, |b| b.saturating_sub(self.evaluations));
-        let budget = settings.evaluations.min(left);
+        let budget = settings.evaluations.min(self.evaluations_left());
         if budget == 0 || (from == Origin::Current && c.diverged) {
             return Ok(Polished {
                 value,
@@ -409,57 +414,99 @@ where
                 end: PolishEnd::Budget,
             });
         }
-        let done = lbfgs.minimize_in(
-            &self.potential,
-            &self.domain,
-            &mut x,
-            PolishSettings {
-                evaluations: budget,
-                ..settings
-            },
-        )?;
-        self.evaluations += done.evaluations;
-        self.record(chain, &x, done.value);
-        Ok(done)
+        let settings = PolishSettings {
+            evaluations: budget,
+            ..settings
+        };
+        self.guarded(|opt| {
+            let done = lbfgs
+                .minimize_in(&opt.potential, &opt.domain, &mut x, settings)
+                .map_err(|e| match e {
+                    Error::UnboundedBelow { value, .. } => Error::UnboundedBelow { chain, value },
+                    e => e,
+                })?;
+            opt.evaluations += done.evaluations;
+            opt.record(chain, &x, done.value)?;
+            Ok(done)
+        })
+    }
+
+    /// Chain `chain`, or [`Error::Index`].
+    fn chain_at(&self, chain: usize) -> Result<&Chain<F, D, R>, Error> {
+        let chains = self.chains.as_ref();
+        chains.get(chain).ok_or(Error::Index {
+            name: "chain",
+            index: chain,
+            len: chains.len(),
+        })
+    }
+
+    /// What is left of the evaluation budget (`u64::MAX` without one).
+    fn evaluations_left(&self) -> u64 {
+        self.stop
+            .evaluations
+            .map_or(u64::MAX, |b| b.saturating_sub(self.evaluations))
     }
 
     /// Moves chain `chain` to `x` (confined to the domain) with zero
-    /// velocity and evaluates the potential there (one evaluation, within
-    /// the budget; none left: nothing happens and `false` is returned). A
-    /// non-finite result marks the chain diverged.
-    pub fn restart(&mut self, chain: usize, x: &[F; D]) -> bool {
-        let left = self
-            .stop
-            .evaluations
-            .map_or(u64::MAX, |b| b.saturating_sub(self.evaluations));
-        if left == 0 || chain >= self.chains.as_ref().len() {
-            return false;
+    /// velocity and evaluates the potential there: one evaluation, within
+    /// the budget (none left: nothing happens and `Ok(false)` is
+    /// returned). A non-finite position, value or gradient there marks the
+    /// chain diverged (a diverged chain restarted at a feasible point
+    /// lives again).
+    ///
+    /// Errors: [`Error::Index`] for a chain out of range;
+    /// [`Error::UnboundedBelow`] if the value there is below
+    /// `-sqrt(F::MAX)` (the run has then failed); the error of a run that
+    /// has failed.
+    pub fn restart(&mut self, chain: usize, x: &[F; D]) -> Result<bool, Error> {
+        self.chain_at(chain)?;
+        if let Some(e) = self.failed {
+            return Err(e);
         }
-        let was_diverged = self.chains.as_ref()[chain].diverged;
-        let c = &mut self.chains.as_mut()[chain];
-        c.x = *x;
-        c.y = [F::ZERO; D];
-        self.domain.confine(&mut c.x, &mut c.y);
-        let value = self.potential.value_and_gradient(&c.x, &mut c.grad);
-        c.value = value;
-        let ok = value.is_finite() && all_finite(&c.grad);
-        c.diverged = !ok;
-        self.evaluations += 1;
-        match (was_diverged, ok) {
-            (true, true) => self.diverged -= 1,
-            (false, false) => self.diverged += 1,
-            _ => {}
+        if self.evaluations_left() == 0 {
+            return Ok(false);
         }
-        if ok {
-            let x = self.chains.as_ref()[chain].x;
-            self.record(chain, &x, value);
-        }
-        true
+        self.guarded(|opt| {
+            let was_diverged = opt.chains.as_ref()[chain].diverged;
+            let c = &mut opt.chains.as_mut()[chain];
+            c.x = *x;
+            c.y = [F::ZERO; D];
+            opt.domain.confine(&mut c.x, &mut c.y);
+            let value = opt.potential.value_and_gradient(&c.x, &mut c.grad);
+            c.value = value;
+            let verdict = judge(&c.x, value, &c.grad, floor());
+            let ok = verdict == Verdict::Feasible;
+            c.diverged = !ok;
+            opt.evaluations += 1;
+            match (was_diverged, ok) {
+                (true, true) => opt.diverged -= 1,
+                (false, false) => opt.diverged += 1,
+                _ => {}
+            }
+            if ok {
+                let x = opt.chains.as_ref()[chain].x;
+                opt.record(chain, &x, value)?;
+            } else if verdict == Verdict::Unbounded {
+                return Err(Error::UnboundedBelow {
+                    chain,
+                    value: value.to_f64(),
+                });
+            }
+            Ok(true)
+        })
     }
 
     /// Makes `(x, value)` chain `chain`'s best when lower, at the current
-    /// iteration, and the global best when lowest.
-    fn record(&mut self, chain: usize, x: &[F; D], value: F) {
+    /// iteration, and the global best when lowest: the path of every value
+    /// found outside a step. A value below the floor is refused.
+    fn record(&mut self, chain: usize, x: &[F; D], value: F) -> Result<(), Error> {
+        if value < floor() {
+            return Err(Error::UnboundedBelow {
+                chain,
+                value: value.to_f64(),
+            });
+        }
         if value < self.chains.as_ref()[chain].best.value {
             let k = self.iteration;
             let target = &mut self.chains.as_mut()[chain].best;
@@ -469,6 +516,16 @@ where
             if value < self.best().value {
                 self.best = chain;
             }
+        }
+        Ok(())
+    }
+
+    /// Lets a run whose chains all diverged go on, for a caller that
+    /// restarts them (the default solver, to which a non-finite point is
+    /// infeasible, not fatal).
+    pub(crate) fn forgive_divergence(&mut self) {
+        if let Some(Error::AllDiverged { .. }) = self.failed {
+            self.failed = None;
         }
     }
 

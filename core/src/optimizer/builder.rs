@@ -7,14 +7,21 @@ use super::algorithm::Optimizer;
 use super::chain::Chain;
 use super::stop::Stop;
 use super::stream::chain_seed;
-use super::sweep::all_finite;
+use super::sweep::{Verdict, judge};
 use crate::domain::{Domain, Unbounded};
-use crate::error::Error;
+use crate::error::{Error, floor};
 use crate::float::Float;
 use crate::potential::Potential;
 use crate::sampler::Sampler;
 use crate::schedule::Schedule;
 use crate::start::Start;
+
+/// The most points drawn for one chain's start: a point where the
+/// potential or its gradient is not finite (a NaN, `+inf`) is infeasible,
+/// and the chain draws again from the start law, up to this many times in
+/// all. With a fraction `p` of the start law feasible, a chain fails with
+/// probability `(1 - p)^100`: below `1e-4` for `p = 0.09`.
+pub const START_TRIES: u32 = 100;
 
 /// The settings of a run, before it has chains: a potential, a sampler, a
 /// schedule (a plain `f32`/`f64` for a constant inverse temperature) and
@@ -109,12 +116,20 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
     /// (zero velocity), evaluates the potential there, and checks the
     /// settings: as many chains as `chains` holds.
     ///
+    /// An initial point whose position, value or gradient is not finite is
+    /// infeasible: the chain draws another from the start law (the next
+    /// draws of its own generator), up to [`START_TRIES`] points in all and
+    /// within the evaluation budget, which every point drawn counts in. A
+    /// run whose initial points are all feasible draws each once.
+    ///
     /// Errors: [`Error::Zero`] for no chains, a dimension `D = 0`, a zero
-    /// stride or budget or stall window; [`Error::Budget`] for an evaluation
-    /// budget below the number of chains; [`Error::ScheduleLongerThanRun`]
-    /// for a step budget that would cut the schedule short; the sampler's
-    /// error if it refuses `a_0`; [`Error::NonFiniteStart`] if an initial
-    /// point, its value or its gradient is not finite.
+    /// stride or budget or stall window, or a schedule of length 0;
+    /// [`Error::Budget`] for an evaluation budget below the number of
+    /// chains; [`Error::ScheduleLongerThanRun`] for a step budget that
+    /// would cut the schedule short; the sampler's error if it refuses
+    /// `a_0`; [`Error::NonFiniteStart`] if a chain found no feasible
+    /// initial point; [`Error::UnboundedBelow`] if the potential at an
+    /// initial point is below `-sqrt(F::MAX)`.
     #[allow(clippy::type_complexity)] // the optimiser's own parameters, all inferred
     pub fn build<Store, const D: usize, R>(
         mut self,
@@ -146,6 +161,11 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
             return Err(Error::Budget { budget, chains: n });
         }
         if let Some(length) = self.schedule.length() {
+            if length == 0 {
+                return Err(Error::Zero {
+                    name: "schedule length",
+                });
+            }
             match self.stop.steps {
                 Some(steps) if steps < length => {
                     return Err(Error::ScheduleLongerThanRun {
@@ -159,27 +179,44 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
         }
         let kernel = self.sampler.at(self.schedule.inverse_temperature(0))?;
         let mut best = 0;
+        // Redraws beyond one point per chain, within the evaluation budget.
+        let mut spare = self.stop.evaluations.map_or(u64::MAX, |b| b - n as u64);
+        let mut evaluations = 0;
         for (c, chain) in chains.as_mut().iter_mut().enumerate() {
             chain.rng = R::seed_from_u64(chain_seed(self.seed, c as u64));
-            self.start.initial_point(c, &mut chain.rng, &mut chain.x);
-            chain.y = [F::ZERO; D];
-            self.domain.confine(&mut chain.x, &mut chain.y);
-            let value = self.potential.value_and_gradient(&chain.x, &mut chain.grad);
-            let what = if !all_finite(&chain.x) {
-                Some("position")
-            } else if !value.is_finite() {
-                Some("value")
-            } else if !all_finite(&chain.grad) {
-                Some("gradient")
-            } else {
-                None
-            };
-            if let Some(what) = what {
-                return Err(Error::NonFiniteStart { chain: c, what });
+            let mut tries = 0;
+            loop {
+                self.start.initial_point(c, &mut chain.rng, &mut chain.x);
+                chain.y = [F::ZERO; D];
+                self.domain.confine(&mut chain.x, &mut chain.y);
+                let value = self.potential.value_and_gradient(&chain.x, &mut chain.grad);
+                evaluations += 1;
+                tries += 1;
+                match judge(&chain.x, value, &chain.grad, floor()) {
+                    Verdict::Feasible => {
+                        chain.value = value;
+                        break;
+                    }
+                    Verdict::Unbounded => {
+                        return Err(Error::UnboundedBelow {
+                            chain: c,
+                            value: value.to_f64(),
+                        });
+                    }
+                    Verdict::Infeasible(what) => {
+                        if tries >= START_TRIES || spare == 0 {
+                            return Err(Error::NonFiniteStart {
+                                chain: c,
+                                what,
+                                tries,
+                            });
+                        }
+                        spare -= 1;
+                    }
+                }
             }
-            chain.value = value;
             chain.best.x = chain.x;
-            chain.best.value = value;
+            chain.best.value = chain.value;
             chain.best.iteration = 0;
             chain.diverged = false;
         }
@@ -196,6 +233,7 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
             self.schedule,
             chains,
             best,
+            evaluations,
             self.stride,
             self.stop,
         ))

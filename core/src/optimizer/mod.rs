@@ -19,7 +19,7 @@ mod stream;
 mod sweep;
 
 pub use algorithm::Optimizer;
-pub use builder::Builder;
+pub use builder::{Builder, START_TRIES};
 pub use chain::{Best, Chain};
 pub use executor::{Executor, Serial};
 pub use report::{Progress, Report};

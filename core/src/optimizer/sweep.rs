@@ -189,18 +189,18 @@ fn evaluate<F, K, P, B, R, const D: usize>(
     let value = cx.potential.value_and_gradient(&chain.x, &mut chain.grad);
     found.evaluated += 1;
     chain.value = value;
-    if value < cx.floor {
-        // Frozen like a diverged chain, so that its value never becomes
-        // the best.
-        found.unbounded.get_or_insert((c, value));
-        chain.diverged = true;
-        found.diverged += 1;
-        return;
-    }
-    if !(value.is_finite() && all_finite(&chain.grad) && all_finite(&chain.x)) {
-        chain.diverged = true;
-        found.diverged += 1;
-        return;
+    match judge(&chain.x, value, &chain.grad, cx.floor) {
+        Verdict::Feasible => {}
+        verdict => {
+            // Frozen, so that a non-finite value or one below the floor
+            // never becomes the best.
+            if verdict == Verdict::Unbounded {
+                found.unbounded.get_or_insert((c, value));
+            }
+            chain.diverged = true;
+            found.diverged += 1;
+            return;
+        }
     }
     if cx.record && value < chain.best.value {
         // Field by field: a whole `Best` would be built on the stack first,
@@ -219,4 +219,40 @@ fn evaluate<F, K, P, B, R, const D: usize>(
 #[inline(always)]
 pub(crate) fn all_finite<F: Float, const D: usize>(v: &[F; D]) -> bool {
     v.iter().fold(true, |ok, x| ok & x.is_finite())
+}
+
+/// What a freshly evaluated point is to a run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Verdict {
+    /// Finite position, value and gradient, the value above the floor.
+    Feasible,
+    /// The position, the value or the gradient (named) is not finite: the
+    /// point is outside the region where `U` is defined.
+    Infeasible(&'static str),
+    /// The value is `-inf` or below the floor, at a finite position: the
+    /// potential looks unbounded below.
+    Unbounded,
+}
+
+/// The one judgement of every point the crate evaluates for a run: the
+/// initial points, the steps, the restarts (the polish checks its own
+/// values against the same [`floor`](crate::error::floor)).
+#[inline(always)]
+pub(crate) fn judge<F: Float, const D: usize>(
+    x: &[F; D],
+    value: F,
+    grad: &[F; D],
+    floor: F,
+) -> Verdict {
+    if value < floor && all_finite(x) {
+        Verdict::Unbounded
+    } else if value.is_finite() && all_finite(grad) && all_finite(x) {
+        Verdict::Feasible
+    } else if !all_finite(x) {
+        Verdict::Infeasible("position")
+    } else if !value.is_finite() {
+        Verdict::Infeasible("value")
+    } else {
+        Verdict::Infeasible("gradient")
+    }
 }
