@@ -91,9 +91,8 @@ __all__ = [
 ]
 
 #: Why a run ended, indexed by :class:`OptimizeResult`'s ``status``: the
-#: kernel's ``Termination`` names, and ``"Diverged"`` (every chain diverged;
-#: ``success`` is then ``False``).
-TERMINATIONS = ("Steps", "Evaluations", "Target", "Stalled", "Observer", "Diverged")
+#: kernel's ``Termination`` names.
+TERMINATIONS = ("Steps", "Evaluations", "Target", "Stalled", "Observer")
 
 Fun = Union[Potential, Callable[[np.ndarray], Tuple[Any, Any]]]
 
@@ -107,13 +106,13 @@ class OptimizeResult(dict):
     (every evaluation computes ``U`` and ``∇U`` together), ``nit`` the
     steps (``"auto"``: rounds), ``success``, ``termination`` (why it ended:
     the kernel's ``Termination`` name, ``"Steps"``, ``"Evaluations"``,
-    ``"Target"``, ``"Stalled"``, or ``"Diverged"``), ``status`` (its index
-    in :data:`TERMINATIONS`), ``all_diverged`` (whether every chain
-    diverged: ``success`` is then ``False`` and ``x`` only the best point
-    seen before), ``diverged_chains``, ``chains``, ``message`` (the
-    kernel's report of the final state, after the polish), ``method``,
-    ``seed``. ``success`` is ``True`` only when ``fun`` is finite and the
-    run ended by one of its rules.
+    ``"Target"`` or ``"Stalled"``), ``status`` (its index in
+    :data:`TERMINATIONS`), ``all_diverged`` (whether every chain had
+    diverged at the end: ``x`` is then the last feasible best found
+    before), ``diverged_chains``, ``chains``, ``message`` (the kernel's
+    report of the final state, after the polish), ``method``, ``seed``.
+    ``success`` is ``True`` only when ``fun`` is finite, some chain is
+    still alive and a stopping rule ended the run.
     """
 
     def __getattr__(self, name: str) -> Any:
@@ -214,14 +213,9 @@ def minimize(
         if box is None:
             raise ValueError('method="auto" needs bounds: (lo, hi) with dim=, or D (lo, hi) pairs')
         s = Auto().minimize(fun, box, budget, seed, chains=chains, dim=dim)
-        spent = s.evaluations + 2 * s.chains > budget
-        termination = "Evaluations" if spent else "Diverged"
         return _result(
-            x=np.asarray(s.x), fun=s.value, nfev=s.evaluations, nit=s.rounds, termination=termination,
-            diverged_chains=0 if spent else s.chains, chains=s.chains,
-            message=(f"evaluation budget spent: best U = {s.value!r} after {s.rounds} rounds "
-                     f"and {s.evaluations} evaluations" if spent else
-                     "every chain diverged before the budget was spent; x is the best point found"),
+            x=np.asarray(s.x), fun=s.value, nfev=s.evaluations, nit=s.rounds, termination=s.termination,
+            diverged_chains=s.diverged_chains, chains=s.chains, message=s.message,
             method="auto", seed=seed, step=s.step, inverse_temperature=s.inverse_temperature,
         )
     if method not in _SAMPLERS:
@@ -268,7 +262,7 @@ def _result(*, fun: float, nfev: int, termination: str, diverged_chains: int, ch
     from the termination and the value."""
     return OptimizeResult(
         fun=fun, nfev=nfev, njev=nfev,
-        success=termination != "Diverged" and bool(np.isfinite(fun)),
+        success=termination != "Observer" and diverged_chains < chains and bool(np.isfinite(fun)),
         status=TERMINATIONS.index(termination), termination=termination,
         all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
         **rest,

@@ -198,6 +198,10 @@ class Solution:
     step: float
     inverse_temperature: float
     chains: int
+    termination: str
+    diverged_chains: int
+    all_diverged: bool
+    message: str
 
 class Auto:
     """The default solver (rounds of HRLA, quenches, one-coordinate restarts)."""

@@ -1,12 +1,14 @@
 //! `hrla.Auto`: the kernel's default solver.
 
-use hrla::{Auto, Lbfgs};
+use std::ops::ControlFlow;
+
+use hrla::{Auto, AutoProgress, Lbfgs};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
-use crate::config::PyInterval;
+use crate::config::{PyInterval, termination_name};
 use crate::dims::with_dim;
-use crate::engine::{MEMORY, dimension, storage};
+use crate::engine::{MEMORY, SIGNAL_WORK, dimension, storage};
 use crate::errors::{guard, kernel};
 use crate::potential::{Pot, PotentialSpec};
 
@@ -50,6 +52,16 @@ pub struct PySolution {
     pub inverse_temperature: f64,
     /// Chains run.
     pub chains: usize,
+    /// Why it ended: `"Evaluations"` (the budget is spent).
+    pub termination: &'static str,
+    /// Chains diverged at the end (each restarts after its round, so
+    /// these diverged in the last one).
+    pub diverged_chains: usize,
+    /// Whether every chain had diverged at the end: `x` is then the last
+    /// feasible best found before, and the run found nowhere feasible to go.
+    pub all_diverged: bool,
+    /// The kernel's sentence for the solution.
+    pub message: String,
 }
 
 #[pymethods]
@@ -133,11 +145,38 @@ impl PyAuto {
             let pot = spec.build::<D>(py)?;
             let mut storage = storage::<D>(n)?;
             let mut lbfgs: Box<Lbfgs<f64, D, MEMORY>> = Box::default();
-            let mut solve = || auto.minimize(&pot, domain.0, budget, seed, &mut storage, &mut lbfgs);
-            let found = match &pot {
-                Pot::Builtin(_) => py.detach(solve),
-                Pot::Python(_) => solve(),
+            // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated
+            // (counted, so where it looks is the same on every machine),
+            // and stops at once when a Python potential has failed.
+            let every = (SIGNAL_WORK / D as u64).max(1);
+            let mut checked = 0;
+            let mut stopped: Option<PyErr> = None;
+            let python = matches!(pot, Pot::Python(_));
+            let mut observe = |p: &AutoProgress<'_, f64, D>| {
+                if let Pot::Python(f) = &pot
+                    && f.failed()
+                {
+                    return ControlFlow::Break(());
+                }
+                if p.evaluations - checked < every {
+                    return ControlFlow::Continue(());
+                }
+                checked = p.evaluations;
+                match Python::attach(|py| py.check_signals()) {
+                    Ok(()) => ControlFlow::Continue(()),
+                    Err(e) => {
+                        stopped = Some(e);
+                        ControlFlow::Break(())
+                    }
+                }
             };
+            let mut solve = || {
+                auto.minimize_with(&pot, domain.0, budget, seed, &mut storage, &mut lbfgs, &mut observe)
+            };
+            let found = if python { solve() } else { py.detach(solve) };
+            if let Some(e) = stopped {
+                return Err(e);
+            }
             if let Pot::Python(p) = &pot {
                 p.finish()?;
             }
@@ -149,7 +188,11 @@ impl PyAuto {
                 rounds: s.rounds,
                 step: s.step,
                 inverse_temperature: s.inverse_temperature,
-                chains: n,
+                chains: s.chains,
+                termination: termination_name(s.termination),
+                diverged_chains: s.diverged_chains,
+                all_diverged: s.all_diverged(),
+                message: s.to_string(),
             })
         })
     }
@@ -159,14 +202,21 @@ impl PyAuto {
 impl PySolution {
     fn __repr__(&self) -> String {
         format!(
-            "Solution(value={:?}, evaluations={}, rounds={}, step={:?}, inverse_temperature={:?}, chains={})",
+            "Solution(value={:?}, evaluations={}, rounds={}, step={:?}, inverse_temperature={:?}, chains={}, \
+             termination={:?}, diverged_chains={})",
             self.value,
             self.evaluations,
             self.rounds,
             self.step,
             self.inverse_temperature,
-            self.chains
+            self.chains,
+            self.termination,
+            self.diverged_chains,
         )
+    }
+
+    fn __str__(&self) -> String {
+        self.message.clone()
     }
 }
 

@@ -170,9 +170,12 @@ pub fn dimension(sources: &[(&str, Option<usize>)]) -> PyResult<usize> {
 
 struct Run<const D: usize> {
     opt: Opt<D>,
-    /// A step failed with a run-ending error: later steps return it
-    /// without calling a Python potential first.
-    failed: bool,
+    /// The error that ended the run (a step, polish, quench or restart
+    /// that found every chain diverged or the potential unbounded below):
+    /// every later step, run, polish, quench or restart returns it, `run`
+    /// too when a stopping rule holds, so a failed run never turns into a
+    /// report; and a Python potential is not called again.
+    failed: Option<hrla::Error>,
 }
 
 impl<const D: usize> Run<D> {
@@ -208,7 +211,7 @@ impl<const D: usize> Run<D> {
             Ok(opt) => opt,
             Err(e) => return Err(kernel(e)),
         };
-        let run = Self { opt, failed: false };
+        let run = Self { opt, failed: None };
         run.finish()?;
         Ok(run)
     }
@@ -231,7 +234,7 @@ impl<const D: usize> Run<D> {
         let Pot::Python(p) = self.opt.potential() else {
             return Ok(());
         };
-        if self.failed {
+        if self.failed.is_some() {
             return Ok(());
         }
         let a = self
@@ -262,15 +265,27 @@ impl<const D: usize> Run<D> {
     fn step_once(&mut self, py: Python<'_>) -> PyResult<()> {
         self.prepare(py)?;
         let stepped = self.opt.step();
+        let stepped = self.keep(stepped);
         self.finish()?;
-        if let Err(e) = stepped {
-            self.failed |= matches!(
-                e,
-                hrla::Error::AllDiverged { .. } | hrla::Error::UnboundedBelow { .. }
-            );
-            return Err(kernel(e));
+        stepped
+    }
+
+    /// The error that ended the run, if it has.
+    fn check(&self) -> PyResult<()> {
+        self.failed.map_or(Ok(()), |e| Err(kernel(e)))
+    }
+
+    /// `result`, keeping its error when it ends the run.
+    fn keep<T>(&mut self, result: Result<T, hrla::Error>) -> PyResult<T> {
+        if let Err(
+            e @ (hrla::Error::AllDiverged { .. }
+            | hrla::Error::UnboundedBelow { .. }
+            | hrla::Error::Poisoned),
+        ) = result
+        {
+            self.failed = Some(e);
         }
-        Ok(())
+        result.map_err(kernel)
     }
 
     fn report(&self, termination: Termination) -> PyReport {
@@ -290,6 +305,7 @@ impl<const D: usize> Run<D> {
 
 impl<const D: usize> Engine for Run<D> {
     fn step(&mut self, py: Python<'_>, steps: u64) -> PyResult<()> {
+        self.check()?;
         if self.is_python() {
             for _ in 0..steps {
                 self.step_once(py)?;
@@ -306,8 +322,8 @@ impl<const D: usize> Engine for Run<D> {
         while left > 0 {
             let n = left.min(chunk);
             let opt = &mut self.opt;
-            py.detach(|| (0..n).try_for_each(|_| opt.step()))
-                .map_err(kernel)?;
+            let stepped = py.detach(|| (0..n).try_for_each(|_| opt.step()));
+            self.keep(stepped)?;
             left -= n;
             if left > 0 {
                 py.check_signals()?;
@@ -322,6 +338,7 @@ impl<const D: usize> Engine for Run<D> {
         if self.opt.stop().is_empty() {
             return Err(kernel(hrla::Error::NoStoppingRule));
         }
+        self.check()?;
         if !self.is_python() {
             // The kernel's loop, with the GIL released; its observer,
             // called every `every` steps (and on improvements, which it
@@ -344,9 +361,10 @@ impl<const D: usize> Engine for Run<D> {
                     }
                 })
             });
-            return match (report, interrupted) {
-                (_, Some(e)) => Err(e),
-                (report, None) => report.map(Into::into).map_err(kernel),
+            let report = self.keep(report);
+            return match interrupted {
+                Some(e) => Err(e),
+                None => report.map(Into::into),
             };
         }
         // The kernel's `run`, with the batched call before each step.
@@ -415,6 +433,7 @@ impl<const D: usize> Engine for Run<D> {
         settings: PolishSettings<f64>,
         quench: bool,
     ) -> PyResult<PyPolished> {
+        self.check()?;
         let mut lbfgs: Box<Lbfgs<f64, D, MEMORY>> = Box::default();
         let python = self.is_python();
         let opt = &mut self.opt;
@@ -426,17 +445,20 @@ impl<const D: usize> Engine for Run<D> {
             }
         };
         let done = if python { search() } else { py.detach(search) };
+        let done = self.keep(done);
         self.finish()?;
-        done.map(Into::into).map_err(kernel)
+        done.map(Into::into)
     }
 
     fn restart(&mut self, _py: Python<'_>, chain: usize, x: &[f64]) -> PyResult<bool> {
         let x: [f64; D] = x.try_into().map_err(|_| {
             PyValueError::new_err(format!("x has {} coordinates, the run {D}", x.len()))
         })?;
+        self.check()?;
         let done = self.opt.restart(chain, &x);
+        let done = self.keep(done);
         self.finish()?;
-        done.map_err(kernel)
+        done
     }
 
     fn dim(&self) -> usize {

@@ -66,6 +66,9 @@ pub fn kernel(e: hrla::Error) -> PyErr {
     match e {
         hrla::Error::AllDiverged { .. } => DivergedError::new_err(message),
         hrla::Error::UnboundedBelow { .. } => UnboundedBelowError::new_err(message),
+        // Only a panic poisons a run, and a panic is hrla's bug here (a
+        // Python potential's errors are exceptions).
+        hrla::Error::Poisoned => internal(&message),
         _ => HrlaError::new_err(message),
     }
 }

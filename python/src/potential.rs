@@ -8,10 +8,12 @@
 //! of the chain's generator (so the same bits as the step itself), calls
 //! the function once on the `(N, D)` array of them, and the optimiser's
 //! step then reads the answers back in chain order ([`PyPotential`] in
-//! batch mode, which checks that every point it is asked about is the
-//! point it was given). Outside steps (initial points excepted, which are
-//! batched the same way) — the polish, quenches, restarts, [`hrla::Auto`] —
-//! the function is called with one row at a time.
+//! batch mode, which answers a point from the batch only when it is, bit
+//! for bit, the next point it was given, and checks at the end that every
+//! answer was read). Outside steps (initial points excepted, which are
+//! batched the same way, an infeasible one's redraws called alone) — the
+//! polish, quenches, restarts, [`hrla::Auto`] — the function is called
+//! with one row at a time.
 
 use std::sync::Mutex;
 
@@ -338,6 +340,12 @@ impl<const D: usize> PyPotential<D> {
         Ok(())
     }
 
+    /// Whether an evaluation failed since the last [`finish`](Self::finish)
+    /// (the evaluations since return NaN without calling the function).
+    pub fn failed(&self) -> bool {
+        self.state().error.is_some()
+    }
+
     /// Ends batch mode, checking that every answer was read; then returns
     /// the first error of any evaluation since the last call.
     pub fn finish(&self) -> PyResult<()> {
@@ -361,35 +369,28 @@ impl<const D: usize> PyPotential<D> {
             *grad = [f64::NAN; D];
             return f64::NAN;
         }
-        let answer = match state.batch.as_mut() {
-            Some(b) => {
-                let row = b.next;
-                let at = row * D..(row + 1) * D;
-                let same = b
-                    .points
-                    .get(at.clone())
-                    .is_some_and(|p| p.iter().zip(x).all(|(a, b)| a.to_bits() == b.to_bits()));
-                if same {
-                    b.next += 1;
-                    grad.copy_from_slice(&b.grads[at]);
-                    Ok(b.values[row])
-                } else {
-                    Err(internal(&format!(
-                        "hrla internal error: evaluation {row} of a batch is not at the point \
-                         the batch computed"
-                    )))
-                }
+        if let Some(b) = state.batch.as_mut() {
+            let row = b.next;
+            let at = row * D..(row + 1) * D;
+            let batched = b
+                .points
+                .get(at.clone())
+                .is_some_and(|p| p.iter().zip(x).all(|(a, b)| a.to_bits() == b.to_bits()));
+            if batched {
+                b.next += 1;
+                grad.copy_from_slice(&b.grads[at]);
+                return b.values[row];
             }
-            None => {
-                drop(state);
-                let answer = Python::attach(|py| call(py, &self.function, x, D)).map(|(v, g)| {
-                    grad.copy_from_slice(&g);
-                    v[0]
-                });
-                state = self.state();
-                answer
-            }
-        };
+            // A point the batch did not foresee: the redraw of an
+            // infeasible initial point, which the builder evaluates
+            // before the next chain's. Called alone, answered exactly.
+        }
+        drop(state);
+        let answer = Python::attach(|py| call(py, &self.function, x, D)).map(|(v, g)| {
+            grad.copy_from_slice(&g);
+            v[0]
+        });
+        state = self.state();
         answer.unwrap_or_else(|e| {
             state.error = Some(e);
             *grad = [f64::NAN; D];

@@ -223,23 +223,40 @@ def test_polish_on_a_potential_unbounded_below_raises():
     opt.run()
     with pytest.raises(hrla.UnboundedBelowError):
         opt.polish(0, hrla.PolishSettings(1000))
-    with pytest.raises(hrla.UnboundedBelowError):
+    with pytest.raises(hrla.UnboundedBelowError):  # the run stays failed
         opt.run()
     with pytest.raises(hrla.UnboundedBelowError):
-        hrla.minimize(minus_exp, [(-1e6, 1e6)], method="ola", budget=200)
+        opt.quench(1)
+    # The same through minimize's polish.
+    with pytest.raises(hrla.UnboundedBelowError):
+        hrla.minimize(minus_exp, None, dim=1, start=hrla.Point([0.0]), method="ola", budget=1_000, polish=500)
+
+
+def log_well(X):
+    """Defined for x0 > 0 only: NaN or inf elsewhere."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        lx = np.log(X[:, 0])
+        u = lx * lx + (X[:, 1] - 0.5) ** 2
+        g = np.stack([2 * lx / X[:, 0], 2 * (X[:, 1] - 0.5)], axis=1)
+    return u, g
 
 
 def test_a_start_where_the_potential_is_undefined_is_redrawn():
-    def fun(X):
-        with np.errstate(invalid="ignore", divide="ignore"):
-            lx = np.log(X[:, 0])
-            u = lx * lx + (X[:, 1] - 0.5) ** 2
-            g = np.stack([2 * lx / X[:, 0], 2 * (X[:, 1] - 0.5)], axis=1)
-        return u, g
-
-    res = hrla.minimize(fun, [(-2, 3)] * 2)
+    res = hrla.minimize(log_well, [(-2, 3)] * 2)
     assert res.success, res
     assert res.fun < 1e-12 and np.allclose(res.x, [1.0, 0.5], atol=1e-5), res
+
+
+def test_redrawn_starts_of_a_batched_potential_get_their_own_answers():
+    """The initial points are evaluated in one call; a chain whose point is
+    infeasible draws again, and the redraw is evaluated alone: every chain
+    ends with the value of its own point."""
+    box = hrla.Interval(-2.0, 3.0)
+    opt = hrla.Optimizer(log_well, hrla.Hrla.paper(0.01), 1.0, box, chains=10, seed=3, domain=box, dim=2)
+    assert np.all(opt.x[:, 0] > 0)
+    assert opt.evaluations > 10  # some of the ten first draws had x0 <= 0 (seed 3)
+    u, g = log_well(np.array(opt.x))
+    assert np.array_equal(opt.value, u) and np.array_equal(opt.gradient, g)
 
 
 def best_u(message):
