@@ -220,7 +220,7 @@ cases = dict.fromkeys(["minimize", "minimize returned", "minimize succeeded", "o
 
 
 @pytest.mark.timeout(600)
-@campaign(500)
+@campaign(3000)
 @given(fun=potentials, box=boxes, d=dims,
        method=mostly(st.sampled_from(["auto", "hrla", "ula", "ola"]), st.sampled_from(["bogus", 3, None])),
        budget=budgets, chains=mostly(st.one_of(st.none(), st.integers(1, 40)), hostile_chains), seed=seeds,
@@ -309,7 +309,7 @@ operations = st.lists(st.one_of(
 
 
 @pytest.mark.timeout(600)
-@campaign(500)
+@campaign(3000)
 @given(fun=potentials, sampler=SAMPLERS, schedule=SCHEDULES, start=STARTS,
        chains=mostly(st.integers(1, 20), hostile_chains), seed=seeds,
        stride=mostly(st.integers(1, 10), hostile_count), stop=stops(),
@@ -352,7 +352,7 @@ def test_optimizer_never_panics_and_never_claims_too_much(fun, sampler, schedule
 
 
 @pytest.mark.timeout(600)
-@campaign(300)
+@campaign(1500)
 @given(fun=potentials, rounds=mostly(st.none(), hostile_count), quench=mostly(st.none(), hostile_count),
        low=mostly(st.none(), hostile_float), high=mostly(st.none(), hostile_float),
        factor=mostly(st.none(), hostile_float), scale=mostly(st.none(), hostile_float),
