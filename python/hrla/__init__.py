@@ -35,7 +35,17 @@ Two kinds of potential:
 - a Python function ``fun(X) -> (U, G)`` on a batch: ``X`` of shape
   ``(N, D)``, ``U`` of shape ``(N,)`` and ``G = ∇U(X)`` of shape ``(N, D)``,
   called once per step for all live chains (and with one row at a time by
-  the polish, quenches, restarts and ``Auto``).
+  the polish, quenches, restarts and ``Auto``). ``U`` and ``G`` must be
+  real numbers (a numpy float or integer array, or sequences of Python
+  floats and ints): bool, complex, string and object arrays raise
+  ``TypeError``. Where ``U`` is NaN or ``+inf`` is infeasible: a start
+  there is drawn again; a chain that steps there diverges.
+
+Errors form one hierarchy under :class:`HrlaError` (a ``ValueError``):
+``DivergedError``, ``UnboundedBelowError``, ``DimensionError``,
+``BusyError`` and ``InternalError`` (both also ``RuntimeError``). Storage
+that cannot be allocated raises ``MemoryError``; Ctrl-C stops a run after
+a whole step with ``KeyboardInterrupt``, and the run can go on.
 
 Entry points: :func:`minimize` (scipy.optimize-like, returns an
 :class:`OptimizeResult`), :class:`Optimizer` (step by step, chains as numpy
