@@ -430,6 +430,7 @@ impl<F: Float> Auto<F> {
                         // all restart below.
                         Err(Error::AllDiverged { .. }) => {
                             opt.forgive_divergence();
+                            observe!('run);
                             break;
                         }
                         Err(e) => return Err(e),

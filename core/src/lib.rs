@@ -103,6 +103,8 @@
 //! - Algorithm 1: [`Builder`] and [`Optimizer`], over [`Chain`]s, with
 //!   [`Stop`] rules, [`Progress`] for an observer, and a [`Report`] whose
 //!   [`Termination`] says why the run ended; failures are [`Error`]s.
+//! - The default solver: [`Auto`], with [`AutoProgress`] for its observer
+//!   and a [`Solution`]; L-BFGS: [`Lbfgs`].
 //! - Randomness: [`chain_seed`], one stream per chain; [`StandardNormal`],
 //!   exact normals for both float types; [`Xoshiro256Lanes`], [`LANES`]
 //!   chains' generators stepped in lockstep.
@@ -118,8 +120,26 @@
 //! tested for `alpha h` in `[1e-8, 50]` and inverse temperatures in
 //! `[1e-6, 1e6]`, and refuses values outside ([`Error::OutOfRange`]). A run
 //! whose chains all diverged ([`Error::AllDiverged`]) or whose potential
-//! looks unbounded below ([`Error::UnboundedBelow`]) ends with an error,
-//! never with a report.
+//! looks unbounded below ([`Error::UnboundedBelow`]: a value under
+//! `-sqrt(MAX)` at a start, a step, a polish, a quench or a restart) ends
+//! with an error, never with a report; so does a run whose potential
+//! panicked ([`Error::Poisoned`]). A [`Report`] or [`Solution`] says why
+//! the run ended and how many chains diverged.
+//!
+//! A point where `U` or its gradient is NaN or `+inf` (or whose position
+//! is not finite) is infeasible, not fatal:
+//!
+//! - **At a start**, the chain draws again from the start law, up to
+//!   [`START_TRIES`] points, each counted in the evaluation budget; a run
+//!   whose initial points are all feasible draws each once, so its bits
+//!   are those of a run without redraws. [`Error::NonFiniteStart`] says
+//!   how many were tried when none was feasible.
+//! - **During a run**, a chain that steps there diverges: it is frozen (no
+//!   more steps, no more draws) and kept out of the best, and the others
+//!   go on; [`Optimizer::restart`] revives it at a feasible point.
+//! - [`Auto`] restarts its diverged chains after each round, and a quench
+//!   that meets such a point treats it as `+inf`: its best point is always
+//!   one where `U` and `∇U` were finite.
 //!
 //! # Randomness and reproducibility
 //!

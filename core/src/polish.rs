@@ -254,9 +254,8 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
         // Along the path actually taken (the projection may have shortened
         // the step in some coordinates): the derivative in the direction.
         let slope = dot(&self.trial_grad, &self.direction);
-        if value < floor() && self.trial.iter().all(|t| t.is_finite()) {
-            LinePoint { step, value, slope }
-        } else if value.is_finite() && slope.is_finite() {
+        let unbounded = value < floor() && self.trial.iter().all(|t| t.is_finite());
+        if unbounded || (value.is_finite() && slope.is_finite()) {
             LinePoint { step, value, slope }
         } else {
             LinePoint {

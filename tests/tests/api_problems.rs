@@ -791,7 +791,14 @@ fn non_finite_starts_are_named() {
         let got = Builder::new(nan_at(bad, what), hrla, 4.0, start)
             .build(chains::<2>(5))
             .map(|o| o.iteration());
-        assert_eq!(got, Err(Error::NonFiniteStart { chain: bad, what }));
+        assert_eq!(
+            got,
+            Err(Error::NonFiniteStart {
+                chain: bad,
+                what,
+                tries: hrla::START_TRIES
+            })
+        );
     }
     let start = FromFn(
         |c: usize, _: &mut dyn Rng| {
@@ -806,12 +813,13 @@ fn non_finite_starts_are_named() {
         err,
         Error::NonFiniteStart {
             chain: 2,
-            what: "position"
+            what: "position",
+            tries: 100
         }
     );
     assert_eq!(
         err.to_string(),
-        "the initial point of chain 2: its position is not finite"
+        "no feasible initial point for chain 2: 100 drawn, the last one's position is not finite"
     );
 }
 

@@ -213,15 +213,23 @@ fn restart_moves_a_chain_within_the_budget() {
         .build(&mut ch)
         .unwrap();
     assert_eq!(opt.evaluations(), 4);
-    assert!(opt.restart(2, &[0.0, 9.0]));
+    assert_eq!(opt.restart(2, &[0.0, 9.0]), Ok(true));
     assert_eq!(opt.evaluations(), 5);
     // 9 reflects at 5.12 to 1.24 (up to rounding).
     let x = opt.chains()[2].x();
     assert!(x[0] == 0.0 && (x[1] - 1.24).abs() < 1e-12, "{x:?}");
     assert_eq!(*opt.chains()[2].y(), [0.0, 0.0]);
-    assert!(opt.restart(1, &[0.0, 0.0]));
+    assert_eq!(opt.restart(1, &[0.0, 0.0]), Ok(true));
     assert_eq!(opt.best().value, 0.0);
     assert_eq!(opt.best_chain(), 1);
-    assert!(!opt.restart(0, &[1.0, 1.0]));
+    assert_eq!(opt.restart(0, &[1.0, 1.0]), Ok(false));
+    assert_eq!(
+        opt.restart(4, &[1.0, 1.0]),
+        Err(Error::Index {
+            name: "chain",
+            index: 4,
+            len: 4
+        })
+    );
     assert_eq!(opt.evaluations(), 6);
 }

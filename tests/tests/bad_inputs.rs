@@ -49,7 +49,8 @@
 //! 27. `Quadratic::new`: stiffness bad -> `NotPositive { "stiffness" }`
 //! 28. `Quadratic::new`: a non-finite centre -> `NotFinite { "centre" }`
 //! 29. a potential whose value is not finite at a random chain's start
-//!     -> `NonFiniteStart { chain, "value" }`
+//!     -> `NonFiniteStart { chain, "value" }` after `START_TRIES` redraws
+//!     (the start gives the same point), `UnboundedBelow` for `-inf`
 //! 30. the same for its gradient -> `NonFiniteStart { chain, "gradient" }`
 //! 31. `check_gradient` at a non-finite point -> `NotFinite { "x" }`
 //! 32. `check_gradient` where `U` is not finite -> `NotFinite { "U(x)" }`
@@ -410,6 +411,7 @@ fn check(c: Case) -> Result<(), TestCaseError> {
                 Error::NonFiniteStart {
                     chain: bad,
                     what: "position",
+                    tries: hrla::START_TRIES,
                 },
             )
         }
@@ -445,7 +447,17 @@ fn check(c: Case) -> Result<(), TestCaseError> {
                     .map(drop)
             })?;
             let what = if in_value { "value" } else { "gradient" };
-            expect_error(got, Error::NonFiniteStart { chain: bad, what })
+            // `-inf` is no infeasible point but a potential unbounded below.
+            let want = if in_value && value == f64::NEG_INFINITY {
+                Error::UnboundedBelow { chain: bad, value }
+            } else {
+                Error::NonFiniteStart {
+                    chain: bad,
+                    what,
+                    tries: hrla::START_TRIES,
+                }
+            };
+            expect_error(got, want)
         }
         30 => {
             let x = [t, not_finite(v)];

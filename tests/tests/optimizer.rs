@@ -825,11 +825,17 @@ impl Potential<f64, 2> for NanGradientAtOrigin {
     }
 }
 
-/// `NonFiniteStart` names the first bad chain and what was not finite:
-/// its `position`, its `value`, or its `gradient`.
+/// `NonFiniteStart` names the first bad chain, what was not finite (its
+/// `position`, its `value`, or its `gradient`) and how many points it drew:
+/// these starts give the same bad point at every draw, so all of
+/// `START_TRIES`.
 #[test]
 fn non_finite_start_errors() {
-    let start_error = |chain, what| Error::NonFiniteStart { chain, what };
+    let start_error = |chain, what| Error::NonFiniteStart {
+        chain,
+        what,
+        tries: hrla::START_TRIES,
+    };
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         let start = FromFn(
             move |c: usize, _: &mut dyn Rng| {

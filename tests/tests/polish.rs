@@ -154,10 +154,16 @@ fn polish_refuses_bad_input() {
     .unwrap();
     assert!(matches!(
         opt.polish(3, &mut lbfgs, PolishSettings::new(10)),
-        Err(Error::Count {
+        Err(Error::Index {
             name: "chain",
-            value: 3,
-            max: 2
+            index: 3,
+            len: 3
         })
     ));
+    assert_eq!(
+        opt.polish(3, &mut lbfgs, PolishSettings::new(10))
+            .unwrap_err()
+            .to_string(),
+        "`chain` must be between 0 and 2, got 3"
+    );
 }

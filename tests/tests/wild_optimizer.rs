@@ -15,9 +15,12 @@
 //!   budgets or stall window, non-finite target, negative or non-finite
 //!   stall tolerance); `Budget` for an evaluation budget below the chain
 //!   count; `ScheduleLongerThanRun`; the sampler's error when it refuses the
-//!   schedule's `a_0`; then `NonFiniteStart` naming the first chain whose
-//!   point, value or gradient is not finite, and which (replayed from that
-//!   chain's own generator);
+//!   schedule's `a_0`; then `NonFiniteStart` naming the first chain that
+//!   drew no point with finite position, value and gradient in
+//!   `START_TRIES` tries (or in its evaluation budget), which was not
+//!   finite at the last try, and how many it drew, or `UnboundedBelow` for
+//!   a start below `-sqrt(MAX)` (replayed from each chain's own
+//!   generator, redraws included);
 //! - `step`, `run` and `run_with` never panic and never return a NaN best,
 //!   whatever the start, schedule, stride and rules, and the best never
 //!   rises; a report's termination is a rule that holds, and the
@@ -34,8 +37,8 @@ use std::ops::ControlFlow;
 
 use hrla::{
     Builder, Chain, Constant, Error, Gaussian, Geometric, Hrla, HrlaParams, Kernel, Linear, Ola,
-    OlaParams, Point, Potential, Quadratic, Rastrigin, Sampler, Schedule, Start, Stop, Termination,
-    Ula, UlaParams, chain_seed,
+    OlaParams, Point, Potential, Quadratic, Rastrigin, START_TRIES, Sampler, Schedule, Start, Stop,
+    Termination, Ula, UlaParams, chain_seed,
 };
 use hrla_tests::hostile::{SEED, mostly_sane64, no_panic, same_error, steps_strategy, wild64};
 use hrla_tests::prop::config;
@@ -301,30 +304,45 @@ fn settings_error<S: Sampler<f64>>(sampler: &S, schedule: &AnySchedule, w: &Wild
     sampler.at(schedule.inverse_temperature(0)).err()
 }
 
-/// Replays the initial points from each chain's own generator: the first
-/// chain whose point, value or gradient is not finite, and which.
-fn first_bad_start(
-    potential: &AnyPotential,
-    start: &mut AnyStart,
-    w: &Wild,
-) -> Option<(usize, &'static str)> {
+/// Replays the initial points from each chain's own generator, with the
+/// redraws of an infeasible point (non-finite position, value or gradient;
+/// up to `START_TRIES` per chain, within the evaluation budget): the
+/// evaluations they take, or the error of the first chain that found no
+/// feasible point, or whose value is below `-sqrt(MAX)`.
+fn replay_starts(potential: &AnyPotential, start: &mut AnyStart, w: &Wild) -> Result<u64, Error> {
+    let n = w.chains as u64;
+    let mut spare = w.evaluations.map_or(u64::MAX, |b| b - n);
+    let mut evaluations = 0;
     for c in 0..w.chains {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(chain_seed(w.seed, c as u64));
-        let mut x = [0.0; 2];
-        start.initial_point(c, &mut rng, &mut x);
-        let mut g = [0.0; 2];
-        let v = potential.value_and_gradient(&x, &mut g);
-        if !x.iter().all(|t| t.is_finite()) {
-            return Some((c, "position"));
-        }
-        if !v.is_finite() {
-            return Some((c, "value"));
-        }
-        if !g.iter().all(|t| t.is_finite()) {
-            return Some((c, "gradient"));
+        for tries in 1.. {
+            let mut x = [0.0; 2];
+            start.initial_point(c, &mut rng, &mut x);
+            let mut g = [0.0; 2];
+            let v = potential.value_and_gradient(&x, &mut g);
+            evaluations += 1;
+            let what = if !x.iter().all(|t| t.is_finite()) {
+                "position"
+            } else if v < -f64::MAX.sqrt() {
+                return Err(Error::UnboundedBelow { chain: c, value: v });
+            } else if !v.is_finite() {
+                "value"
+            } else if !g.iter().all(|t| t.is_finite()) {
+                "gradient"
+            } else {
+                break;
+            };
+            if tries == START_TRIES || spare == 0 {
+                return Err(Error::NonFiniteStart {
+                    chain: c,
+                    what,
+                    tries,
+                });
+            }
+            spare -= 1;
         }
     }
-    None
+    Ok(evaluations)
 }
 
 /// Builds and runs an optimiser from a wild setup, checking every outcome
@@ -345,10 +363,14 @@ where
             .build(vec![Chain::<f64, 2>::new(); n])
     })?;
     let mut replay_start = start;
-    let want = settings_error(&sampler, &schedule, w).or_else(|| {
-        first_bad_start(&potential, &mut replay_start, w)
-            .map(|(chain, what)| Error::NonFiniteStart { chain, what })
-    });
+    let replayed = match settings_error(&sampler, &schedule, w) {
+        Some(e) => Err(e),
+        None => replay_starts(&potential, &mut replay_start, w),
+    };
+    let (want, initial) = match replayed {
+        Ok(initial) => (None, initial),
+        Err(e) => (Some(e), 0),
+    };
     let mut opt = match (got, want) {
         (Err(e), Some(want)) => {
             prop_assert!(
@@ -371,7 +393,7 @@ where
     prop_assert!(initial_best.is_finite());
     let a0 = schedule.inverse_temperature(0);
     prop_assert_eq!(opt.kernel().inverse_temperature().to_bits(), a0.to_bits());
-    prop_assert_eq!(opt.evaluations(), n as u64);
+    prop_assert_eq!(opt.evaluations(), initial);
     // The schedule's length is the step budget when the rules have none.
     let step_budget = w.steps.or(schedule.length());
     prop_assert_eq!(*opt.stop(), {
@@ -414,7 +436,7 @@ where
         k
     );
     let evaluations = opt.evaluations();
-    prop_assert!(evaluations >= n as u64 && evaluations <= n as u64 * (k + 1));
+    prop_assert!(evaluations >= initial && evaluations <= initial + n as u64 * k);
     if let Some(budget) = w.evaluations {
         prop_assert!(
             evaluations <= budget,

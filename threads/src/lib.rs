@@ -24,6 +24,11 @@
 //! # Ok::<(), hrla::Error>(())
 //! ```
 //!
+//! A potential that panics on one of the pool's threads stops the step
+//! part-way: the panic reaches the caller, and the optimiser is poisoned
+//! (every later call returns [`hrla::Error::Poisoned`]), so that no run
+//! goes on from chains that no serial run would have.
+//!
 //! A step pays off on threads when it is long: with 1000 chains of 10-D
 //! Rastrigin a step takes about 100 µs on one core, and the parts' hand-off
 //! costs a few µs (see `docs/PERFORMANCE.md`). With an expensive potential

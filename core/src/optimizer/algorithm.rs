@@ -1,6 +1,7 @@
 //! The optimiser: chains stepped by a sampler's kernel at the schedule's
 //! inverse temperature, the running best, and the stopping rules.
 
+use core::cell::Cell;
 use core::marker::PhantomData;
 use core::ops::ControlFlow;
 
@@ -66,6 +67,20 @@ pub struct Optimizer<
     /// is being evaluated, so that it stays if the potential panics.
     failed: Option<Error>,
     rng: PhantomData<fn() -> R>,
+}
+
+/// A potential whose evaluations are counted.
+struct Counted<'a, P> {
+    potential: &'a P,
+    calls: Cell<u64>,
+}
+
+impl<F: Float, P: Potential<F, D>, const D: usize> Potential<F, D> for Counted<'_, P> {
+    #[inline]
+    fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
+        self.calls.set(self.calls.get() + 1);
+        self.potential.value_and_gradient(x, grad)
+    }
 }
 
 /// Where a local search starts: a chain's best point or its current one.
@@ -377,8 +392,9 @@ where
     /// its evaluations count in the run's, within what is left of the
     /// evaluation budget (as [`polish`](Optimizer::polish)).
     ///
-    /// Errors: as [`polish`](Optimizer::polish); a diverged chain gives a
-    /// quench of no evaluation.
+    /// Errors: as [`polish`](Optimizer::polish), and [`Error::NotFinite`]
+    /// (with no evaluation) for a diverged chain: its current point is
+    /// not feasible.
     pub fn quench<const M: usize>(
         &mut self,
         chain: usize,
@@ -401,12 +417,21 @@ where
         if let Some(e) = self.failed {
             return Err(e);
         }
+        if from == Origin::Current && c.diverged {
+            // Nowhere feasible to start from: what made the chain diverge.
+            let bad = c.x.iter().chain(&c.grad).chain([&c.value]);
+            let value = bad.copied().find(|v| !v.is_finite()).unwrap_or(c.value);
+            return Err(Error::NotFinite {
+                name: "the point of a diverged chain",
+                value: value.to_f64(),
+            });
+        }
         let (mut x, value) = match from {
             Origin::Best => (c.best.x, c.best.value),
             Origin::Current => (c.x, c.value),
         };
         let budget = settings.evaluations.min(self.evaluations_left());
-        if budget == 0 || (from == Origin::Current && c.diverged) {
+        if budget == 0 {
             return Ok(Polished {
                 value,
                 evaluations: 0,
@@ -419,13 +444,18 @@ where
             ..settings
         };
         self.guarded(|opt| {
-            let done = lbfgs
-                .minimize_in(&opt.potential, &opt.domain, &mut x, settings)
-                .map_err(|e| match e {
-                    Error::UnboundedBelow { value, .. } => Error::UnboundedBelow { chain, value },
-                    e => e,
-                })?;
-            opt.evaluations += done.evaluations;
+            // Counted here, so that a polish that fails counts what it
+            // spent too.
+            let counted = Counted {
+                potential: &opt.potential,
+                calls: Cell::new(0),
+            };
+            let done = lbfgs.minimize_in(&counted, &opt.domain, &mut x, settings);
+            opt.evaluations += counted.calls.get();
+            let done = done.map_err(|e| match e {
+                Error::UnboundedBelow { value, .. } => Error::UnboundedBelow { chain, value },
+                e => e,
+            })?;
             opt.record(chain, &x, done.value)?;
             Ok(done)
         })
