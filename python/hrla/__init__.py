@@ -35,7 +35,17 @@ Two kinds of potential:
 - a Python function ``fun(X) -> (U, G)`` on a batch: ``X`` of shape
   ``(N, D)``, ``U`` of shape ``(N,)`` and ``G = ∇U(X)`` of shape ``(N, D)``,
   called once per step for all live chains (and with one row at a time by
-  the polish, quenches, restarts and ``Auto``).
+  the polish, quenches, restarts and ``Auto``). ``U`` and ``G`` must be
+  real numbers (a numpy float or integer array, or sequences of Python
+  floats and ints): bool, complex, string and object arrays raise
+  ``TypeError``. Where ``U`` is NaN or ``+inf`` is infeasible: a start
+  there is drawn again; a chain that steps there diverges.
+
+Errors form one hierarchy under :class:`HrlaError` (a ``ValueError``):
+``DivergedError``, ``UnboundedBelowError``, ``DimensionError``,
+``BusyError`` and ``InternalError`` (both also ``RuntimeError``). Storage
+that cannot be allocated raises ``MemoryError``; Ctrl-C stops a run after
+a whole step with ``KeyboardInterrupt``, and the run can go on.
 
 Entry points: :func:`minimize` (scipy.optimize-like, returns an
 :class:`OptimizeResult`), :class:`Optimizer` (step by step, chains as numpy
@@ -53,6 +63,7 @@ from ._hrla import (
     DIMENSIONS,
     Ackley,
     Auto,
+    BusyError,
     Constant,
     DimensionError,
     DivergedError,
@@ -61,6 +72,7 @@ from ._hrla import (
     Geometric,
     HrlaError,
     Hrla,
+    InternalError,
     Interval,
     Levy,
     Linear,
@@ -81,12 +93,16 @@ from ._hrla import (
 )
 
 __all__ = [
-    "DIMENSIONS", "Ackley", "Auto", "Builder", "Constant", "DimensionError",
-    "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla", "HrlaError",
-    "Interval", "Levy", "Linear", "Ola", "OptimizeResult", "Optimizer", "Point",
-    "Polished", "PolishSettings", "Potential", "Quadratic", "Rastrigin", "Report",
-    "Solution", "Stop", "StyblinskiTang", "Ula", "UnboundedBelowError", "minimize",
+    "DIMENSIONS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
+    "DimensionError", "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla",
+    "HrlaError", "InternalError", "Interval", "Levy", "Linear", "Ola", "OptimizeResult",
+    "Optimizer", "Point", "Polished", "PolishSettings", "Potential", "Quadratic", "Rastrigin",
+    "Report", "Solution", "Stop", "StyblinskiTang", "Ula", "UnboundedBelowError", "minimize",
 ]
+
+#: Why a run ended, indexed by :class:`OptimizeResult`'s ``status``: the
+#: kernel's ``Termination`` names.
+TERMINATIONS = ("Steps", "Evaluations", "Target", "Stalled", "Observer")
 
 Fun = Union[Potential, Callable[[np.ndarray], Tuple[Any, Any]]]
 
@@ -98,9 +114,15 @@ class OptimizeResult(dict):
     ``x`` the best point, ``fun`` ``U(x)``, ``nfev`` the evaluations of
     ``U`` (all counted: initial points, steps, polish), ``njev`` the same
     (every evaluation computes ``U`` and ``∇U`` together), ``nit`` the
-    steps (``"auto"``: rounds), ``success``, ``termination`` (the kernel's
-    ``Termination`` name: ``"Steps"``, ``"Evaluations"``, ``"Target"``,
-    ``"Stalled"``), ``message`` (the kernel's report), ``method``, ``seed``.
+    steps (``"auto"``: rounds), ``success``, ``termination`` (why it ended:
+    the kernel's ``Termination`` name, ``"Steps"``, ``"Evaluations"``,
+    ``"Target"`` or ``"Stalled"``), ``status`` (its index in
+    :data:`TERMINATIONS`), ``all_diverged`` (whether every chain had
+    diverged at the end: ``x`` is then the last feasible best found
+    before), ``diverged_chains``, ``chains``, ``message`` (the kernel's
+    report of the final state, after the polish), ``method``, ``seed``.
+    ``success`` is ``True`` only when ``fun`` is finite, some chain is
+    still alive and a stopping rule ended the run.
     """
 
     def __getattr__(self, name: str) -> Any:
@@ -113,7 +135,7 @@ class OptimizeResult(dict):
     __delattr__ = dict.__delitem__  # type: ignore[assignment]
 
     def __repr__(self) -> str:
-        keys = ("fun", "x", "nfev", "nit", "success", "termination", "message")
+        keys = ("fun", "x", "nfev", "nit", "success", "status", "termination", "message")
         return "OptimizeResult(" + ", ".join(f"{k}={self[k]!r}" for k in keys if k in self) + ")"
 
 
@@ -125,7 +147,11 @@ def _box(bounds: Any, dim: Optional[int]) -> Tuple[Optional[Interval], Optional[
         return None, dim
     if isinstance(bounds, Interval):
         return bounds, dim
-    b = np.asarray(bounds, dtype=np.float64)
+    b = np.asarray(bounds)
+    if b.dtype.kind not in "fiu":
+        # numpy would parse "1" and turn True into 1 or drop an imaginary part.
+        raise TypeError(f"bounds must be real numbers (floats or ints), got {bounds!r} (dtype {b.dtype})")
+    b = b.astype(np.float64)
     if b.shape == (2,):
         return Interval(float(b[0]), float(b[1])), dim
     if b.ndim == 2 and b.shape[1] == 2 and b.shape[0] >= 1:
@@ -187,20 +213,19 @@ def minimize(
     Returns an :class:`OptimizeResult`. Bad input and failed runs raise
     :class:`HrlaError` (with the kernel's message) or a subclass.
     """
+    if not isinstance(method, str):
+        raise TypeError(f"method must be a str (auto hrla ula ola), got {type(method).__name__}")
     box, dim = _box(bounds, dim)
     method = method.lower()
+    if polish < 0:
+        raise ValueError(f"polish must be >= 0 evaluations, got {polish}")
     if method == "auto":
         if box is None:
             raise ValueError('method="auto" needs bounds: (lo, hi) with dim=, or D (lo, hi) pairs')
         s = Auto().minimize(fun, box, budget, seed, chains=chains, dim=dim)
-        spent = s.evaluations + 2 * s.chains > budget
-        return OptimizeResult(
-            x=np.asarray(s.x), fun=s.value, nfev=s.evaluations, njev=s.evaluations,
-            nit=s.rounds, success=spent,
-            termination="Evaluations" if spent else "Diverged",
-            message=(f"evaluation budget spent: best U = {s.value!r} after {s.rounds} rounds "
-                     f"and {s.evaluations} evaluations" if spent else
-                     "every chain diverged before the budget was spent; x is the best point found"),
+        return _result(
+            x=np.asarray(s.x), fun=s.value, nfev=s.evaluations, nit=s.rounds, termination=s.termination,
+            diverged_chains=s.diverged_chains, chains=s.chains, message=s.message,
             method="auto", seed=seed, step=s.step, inverse_temperature=s.inverse_temperature,
         )
     if method not in _SAMPLERS:
@@ -229,11 +254,28 @@ def minimize(
     report = opt.run()
     if polish > 0:
         opt.polish(opt.best_chain, PolishSettings(polish))
+        # The report of the polished state: its rule still holds (the
+        # polish only adds evaluations and lowers the best), unless a
+        # target is now reached, which comes first.
+        report = opt.report() or report
     x, value, _ = opt.best
-    return OptimizeResult(
-        x=x, fun=value, nfev=opt.evaluations, njev=opt.evaluations, nit=report.iterations,
-        success=True, termination=report.termination, message=report.message,
+    return _result(
+        x=x, fun=value, nfev=opt.evaluations, nit=report.iterations, termination=report.termination,
+        diverged_chains=report.diverged_chains, chains=report.chains, message=report.message,
         method=method, seed=seed,
+    )
+
+
+def _result(*, fun: float, nfev: int, termination: str, diverged_chains: int, chains: int,
+            **rest: Any) -> OptimizeResult:
+    """An :class:`OptimizeResult` whose ``success`` and ``status`` follow
+    from the termination and the value."""
+    return OptimizeResult(
+        fun=fun, nfev=nfev, njev=nfev,
+        success=termination != "Observer" and diverged_chains < chains and bool(np.isfinite(fun)),
+        status=TERMINATIONS.index(termination), termination=termination,
+        all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
+        **rest,
     )
 
 

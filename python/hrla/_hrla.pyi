@@ -10,10 +10,18 @@ BatchedFunction = Callable[[F64], Tuple[npt.ArrayLike, npt.ArrayLike]]
 
 DIMENSIONS: List[int]
 
-class HrlaError(ValueError): ...
-class DivergedError(HrlaError): ...
-class UnboundedBelowError(HrlaError): ...
-class DimensionError(HrlaError): ...
+class HrlaError(ValueError):
+    """The kernel refused its input or the run failed; the message is the kernel's."""
+class DivergedError(HrlaError):
+    """Every chain diverged (non-finite position, potential or gradient)."""
+class UnboundedBelowError(HrlaError):
+    """The potential fell below -sqrt(MAX): it looks unbounded below."""
+class DimensionError(HrlaError):
+    """A dimension D that the module was not compiled for."""
+class BusyError(HrlaError, RuntimeError):
+    """The optimiser is running (a call from its potential or another thread); nothing was done."""
+class InternalError(HrlaError, RuntimeError):
+    """A bug in hrla (a caught panic); the optimiser it interrupted refuses later calls."""
 
 class Hrla:
     """The exact step of ``dX = (-beta ∇U + Y) dt + sqrt(2 beta/a) dB``,
@@ -147,6 +155,7 @@ class Optimizer:
     def step(self, steps: int = 1) -> None: ...
     def run(self) -> Report: ...
     def termination(self) -> Optional[str]: ...
+    def report(self) -> Optional[Report]: ...
     def polish(self, chain: int, settings: Optional[PolishSettings] = None) -> Polished: ...
     def quench(self, chain: int, settings: Optional[PolishSettings] = None) -> Polished: ...
     def restart(self, chain: int, x: Sequence[float]) -> bool: ...
@@ -189,6 +198,10 @@ class Solution:
     step: float
     inverse_temperature: float
     chains: int
+    termination: str
+    diverged_chains: int
+    all_diverged: bool
+    message: str
 
 class Auto:
     """The default solver (rounds of HRLA, quenches, one-coordinate restarts)."""

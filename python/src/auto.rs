@@ -1,13 +1,15 @@
 //! `hrla.Auto`: the kernel's default solver.
 
-use hrla::{Auto, Chain, Lbfgs};
+use std::ops::ControlFlow;
+
+use hrla::{Auto, AutoProgress, Lbfgs};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
-use crate::config::PyInterval;
+use crate::config::{PyInterval, termination_name};
 use crate::dims::with_dim;
-use crate::engine::{MEMORY, dimension};
-use crate::errors::kernel;
+use crate::engine::{MEMORY, SIGNAL_WORK, dimension, storage};
+use crate::errors::{guard, kernel};
 use crate::potential::{Pot, PotentialSpec};
 
 /// The default solver: rounds of HRLA steps, each followed by an L-BFGS
@@ -50,6 +52,16 @@ pub struct PySolution {
     pub inverse_temperature: f64,
     /// Chains run.
     pub chains: usize,
+    /// Why it ended: `"Evaluations"` (the budget is spent).
+    pub termination: &'static str,
+    /// Chains diverged at the end (each restarts after its round, so
+    /// these diverged in the last one).
+    pub diverged_chains: usize,
+    /// Whether every chain had diverged at the end: `x` is then the last
+    /// feasible best found before, and the run found nowhere feasible to go.
+    pub all_diverged: bool,
+    /// The kernel's sentence for the solution.
+    pub message: String,
 }
 
 #[pymethods]
@@ -101,6 +113,22 @@ impl PyAuto {
         chains: Option<usize>,
         dim: Option<usize>,
     ) -> PyResult<PySolution> {
+        guard(|| self.solve(py, potential, domain, budget, seed, chains, dim))
+    }
+}
+
+impl PyAuto {
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &self,
+        py: Python<'_>,
+        potential: &Bound<'_, PyAny>,
+        domain: PyInterval,
+        budget: u64,
+        seed: u64,
+        chains: Option<usize>,
+        dim: Option<usize>,
+    ) -> PyResult<PySolution> {
         let spec = PotentialSpec::from_py(potential)?;
         let d = dimension(&[("dim", dim), ("the potential", spec.dimension())])?;
         let n = chains.unwrap_or_else(|| Auto::<f64>::chains_for(budget));
@@ -115,13 +143,40 @@ impl PyAuto {
         };
         with_dim!(d, D => {
             let pot = spec.build::<D>(py)?;
-            let mut storage: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
+            let mut storage = storage::<D>(n)?;
             let mut lbfgs: Box<Lbfgs<f64, D, MEMORY>> = Box::default();
-            let mut solve = || auto.minimize(&pot, domain.0, budget, seed, &mut storage, &mut lbfgs);
-            let found = match &pot {
-                Pot::Builtin(_) => py.detach(solve),
-                Pot::Python(_) => solve(),
+            // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated
+            // (counted, so where it looks is the same on every machine),
+            // and stops at once when a Python potential has failed.
+            let every = (SIGNAL_WORK / D as u64).max(1);
+            let mut checked = 0;
+            let mut stopped: Option<PyErr> = None;
+            let python = matches!(pot, Pot::Python(_));
+            let mut observe = |p: &AutoProgress<'_, f64, D>| {
+                if let Pot::Python(f) = &pot
+                    && f.failed()
+                {
+                    return ControlFlow::Break(());
+                }
+                if p.evaluations - checked < every {
+                    return ControlFlow::Continue(());
+                }
+                checked = p.evaluations;
+                match Python::attach(|py| py.check_signals()) {
+                    Ok(()) => ControlFlow::Continue(()),
+                    Err(e) => {
+                        stopped = Some(e);
+                        ControlFlow::Break(())
+                    }
+                }
             };
+            let mut solve = || {
+                auto.minimize_with(&pot, domain.0, budget, seed, &mut storage, &mut lbfgs, &mut observe)
+            };
+            let found = if python { solve() } else { py.detach(solve) };
+            if let Some(e) = stopped {
+                return Err(e);
+            }
             if let Pot::Python(p) = &pot {
                 p.finish()?;
             }
@@ -133,7 +188,11 @@ impl PyAuto {
                 rounds: s.rounds,
                 step: s.step,
                 inverse_temperature: s.inverse_temperature,
-                chains: n,
+                chains: s.chains,
+                termination: termination_name(s.termination),
+                diverged_chains: s.diverged_chains,
+                all_diverged: s.all_diverged(),
+                message: s.to_string(),
             })
         })
     }
@@ -143,14 +202,21 @@ impl PyAuto {
 impl PySolution {
     fn __repr__(&self) -> String {
         format!(
-            "Solution(value={:?}, evaluations={}, rounds={}, step={:?}, inverse_temperature={:?}, chains={})",
+            "Solution(value={:?}, evaluations={}, rounds={}, step={:?}, inverse_temperature={:?}, chains={}, \
+             termination={:?}, diverged_chains={})",
             self.value,
             self.evaluations,
             self.rounds,
             self.step,
             self.inverse_temperature,
-            self.chains
+            self.chains,
+            self.termination,
+            self.diverged_chains,
         )
+    }
+
+    fn __str__(&self) -> String {
+        self.message.clone()
     }
 }
 

@@ -8,10 +8,12 @@
 //! of the chain's generator (so the same bits as the step itself), calls
 //! the function once on the `(N, D)` array of them, and the optimiser's
 //! step then reads the answers back in chain order ([`PyPotential`] in
-//! batch mode, which checks that every point it is asked about is the
-//! point it was given). Outside steps (initial points excepted, which are
-//! batched the same way) — the polish, quenches, restarts, [`hrla::Auto`] —
-//! the function is called with one row at a time.
+//! batch mode, which answers a point from the batch only when it is, bit
+//! for bit, the next point it was given, and checks at the end that every
+//! answer was read). Outside steps (initial points excepted, which are
+//! batched the same way, an infeasible one's redraws called alone) — the
+//! polish, quenches, restarts, [`hrla::Auto`] — the function is called
+//! with one row at a time.
 
 use std::sync::Mutex;
 
@@ -19,11 +21,11 @@ use hrla::{
     Ackley, DoubleWell, KnownMinimum, Levy, Potential, Quadratic, Rastrigin, StyblinskiTang,
 };
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
-use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::dims::with_dim;
-use crate::errors::kernel;
+use crate::errors::{guard, internal, kernel};
 
 /// A built-in potential whose dimension is not yet fixed.
 #[derive(Clone, Debug)]
@@ -126,14 +128,16 @@ impl PyBuiltin {
         py: Python<'py>,
         x: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Batch<'py>> {
-        let (n, d) = (x.shape()[0], x.shape()[1]);
-        let points: Vec<f64> = x.as_array().iter().copied().collect();
-        let (values, grads) = with_dim!(d, D => {
-            let p = self.0.build::<D>()?;
-            Ok::<_, PyErr>(py.detach(|| evaluate_rows::<D>(&p, &points)))
-        })?;
-        let grads = PyArray1::from_vec(py, grads).reshape([n, d])?;
-        Ok((PyArray1::from_vec(py, values), grads))
+        guard(|| {
+            let (n, d) = (x.shape()[0], x.shape()[1]);
+            let points: Vec<f64> = x.as_array().iter().copied().collect();
+            let (values, grads) = with_dim!(d, D => {
+                let p = self.0.build::<D>()?;
+                Ok::<_, PyErr>(py.detach(|| evaluate_rows::<D>(&p, &points)))
+            })?;
+            let grads = PyArray1::from_vec(py, grads).reshape([n, d])?;
+            Ok((PyArray1::from_vec(py, values), grads))
+        })
     }
 
     /// The global minimum `U*` in dimension `dim`.
@@ -336,6 +340,12 @@ impl<const D: usize> PyPotential<D> {
         Ok(())
     }
 
+    /// Whether an evaluation failed since the last [`finish`](Self::finish)
+    /// (the evaluations since return NaN without calling the function).
+    pub fn failed(&self) -> bool {
+        self.state().error.is_some()
+    }
+
     /// Ends batch mode, checking that every answer was read; then returns
     /// the first error of any evaluation since the last call.
     pub fn finish(&self) -> PyResult<()> {
@@ -344,7 +354,7 @@ impl<const D: usize> PyPotential<D> {
             && b.next != b.values.len()
             && state.error.is_none()
         {
-            state.error = Some(PyRuntimeError::new_err(format!(
+            state.error = Some(internal(&format!(
                 "hrla internal error: the step read {} of the {} batched answers",
                 b.next,
                 b.values.len()
@@ -359,35 +369,28 @@ impl<const D: usize> PyPotential<D> {
             *grad = [f64::NAN; D];
             return f64::NAN;
         }
-        let answer = match state.batch.as_mut() {
-            Some(b) => {
-                let row = b.next;
-                let at = row * D..(row + 1) * D;
-                let same = b
-                    .points
-                    .get(at.clone())
-                    .is_some_and(|p| p.iter().zip(x).all(|(a, b)| a.to_bits() == b.to_bits()));
-                if same {
-                    b.next += 1;
-                    grad.copy_from_slice(&b.grads[at]);
-                    Ok(b.values[row])
-                } else {
-                    Err(PyRuntimeError::new_err(format!(
-                        "hrla internal error: evaluation {row} of a batch is not at the point \
-                         the batch computed"
-                    )))
-                }
+        if let Some(b) = state.batch.as_mut() {
+            let row = b.next;
+            let at = row * D..(row + 1) * D;
+            let batched = b
+                .points
+                .get(at.clone())
+                .is_some_and(|p| p.iter().zip(x).all(|(a, b)| a.to_bits() == b.to_bits()));
+            if batched {
+                b.next += 1;
+                grad.copy_from_slice(&b.grads[at]);
+                return b.values[row];
             }
-            None => {
-                drop(state);
-                let answer = Python::attach(|py| call(py, &self.function, x, D)).map(|(v, g)| {
-                    grad.copy_from_slice(&g);
-                    v[0]
-                });
-                state = self.state();
-                answer
-            }
-        };
+            // A point the batch did not foresee: the redraw of an
+            // infeasible initial point, which the builder evaluates
+            // before the next chain's. Called alone, answered exactly.
+        }
+        drop(state);
+        let answer = Python::attach(|py| call(py, &self.function, x, D)).map(|(v, g)| {
+            grad.copy_from_slice(&g);
+            v[0]
+        });
+        state = self.state();
         answer.unwrap_or_else(|e| {
             state.error = Some(e);
             *grad = [f64::NAN; D];
@@ -423,20 +426,45 @@ fn call(
         ))
     })?;
     let numpy = py.import("numpy")?;
-    let as_f64 = |v: &Bound<'_, PyAny>| -> PyResult<Vec<f64>> {
-        let a = numpy.call_method1("ascontiguousarray", (v, "float64"))?;
-        let a = a.cast_into::<numpy::PyArrayDyn<f64>>()?;
-        Ok(a.readonly().as_slice()?.to_vec())
-    };
-    let u_shape: Vec<usize> = numpy.call_method1("shape", (&u,))?.extract()?;
-    let g_shape: Vec<usize> = numpy.call_method1("shape", (&g,))?.extract()?;
+    let u = real(&numpy, &u, "U")?;
+    let g = real(&numpy, &g, "G")?;
+    let u_shape: Vec<usize> = u.getattr("shape")?.extract()?;
+    let g_shape: Vec<usize> = g.getattr("shape")?.extract()?;
     if u_shape != [n] || g_shape != [n, d] {
         return Err(PyValueError::new_err(format!(
             "the potential must return U of shape ({n},) and G of shape ({n}, {d}); \
              got {u_shape:?} and {g_shape:?}"
         )));
     }
-    Ok((as_f64(&u)?, as_f64(&g)?))
+    let flat = |a: &Bound<'_, PyAny>| -> PyResult<Vec<f64>> {
+        let a = numpy.call_method1("ascontiguousarray", (a, "float64"))?;
+        let a = a.cast_into::<numpy::PyArrayDyn<f64>>()?;
+        Ok(a.readonly().as_slice()?.to_vec())
+    };
+    Ok((flat(&u)?, flat(&g)?))
+}
+
+/// `v` as a numpy array of real numbers: a float or integer dtype (numpy
+/// arrays, Python floats and ints, sequences of them). Booleans, complex
+/// numbers, strings and objects are refused with `TypeError`: numpy would
+/// turn `True` into 1, drop an imaginary part, or parse `"1.5"`, each a
+/// wrong value that would pass unnoticed.
+fn real<'py>(
+    numpy: &Bound<'py, PyModule>,
+    v: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let a = numpy.call_method1("asarray", (v,))?;
+    let dtype = a.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    if matches!(kind.as_str(), "f" | "i" | "u") {
+        Ok(a)
+    } else {
+        Err(PyTypeError::new_err(format!(
+            "the potential's {what} must be real numbers (a float or integer array), got dtype {}",
+            dtype.str()?
+        )))
+    }
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

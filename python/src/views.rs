@@ -28,6 +28,13 @@ pub struct Layout {
     pub best_value: usize,
 }
 
+// SAFETY: a `Layout` is an address and offsets, never dereferenced except
+// by `rows` and `column`, whose safety rests on the owner keeping the
+// chains alive, not on the thread that reads them.
+unsafe impl Send for Layout {}
+// SAFETY: as for `Send`: the layout itself is never written after it is made.
+unsafe impl Sync for Layout {}
+
 /// The layout of `chains`, measured from the addresses of their fields
 /// (Rust does not fix a struct's field order).
 pub fn layout_of<const D: usize, R>(chains: &[Chain<f64, D, R>]) -> Layout {

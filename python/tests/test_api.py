@@ -160,3 +160,32 @@ def test_every_listed_dimension_is_compiled_in():
     for d in (0, 17, 101):
         with pytest.raises(hrla.DimensionError):
             hrla.Rastrigin().global_minimum(d)
+
+
+def test_the_stubs_match_the_module():
+    """Every public name of `hrla._hrla` is in `_hrla.pyi` and the other
+    way round, every class with the same public methods and properties."""
+    import ast
+
+    from hrla import _hrla
+
+    tree = ast.parse((Path(hrla.__file__).parent / "_hrla.pyi").read_text())
+    stubs = {}
+    for node in tree.body:
+        if isinstance(node, ast.ClassDef):
+            stubs[node.name] = {n.name for n in node.body if isinstance(n, ast.FunctionDef)} | {
+                n.target.id for n in node.body if isinstance(n, ast.AnnAssign)}
+        elif isinstance(node, ast.AnnAssign):
+            stubs[node.target.id] = None
+    aliases = {"F64", "BatchedFunction", "Sampler", "ScheduleLike", "StartLike", "PotentialLike"}
+    public = {n for n in dir(_hrla) if not n.startswith("_")}
+    assert public == set(stubs) - aliases
+    for name, members in stubs.items():
+        if members is None or name in aliases:
+            continue
+        cls = getattr(_hrla, name)
+        own = {m for m in vars(cls) if not m.startswith("_")}
+        if issubclass(cls, BaseException):
+            assert own == members, name
+        else:
+            assert own == members - {"__init__", "__len__"}, (name, own ^ (members - {"__init__", "__len__"}))
