@@ -106,6 +106,21 @@ fn polish_quench_and_restart_refuse_a_potential_unbounded_below() {
     assert!(is_unbounded(&got, 0), "{got:?}");
 }
 
+/// A failure in a polish never turns into a report, even once a stopping
+/// rule holds: `run` checks the failure before the stopping rules.
+#[test]
+fn a_failed_polish_is_not_a_report_after_the_run_ended() {
+    let mut store = chains::<1>(2);
+    let mut opt = minus_exp_run(&mut store);
+    while opt.termination().is_none() {
+        opt.step().unwrap();
+    }
+    let mut lbfgs: Lbfgs<f64, 1, 8> = Lbfgs::new();
+    assert!(is_unbounded(&opt.polish(0, &mut lbfgs, PolishSettings::new(1000)), 0));
+    assert!(is_unbounded(&opt.run(), 0));
+    assert!(is_unbounded(&opt.run_with(1, |_| ControlFlow::Continue(())), 0));
+}
+
 /// Reflection into a box of width near `MAX` stays finite: `6.5e307`
 /// folds to `5.5e307` inside `[-6e307, 6e307]`.
 #[test]

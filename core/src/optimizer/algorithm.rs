@@ -315,6 +315,12 @@ where
         T: Fn(&Context<'_, S::Kernel, P, B, F>, &mut [Chain<F, D, R>]) -> Sweep<F>,
     {
         loop {
+            // A run that failed (in a step, a polish, a quench or a
+            // restart) never turns into a report, even where a stopping
+            // rule already holds.
+            if let Some(e) = self.failed {
+                return Err(e);
+            }
             if let Some(termination) = self.termination() {
                 return Ok(self.report(termination));
             }
