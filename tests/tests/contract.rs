@@ -116,9 +116,15 @@ fn a_failed_polish_is_not_a_report_after_the_run_ended() {
         opt.step().unwrap();
     }
     let mut lbfgs: Lbfgs<f64, 1, 8> = Lbfgs::new();
-    assert!(is_unbounded(&opt.polish(0, &mut lbfgs, PolishSettings::new(1000)), 0));
+    assert!(is_unbounded(
+        &opt.polish(0, &mut lbfgs, PolishSettings::new(1000)),
+        0
+    ));
     assert!(is_unbounded(&opt.run(), 0));
-    assert!(is_unbounded(&opt.run_with(1, |_| ControlFlow::Continue(())), 0));
+    assert!(is_unbounded(
+        &opt.run_with(1, |_| ControlFlow::Continue(())),
+        0
+    ));
 }
 
 /// Reflection into a box of width near `MAX` stays finite: `6.5e307`
