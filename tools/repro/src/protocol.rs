@@ -493,9 +493,8 @@ fn expand<T: Copy>(specs: Vec<RunSpec>, axis: &[T], set: impl Fn(&mut RunSpec, T
 
 /// The grid `sampler x d x h x (N, K) x start x a` of protocol `id`, in
 /// that order (the last varying fastest), then the grid `peer x proposal
-/// (move x SD) x d x (N, K) x start` of its peers, each configuration
-/// validated.
-fn grid(id: ProtocolId, p: &Params) -> Result<Vec<RunSpec>, ReproError> {
+/// (move x SD) x d x (N, K) x start` of its peers.
+fn grid(id: ProtocolId, p: &Params) -> Vec<RunSpec> {
     let figure = !id.is_table();
     let temperature = |t| {
         if id.anneals() {
@@ -563,14 +562,12 @@ fn grid(id: ProtocolId, p: &Params) -> Result<Vec<RunSpec>, ReproError> {
     peers = expand(peers, &p.nk, lengths);
     peers = expand(peers, &p.starts, |s, v| s.start = v);
     specs.extend(peers);
-    for spec in &specs {
-        spec.validate()?;
-    }
-    Ok(specs)
+    specs
 }
 
 /// The plan of protocol `id`: its defaults (scaled down by `quick`), then
-/// the overrides.
+/// the overrides; its sizes within [`limits`](crate::limits) and every
+/// configuration validated.
 pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproError> {
     let mut params = defaults(id);
     if quick {
@@ -581,7 +578,7 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
     if params.runs == 0 {
         return Err(ReproError::Usage("M must be at least 1".into()));
     }
-    let configs = grid(id, &params)?;
+    let configs = grid(id, &params);
     if configs.is_empty() {
         return Err(ReproError::Usage("the parameter grid is empty".into()));
     }
@@ -594,13 +591,19 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
     } else {
         SeriesKey::Temperature
     };
-    Ok(Plan {
+    let plan = Plan {
         id,
         runs: params.runs,
         configs,
         panels,
         series,
-    })
+    };
+    // Sizes first: a huge K is named as such, not as a stride beyond it.
+    crate::limits::check_counts(&plan)?;
+    for spec in &plan.configs {
+        spec.validate()?;
+    }
+    Ok(plan)
 }
 
 #[cfg(test)]
