@@ -27,6 +27,10 @@ fn repro(args: &[&str], dir: &Path) -> Output {
         .arg("--out")
         .arg(dir)
         .arg("--quiet")
+        // Errors without a backtrace: capturing one (RUST_BACKTRACE=1 in
+        // the environment) costs more than the whole case.
+        .env("RUST_BACKTRACE", "0")
+        .env("RUST_LIB_BACKTRACE", "0")
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
