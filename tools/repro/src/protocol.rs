@@ -115,16 +115,18 @@ pub struct Overrides {
     /// Step sizes h.
     #[arg(long, value_delimiter = ',')]
     pub h: Option<Vec<f64>>,
-    /// Numbers of chains N (crossed with --k).
+    /// Numbers of chains N (crossed with --k); N K at most 2^53, and a run's
+    /// chains on every worker thread within the machine's memory.
     #[arg(long, value_delimiter = ',')]
     pub n: Option<Vec<usize>>,
-    /// Numbers of steps K (crossed with --n).
+    /// Numbers of steps K (crossed with --n), at most 2^53.
     #[arg(long, value_delimiter = ',')]
     pub k: Option<Vec<u64>>,
     /// (N, K) pairs as N:K, e.g. `1:140000,10:14000` (T2's form).
     #[arg(long, value_delimiter = ',', value_parser = parse_nk, conflicts_with_all = ["n", "k"])]
     pub nk: Option<Vec<(usize, u64)>>,
-    /// Independent runs M.
+    /// Independent runs M, at most 2^32 - 1; M N K summed over the
+    /// configurations at most 2^53.
     #[arg(long)]
     pub m: Option<usize>,
     /// Constant inverse temperatures a (protocols without annealing).
@@ -145,7 +147,8 @@ pub struct Overrides {
     /// Fixed start: every chain at (v, ..., v) instead of a Gaussian.
     #[arg(long, conflicts_with_all = ["start_centre", "start_var"])]
     pub start_point: Option<f64>,
-    /// Stride s of the running best (min over k = s, 2s, ..., K).
+    /// Stride s of the running best (min over k = s, 2s, ..., K), at most
+    /// the first checkpoint.
     #[arg(long)]
     pub stride: Option<u64>,
     /// Tolerances eps of the probability curves.
