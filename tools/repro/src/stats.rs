@@ -261,8 +261,8 @@ impl Summary {
 pub enum BadRunningBest {
     /// Not a finite number.
     #[error(
-        "the running best at k = {k} is {value}, not finite: every chain diverged \
-         before an iterate on the stride, or the value was never a run's"
+        "the running best at k = {k} is {value}, not finite: no chain was alive at \
+         any iterate on the stride up to k"
     )]
     NotFinite {
         /// The checkpoint.

@@ -465,7 +465,7 @@ fn damage(g: &mut Gen, bytes: &mut Vec<u8>, foreign: &[u8]) -> &'static str {
         lines.push(String::new());
     }
     let n = lines.len();
-    let what = match g.below(14) {
+    let what = match g.below(16) {
         0 => {
             lines.remove(g.below(n));
             "delete a line"
@@ -555,6 +555,24 @@ fn damage(g: &mut Gen, bytes: &mut Vec<u8>, foreign: &[u8]) -> &'static str {
         12 => {
             bytes.extend_from_slice(b"extra line after the checksum\n");
             return "append after the checksum";
+        }
+        13 | 14 => {
+            // Every running best of the file one extreme value: valid if
+            // finite and >= 0, and then drawn and summarised.
+            let v = *g.pick(&[
+                "7fefffffffffffff",
+                "7fe8000000000000",
+                "0000000000000001",
+                "0000000000000000",
+                "7ff0000000000000",
+                "3ff0000000000000",
+            ]);
+            for l in lines.iter_mut().filter(|l| l.starts_with("run ")) {
+                let f: Vec<&str> = l.split(' ').collect();
+                let n = f.len().saturating_sub(3);
+                *l = format!("{} {}", f[..f.len().min(3)].join(" "), vec![v; n].join(" "));
+            }
+            "set every running best to one value"
         }
         _ => {
             *bytes = match g.below(3) {

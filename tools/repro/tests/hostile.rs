@@ -279,6 +279,49 @@ fn counters_that_would_overflow_are_refused() {
     }
 }
 
+/// Running bests at the ends of the positive floats are a valid (if
+/// absurd) shard: the merge writes finite statistics and T3's log-scale
+/// figure instead of drawing it without end. Every running best f64::MAX
+/// in both shards, or the smallest subnormal in one of them beside
+/// ordinary values in the other.
+#[test]
+fn running_bests_at_the_ends_of_the_floats_merge_into_finite_tables() {
+    for (value, shards_edited) in [("7fefffffffffffff", 2), ("0000000000000001", 1)] {
+        let tmp = tempfile::tempdir().unwrap();
+        extreme_running_bests(tmp.path(), value, shards_edited);
+    }
+}
+
+fn extreme_running_bests(dir: &Path, value: &str, shards_edited: usize) {
+    let t3 = [
+        "t3", "--quick", "--m", "2", "--a-high", "4", "--peers", "sa",
+    ];
+    shards(&t3, 2, dir);
+    for i in 0..shards_edited {
+        edit_lines(&shard_file(dir, "t3", i, 2), |l| {
+            Some(if l.starts_with("run ") {
+                let f: Vec<&str> = l.split(' ').collect();
+                let all = vec![value; f.len() - 3];
+                format!("{} {}", f[..3].join(" "), all.join(" "))
+            } else {
+                l.to_string()
+            })
+        });
+    }
+    ok(&[&t3[..], &["--merge"]].concat(), dir);
+    let summary = fs::read_to_string(dir.join("t3").join("summary.csv")).unwrap();
+    for row in summary.lines().skip(1) {
+        let f: Vec<&str> = row.rsplit(',').collect();
+        // max, min, se, sd_population, sd, median, mean (from the right,
+        // after diverged_chains).
+        for v in &f[1..8] {
+            let v: f64 = v.parse().unwrap();
+            assert!(v.is_finite() && v >= 0.0, "{row}");
+        }
+    }
+    assert!(dir.join("t3").join("t3.svg").exists());
+}
+
 /// A stride longer than the run leaves no iterate for the running best:
 /// refused, naming the option, instead of tables of inf and NaN.
 #[test]
@@ -301,6 +344,31 @@ fn a_stride_beyond_the_checkpoints_is_refused() {
         &["--stride"],
     );
     assert!(!tmp.path().join("t1").exists());
+}
+
+/// A run whose chains all diverge at once has no running best: the
+/// protocol fails instead of writing tables of inf and NaN.
+#[test]
+fn a_run_without_a_finite_running_best_fails() {
+    let tmp = tempfile::tempdir().unwrap();
+    let args = [
+        "t1",
+        "--quick",
+        "--sampler",
+        "ola",
+        "--h",
+        "1e300",
+        "--m",
+        "2",
+        "--n",
+        "3",
+        "--k",
+        "20",
+        "--stride",
+        "1",
+    ];
+    refused(&args, tmp.path(), &["OLA", "run 0", "not finite"]);
+    assert!(!tmp.path().join("t1").join("summary.csv").exists());
 }
 
 /// M, N or K at the top of `u64` (or beyond what the machine can hold) is
