@@ -172,7 +172,8 @@ impl RunSpec {
         self.eps.len() * grid_points(self.steps, self.curve_every)
     }
 
-    /// `N K`: the chain-steps of one run.
+    /// `N K`: the chain-steps of one run (at most 2^53 in a plan, see
+    /// [`limits`](crate::limits)).
     pub fn chain_steps(&self) -> u64 {
         self.chains as u64 * self.steps
     }
@@ -221,6 +222,18 @@ impl RunSpec {
                 "checkpoints {:?} must increase within 1..=K = {}",
                 self.checkpoints, self.steps
             )));
+        }
+        // The running best at k is the min over k = s, 2s, ... <= k: with a
+        // stride beyond the first checkpoint it is over no iterate.
+        if self.stride > self.checkpoints[0] {
+            return Err(ReproError::Flag {
+                flag: "--stride",
+                reason: format!(
+                    "a stride of {} leaves no iterate s, 2s, ... <= k = {} for the running best \
+                     at the first checkpoint; it must be at most {1}",
+                    self.stride, self.checkpoints[0]
+                ),
+            });
         }
         if self.eps.iter().any(|e| !e.is_finite()) {
             return bad("tolerances must be finite");

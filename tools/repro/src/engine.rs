@@ -105,6 +105,12 @@ pub struct RunOutcome {
     pub evaluations: u64,
 }
 
+/// The global minimum `U* = 0` of the paper's Rastrigin, which every run
+/// minimises: the tolerances of the probability curves are on `U - U*`,
+/// and no running best is below it (the value is a sum of non-negative
+/// terms, each formed without cancellation).
+pub const U_STAR: f64 = 0.0;
+
 /// How many iterates a run does between two progress reports.
 const PROGRESS_EVERY: u64 = 1024;
 
@@ -142,6 +148,22 @@ fn run_d<const D: usize>(
     }
 }
 
+/// The bytes of one kernel chain in dimension `d` (`None` for a dimension
+/// not compiled in): a run of `N` chains holds `N` of them. A peer's member
+/// (a point, its value and its generator) is smaller.
+pub fn chain_bytes(d: usize) -> Option<usize> {
+    Some(match d {
+        1 => size_of::<Chain<f64, 1>>(),
+        2 => size_of::<Chain<f64, 2>>(),
+        5 => size_of::<Chain<f64, 5>>(),
+        10 => size_of::<Chain<f64, 10>>(),
+        20 => size_of::<Chain<f64, 20>>(),
+        50 => size_of::<Chain<f64, 50>>(),
+        100 => size_of::<Chain<f64, 100>>(),
+        _ => return None,
+    })
+}
+
 /// A run being driven: one iteration at a time, and its best sample now.
 trait Iterate {
     /// Iteration `k >= 1`.
@@ -176,7 +198,7 @@ impl<const D: usize> Iterate for PeerRun<D> {
 }
 
 /// Runs `spec.steps` iterations of `run`, handing its best sample to the
-/// tracker (Rastrigin's global minimum `U* = 0`) at the iterates it wants
+/// tracker (Rastrigin's global minimum [`U_STAR`]) at the iterates it wants
 /// and reporting progress; returns the running best at the checkpoints.
 fn drive(
     spec: &RunSpec,
@@ -190,7 +212,7 @@ fn drive(
         spec.curve_every,
         &spec.checkpoints,
         &spec.eps,
-        0.0,
+        U_STAR,
         counts,
     );
     if tracker.wants(0) {
@@ -375,11 +397,13 @@ mod tests {
         assert_eq!(done.into_inner(), 3 * 2500);
     }
 
-    /// `DIMENSIONS` (what plans accept) and the dispatch of `run_once` are
-    /// two lists; a dimension in the first only would fail mid-run.
+    /// `DIMENSIONS` (what plans accept) and the dispatches of `run_once`
+    /// and `chain_bytes` are three lists; a dimension in the first only
+    /// would fail mid-run.
     #[test]
     fn every_listed_dimension_is_compiled_in() {
         for d in crate::config::DIMENSIONS {
+            assert!(chain_bytes(d).is_some_and(|b| b >= 3 * 8 * d), "{d}");
             let mut s = spec(1, Temperature::Constant(1.0));
             s.d = d;
             s.steps = 2;

@@ -24,6 +24,39 @@ pub enum ReproError {
         /// The cause.
         source: std::io::Error,
     },
+    /// An option whose value the tool cannot honour, named: a size beyond
+    /// what the tool counts exactly or the machine can hold (see
+    /// [`crate::limits`]), or a stride that leaves no iterate.
+    #[error("{flag}: {reason}")]
+    Flag {
+        /// The option, e.g. `--k`.
+        flag: &'static str,
+        /// The value and why it is refused.
+        reason: String,
+    },
+    /// A run whose running bests are not a run's: above all, none finite
+    /// (every chain diverged, or left the domain, before the first iterate
+    /// on the stride). A failed run, never a table entry.
+    #[error("{config}, run {run}: {problem}")]
+    FailedRun {
+        /// The configuration, as the tables label it.
+        config: String,
+        /// The run index.
+        run: usize,
+        /// What is wrong with its running bests.
+        problem: crate::stats::BadRunningBest,
+    },
+    /// A counter of the merged runs would overflow its type.
+    #[error("the {0} of the runs overflow")]
+    Overflow(&'static str),
+    /// A shard file, or the set of them, that `--merge` refuses.
+    #[error("{path}: {problem}")]
+    Shard {
+        /// The file, or the directory for a problem of the set.
+        path: PathBuf,
+        /// What is wrong with it.
+        problem: crate::shard::ShardProblem,
+    },
     /// Drawing a figure failed.
     #[error("cannot draw {path}: {message}")]
     Plot {

@@ -9,11 +9,11 @@ use indicatif::ProgressBar;
 use rayon::prelude::*;
 
 use crate::config::RunSpec;
-use crate::engine::run_once;
+use crate::engine::{U_STAR, run_once};
 use crate::error::ReproError;
 use crate::protocol::Plan;
 use crate::seed::run_seed;
-use crate::stats::{Summary, grid_points};
+use crate::stats::{Summary, check_running_best, grid_points};
 
 /// The running best of every run at one checkpoint.
 #[derive(Clone, Debug, PartialEq)]
@@ -120,29 +120,63 @@ impl Part {
         }
     }
 
-    /// Both parts' runs (wall times add up).
-    pub fn merge(mut self, other: Part) -> Self {
+    /// Both parts' runs (wall times add up), every counter added in
+    /// checked arithmetic: [`ReproError::Overflow`] names the first that
+    /// would overflow. Parts of one plan's disjoint runs never do (see
+    /// [`limits`](crate::limits)); parts read from files might.
+    pub fn merge(mut self, other: Part) -> Result<Self, ReproError> {
+        fn add<T: Copy>(
+            mine: &mut T,
+            theirs: T,
+            checked: fn(T, T) -> Option<T>,
+            what: &'static str,
+        ) -> Result<(), ReproError> {
+            *mine = checked(*mine, theirs).ok_or(ReproError::Overflow(what))?;
+            Ok(())
+        }
         for (mine, theirs) in self.counts.iter_mut().zip(other.counts) {
             for (m, t) in mine.iter_mut().zip(theirs) {
-                *m += t;
+                add(m, t, u32::checked_add, "hit counts")?;
             }
         }
         for (mine, theirs) in self.values.iter_mut().zip(other.values) {
             mine.extend(theirs);
         }
         for (mine, theirs) in self.diverged.iter_mut().zip(other.diverged) {
-            *mine += theirs;
+            add(mine, theirs, usize::checked_add, "diverged chains")?;
         }
         for (mine, theirs) in self.evaluations.iter_mut().zip(other.evaluations) {
-            *mine += theirs;
+            add(mine, theirs, u64::checked_add, "evaluations")?;
         }
         for (mine, theirs) in self.run_wall.iter_mut().zip(other.run_wall) {
-            *mine += theirs;
+            add(mine, theirs, Duration::checked_add, "run wall times")?;
         }
-        self.wall += other.wall;
-        self.chain_steps += other.chain_steps;
-        self
+        add(
+            &mut self.wall,
+            other.wall,
+            Duration::checked_add,
+            "wall times",
+        )?;
+        add(
+            &mut self.chain_steps,
+            other.chain_steps,
+            u64::checked_add,
+            "chain-steps",
+        )?;
+        Ok(self)
     }
+}
+
+/// A configuration as an error message names it: its table label with
+/// its dimension, chains and steps.
+pub fn config_name(spec: &RunSpec) -> String {
+    format!(
+        "{} (d = {}, N = {}, K = {})",
+        crate::compare::config_label(spec),
+        spec.d,
+        spec.chains,
+        spec.steps
+    )
 }
 
 /// Which of a plan's runs a process does: the `(configuration, run)` pairs
@@ -207,13 +241,22 @@ pub fn execute(plan: &Plan, seed: u64, bar: &ProgressBar) -> Result<ProtocolResu
     Ok(finish(plan, seed, part, rayon::current_num_threads()))
 }
 
-/// The runs of one shard of a plan.
+/// The runs of one shard of a plan, once the plan is known to fit in the
+/// machine's memory on the current rayon pool
+/// ([`check_memory`](crate::limits::check_memory)). A run without a finite
+/// running best at a checkpoint fails the shard
+/// ([`ReproError::FailedRun`]).
 pub fn run_shard(
     plan: &Plan,
     seed: u64,
     shard: Shard,
     bar: &ProgressBar,
 ) -> Result<Part, ReproError> {
+    crate::limits::check_memory(
+        plan,
+        Some(rayon::current_num_threads()),
+        crate::limits::machine_memory(),
+    )?;
     let started = Instant::now();
     let tasks = shard.tasks(plan);
     let progress = |n: u64| bar.inc(n);
@@ -234,15 +277,28 @@ pub fn run_shard(
                     &mut acc.counts[c],
                     &progress,
                 )?;
+                check_running_best(&out.running_best, &spec.checkpoints, U_STAR).map_err(
+                    |problem| ReproError::FailedRun {
+                        config: config_name(spec),
+                        run: i,
+                        problem,
+                    },
+                )?;
                 acc.values[c].push((i, out.running_best));
-                acc.diverged[c] += out.diverged;
-                acc.chain_steps += spec.chain_steps();
-                acc.evaluations[c] += out.evaluations;
-                acc.run_wall[c] += run_started.elapsed();
+                // Within the limits of a plan, none of these can overflow.
+                let over = ReproError::Overflow;
+                acc.diverged[c] =
+                    (acc.diverged[c].checked_add(out.diverged)).ok_or(over("diverged chains"))?;
+                acc.chain_steps =
+                    (acc.chain_steps.checked_add(spec.chain_steps())).ok_or(over("chain-steps"))?;
+                acc.evaluations[c] =
+                    (acc.evaluations[c].checked_add(out.evaluations)).ok_or(over("evaluations"))?;
+                acc.run_wall[c] = (acc.run_wall[c].checked_add(run_started.elapsed()))
+                    .ok_or(over("run wall times"))?;
                 Ok::<_, ReproError>(acc)
             },
         )
-        .try_reduce(|| Part::empty(plan), |a, b| Ok(a.merge(b)))?;
+        .try_reduce(|| Part::empty(plan), Part::merge)?;
     part.wall = started.elapsed();
     Ok(part)
 }
@@ -351,7 +407,8 @@ mod tests {
             let merged = order
                 .iter()
                 .map(|&i| shards[i].clone())
-                .fold(Part::empty(&p), Part::merge);
+                .try_fold(Part::empty(&p), Part::merge)
+                .unwrap();
             let merged = finish(&p, 7, merged, 1);
             assert_eq!(merged.configs, whole.configs);
             assert_eq!(merged.chain_steps, whole.chain_steps);

@@ -18,6 +18,8 @@
 //!   run by the same loop and statistics as the kernel.
 //! - [`seed`]: one seed per run index, from one base seed (the kernel then
 //!   gives each chain its own stream).
+//! - [`limits`]: how big a plan may be (what the tool counts exactly,
+//!   what the machine's memory holds).
 //! - [`exec`]: every run of a plan (or of one shard of it) in parallel
 //!   (rayon).
 //! - [`shard`]: a shard's runs on disk, and the merge of all shards into
@@ -33,6 +35,7 @@ pub mod config;
 pub mod engine;
 pub mod error;
 pub mod exec;
+pub mod limits;
 pub mod output;
 pub mod peers;
 pub mod plot;

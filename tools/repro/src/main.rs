@@ -16,7 +16,7 @@ use hrla_repro::compare::{comparison_markdown, cost_markdown, has_peers};
 use hrla_repro::exec::{ProtocolResult, Shard, execute, finish, run_shard};
 use hrla_repro::output::{summary_markdown, write_all};
 use hrla_repro::protocol::{Overrides, Plan, ProtocolId, plan};
-use hrla_repro::shard;
+use hrla_repro::{limits, shard};
 
 /// Reproduce the experiments of "Global Optimization Algorithm through
 /// High-Resolution Sampling" (spec section 7) with the hrla kernel.
@@ -55,7 +55,9 @@ struct Cli {
     #[arg(long, global = true, value_name = "i/n", conflicts_with = "merge")]
     shard: Option<Shard>,
     /// Merge the shard files under OUT/ID/ (written with the same options)
-    /// and write the tables, the same bytes as one process would.
+    /// and write the tables, the same bytes as one process would. Refuses
+    /// any file that is not an intact shard of this plan and seed: its
+    /// checksum, plan, names, numbers and ranges are checked.
     #[arg(long, global = true)]
     merge: bool,
 }
@@ -125,6 +127,13 @@ fn main() -> Result<()> {
         .iter()
         .map(|(id, o)| plan(*id, o, cli.quick).with_context(|| format!("protocol {}", id.name())))
         .collect::<Result<Vec<_>>>()?;
+    // And every plan within the machine's memory, before any of them runs.
+    let memory = limits::machine_memory();
+    let workers = (!cli.merge).then(rayon::current_num_threads);
+    for p in &plans {
+        limits::check_memory(p, workers, memory)
+            .with_context(|| format!("protocol {}", p.id.name()))?;
+    }
     // The program's own name, not the build directory it ran from.
     let command = std::iter::once("repro".to_string())
         .chain(std::env::args().skip(1))

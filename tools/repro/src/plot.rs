@@ -144,8 +144,14 @@ fn draw_comparison(r: &ProtocolResult, path: &Path) -> Result<(), Box<dyn std::e
             }
         }
     }
-    let (lo, hi) = if lo > 0.0 && hi.is_finite() {
-        (lo / 1.5, hi * 1.5)
+    // Padded by a factor 1.5 each way, within the finite floats and at
+    // most 300 decades wide (smaller values are cut at the axis like the
+    // bars): plotters counts the log scale's decades as `hi / lo`, and an
+    // infinite count (a range reaching +inf, or spanning more than the
+    // floats' 617 decades) sends its tick loop on without end.
+    let (lo, hi) = if lo / 1.5 > 0.0 && hi.is_finite() {
+        let hi = (hi * 1.5).min(f64::MAX);
+        ((lo / 1.5).max(hi * 1e-300), hi)
     } else {
         (1e-3, 1e3)
     };

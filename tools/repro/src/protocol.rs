@@ -115,16 +115,18 @@ pub struct Overrides {
     /// Step sizes h.
     #[arg(long, value_delimiter = ',')]
     pub h: Option<Vec<f64>>,
-    /// Numbers of chains N (crossed with --k).
+    /// Numbers of chains N (crossed with --k); N K at most 2^53, and a run's
+    /// chains on every worker thread within the machine's memory.
     #[arg(long, value_delimiter = ',')]
     pub n: Option<Vec<usize>>,
-    /// Numbers of steps K (crossed with --n).
+    /// Numbers of steps K (crossed with --n), at most 2^53.
     #[arg(long, value_delimiter = ',')]
     pub k: Option<Vec<u64>>,
     /// (N, K) pairs as N:K, e.g. `1:140000,10:14000` (T2's form).
     #[arg(long, value_delimiter = ',', value_parser = parse_nk, conflicts_with_all = ["n", "k"])]
     pub nk: Option<Vec<(usize, u64)>>,
-    /// Independent runs M.
+    /// Independent runs M, at most 2^32 - 1; M N K summed over the
+    /// configurations at most 2^53.
     #[arg(long)]
     pub m: Option<usize>,
     /// Constant inverse temperatures a (protocols without annealing).
@@ -145,7 +147,8 @@ pub struct Overrides {
     /// Fixed start: every chain at (v, ..., v) instead of a Gaussian.
     #[arg(long, conflicts_with_all = ["start_centre", "start_var"])]
     pub start_point: Option<f64>,
-    /// Stride s of the running best (min over k = s, 2s, ..., K).
+    /// Stride s of the running best (min over k = s, 2s, ..., K), at most
+    /// the first checkpoint.
     #[arg(long)]
     pub stride: Option<u64>,
     /// Tolerances eps of the probability curves.
@@ -493,9 +496,8 @@ fn expand<T: Copy>(specs: Vec<RunSpec>, axis: &[T], set: impl Fn(&mut RunSpec, T
 
 /// The grid `sampler x d x h x (N, K) x start x a` of protocol `id`, in
 /// that order (the last varying fastest), then the grid `peer x proposal
-/// (move x SD) x d x (N, K) x start` of its peers, each configuration
-/// validated.
-fn grid(id: ProtocolId, p: &Params) -> Result<Vec<RunSpec>, ReproError> {
+/// (move x SD) x d x (N, K) x start` of its peers.
+fn grid(id: ProtocolId, p: &Params) -> Vec<RunSpec> {
     let figure = !id.is_table();
     let temperature = |t| {
         if id.anneals() {
@@ -563,14 +565,12 @@ fn grid(id: ProtocolId, p: &Params) -> Result<Vec<RunSpec>, ReproError> {
     peers = expand(peers, &p.nk, lengths);
     peers = expand(peers, &p.starts, |s, v| s.start = v);
     specs.extend(peers);
-    for spec in &specs {
-        spec.validate()?;
-    }
-    Ok(specs)
+    specs
 }
 
 /// The plan of protocol `id`: its defaults (scaled down by `quick`), then
-/// the overrides.
+/// the overrides; its sizes within [`limits`](crate::limits) and every
+/// configuration validated.
 pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproError> {
     let mut params = defaults(id);
     if quick {
@@ -581,7 +581,7 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
     if params.runs == 0 {
         return Err(ReproError::Usage("M must be at least 1".into()));
     }
-    let configs = grid(id, &params)?;
+    let configs = grid(id, &params);
     if configs.is_empty() {
         return Err(ReproError::Usage("the parameter grid is empty".into()));
     }
@@ -594,13 +594,19 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
     } else {
         SeriesKey::Temperature
     };
-    Ok(Plan {
+    let plan = Plan {
         id,
         runs: params.runs,
         configs,
         panels,
         series,
-    })
+    };
+    // Sizes first: a huge K is named as such, not as a stride beyond it.
+    crate::limits::check_counts(&plan)?;
+    for spec in &plan.configs {
+        spec.validate()?;
+    }
+    Ok(plan)
 }
 
 #[cfg(test)]

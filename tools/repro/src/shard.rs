@@ -4,37 +4,152 @@
 //!
 //! `repro ID --shard i/n` writes `OUT/id/shard-i-of-n.txt` instead of the
 //! tables; `repro ID --merge` (with the same options) reads the `n` files,
-//! checks that they are the shards of the same plan and seed, one each,
-//! and writes the tables a single process would have written, byte for
-//! byte (the metadata, and T3's `cost.md`, add the shards' wall times up).
+//! checks each of them and that they are the shards `0..n` of the same
+//! plan and seed, one each, and writes the tables a single process would
+//! have written, byte for byte (the metadata, and T3's `cost.md`, add the
+//! shards' wall times up).
 //!
-//! The file is text, one record a line: floats as the hexadecimal bits of
-//! the `f64`, so a merge loses nothing.
+//! # Format
+//!
+//! Text, one record a line, fields separated by one space, in this order:
+//!
+//! ```text
+//! hrla-repro shard 2
+//! plan format 2                      the plan's fingerprint: every
+//! plan tool hrla-repro 0.1.0         parameter that decides the results,
+//! plan ...                           one line each (see `plan_lines`)
+//! shard i/n
+//! wall-ns W                          measured, summed by the merge
+//! chain-steps S                      N K summed over the shard's runs
+//! threads T                          worker threads, at least 1
+//! diverged c D                       then, for each configuration c:
+//! evaluations c E
+//! run-wall-ns c W
+//! counts c h0 h1 ...                 hits per tolerance and grid iterate
+//! run c i v0 v1 ...                  one per run i of c in the shard, in
+//!                                    order; the running best at each
+//!                                    checkpoint as the 16 hexadecimal
+//!                                    digits of the f64's bits (exact)
+//! checksum fnv1a64 X                 FNV-1a (64 bits) of every byte before
+//!                                    this line, 16 hexadecimal digits
+//! ```
+//!
+//! A merge refuses ([`ReproError::Shard`], a [`ShardProblem`]) a file
+//! larger than any shard of the plan, truncated (not ending with its
+//! checksum line), whose checksum fails, whose plan lines differ from the
+//! merge's own in any way, whose name and `shard` line disagree, that
+//! lacks, repeats or reorders a line, whose numbers are out of range (a
+//! hit count above the shard's runs of that configuration, evaluations or
+//! diverged chains above what its runs can make, chain-steps other than
+//! its runs', running bests not finite, below `U*` or increasing across
+//! checkpoints), or whose counters overflow when added to the other
+//! shards'.
 
 use std::fmt::Write as _;
 use std::fs;
+use std::io::Read as _;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use crate::engine::U_STAR;
 use crate::error::ReproError;
 use crate::exec::{Part, Shard};
 use crate::protocol::Plan;
+use crate::stats::{BadRunningBest, check_running_best};
 
-const MAGIC: &str = "hrla-repro shard 1";
+/// The first line of a shard file of this format.
+pub const MAGIC: &str = "hrla-repro shard 2";
 
-/// A fingerprint of everything that decides a plan's runs (FNV-1a of its
-/// debug form): shards of different options never merge.
-pub fn fingerprint(plan: &Plan, seed: u64) -> u64 {
-    let text = format!("{plan:?} seed {seed}");
-    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+/// The version of the format, in [`MAGIC`] and in the plan lines.
+const FORMAT: u32 = 2;
+
+/// The checksum of the format: FNV-1a, 64 bits (offset basis
+/// `0xcbf29ce484222325`, prime `0x100000001b3`). Every change of one byte
+/// changes it; other damage goes unseen with probability 2^-64.
+pub fn checksum(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
         (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
     })
+}
+
+/// The plan's fingerprint as it is written in a shard file: one `plan`
+/// line per parameter that decides the results. The format's version and
+/// the tool's, the floating-point type and the potential, the protocol,
+/// the base seed and `M`, every configuration in full (sampler, `d`, `h`,
+/// `N`, `K`, temperature, start, stride, checkpoints, tolerances, curve
+/// grid), the kernel's schedule and sampler settings (`alpha`, `beta`,
+/// `b`, ...) or the peer's, and the figure's panels. Floats are written
+/// as Rust's `Debug` does, which reads back to the same bits.
+pub fn plan_lines(plan: &Plan, seed: u64) -> Vec<String> {
+    // Destructured, so that a field added to the plan is not forgotten here.
+    let Plan {
+        id,
+        runs,
+        configs,
+        panels,
+        series,
+    } = plan;
+    let mut lines = vec![
+        format!("plan format {FORMAT}"),
+        format!("plan tool hrla-repro {}", env!("CARGO_PKG_VERSION")),
+        "plan dtype f64".to_string(),
+        format!("plan potential Rastrigin U* = {U_STAR:?}"),
+        format!("plan protocol {}", id.name()),
+        format!("plan seed {seed}"),
+        format!("plan runs {runs}"),
+        format!("plan configurations {}", configs.len()),
+    ];
+    for (c, spec) in configs.iter().enumerate() {
+        lines.push(format!("plan config {c} {spec:?}"));
+        let settings = match spec.method.peer() {
+            Some(peer) => format!("{peer:?}"),
+            None => match spec.kernel_setup() {
+                Ok((schedule, sampler)) => format!("{schedule:?} {sampler:?}"),
+                Err(e) => format!("refused: {e}"),
+            },
+        };
+        lines.push(format!("plan settings {c} {settings}"));
+    }
+    lines.push(format!("plan figure {panels:?} {series:?}"));
+    lines
 }
 
 /// Where shard `shard` of the plan's protocol goes under `out`.
 pub fn path(out: &Path, plan: &Plan, shard: Shard) -> PathBuf {
     out.join(plan.id.name().to_lowercase())
         .join(format!("shard-{}-of-{}.txt", shard.index, shard.count))
+}
+
+/// The text of a shard file (see the module's documentation).
+pub fn text(plan: &Plan, seed: u64, shard: Shard, part: &Part, threads: usize) -> String {
+    let mut text = String::new();
+    let _ = writeln!(text, "{MAGIC}");
+    for line in plan_lines(plan, seed) {
+        let _ = writeln!(text, "{line}");
+    }
+    let _ = writeln!(text, "shard {shard}");
+    let _ = writeln!(text, "wall-ns {}", part.wall.as_nanos());
+    let _ = writeln!(text, "chain-steps {}", part.chain_steps);
+    let _ = writeln!(text, "threads {}", threads.max(1));
+    for c in 0..plan.configs.len() {
+        let _ = writeln!(text, "diverged {c} {}", part.diverged[c]);
+        let _ = writeln!(text, "evaluations {c} {}", part.evaluations[c]);
+        let _ = writeln!(text, "run-wall-ns {c} {}", part.run_wall[c].as_nanos());
+        let counts: Vec<String> = part.counts[c].iter().map(u32::to_string).collect();
+        let _ = writeln!(text, "counts {c} {}", counts.join(" "));
+        let mut runs: Vec<&(usize, Vec<f64>)> = part.values[c].iter().collect();
+        runs.sort_by_key(|(run, _)| *run);
+        for (run, values) in runs {
+            let bits: Vec<String> = values
+                .iter()
+                .map(|v| format!("{:016x}", v.to_bits()))
+                .collect();
+            let _ = writeln!(text, "run {c} {run} {}", bits.join(" "));
+        }
+    }
+    let sum = checksum(text.as_bytes());
+    let _ = writeln!(text, "checksum fnv1a64 {sum:016x}");
+    text
 }
 
 /// Writes a shard's runs; returns the file.
@@ -46,28 +161,6 @@ pub fn write(
     part: &Part,
     threads: usize,
 ) -> Result<PathBuf, ReproError> {
-    let mut text = String::new();
-    let _ = writeln!(text, "{MAGIC}");
-    let _ = writeln!(text, "protocol {}", plan.id.name());
-    let _ = writeln!(text, "plan {:016x}", fingerprint(plan, seed));
-    let _ = writeln!(text, "shard {shard}");
-    let _ = writeln!(text, "wall-ns {}", part.wall.as_nanos());
-    let _ = writeln!(text, "chain-steps {}", part.chain_steps);
-    let _ = writeln!(text, "threads {threads}");
-    for c in 0..plan.configs.len() {
-        let _ = writeln!(text, "diverged {c} {}", part.diverged[c]);
-        let _ = writeln!(text, "evaluations {c} {}", part.evaluations[c]);
-        let _ = writeln!(text, "run-wall-ns {c} {}", part.run_wall[c].as_nanos());
-        let counts: Vec<String> = part.counts[c].iter().map(u32::to_string).collect();
-        let _ = writeln!(text, "counts {c} {}", counts.join(" "));
-        for (run, values) in &part.values[c] {
-            let bits: Vec<String> = values
-                .iter()
-                .map(|v| format!("{:016x}", v.to_bits()))
-                .collect();
-            let _ = writeln!(text, "run {c} {run} {}", bits.join(" "));
-        }
-    }
     let file = path(out, plan, shard);
     if let Some(dir) = file.parent() {
         fs::create_dir_all(dir).map_err(|source| ReproError::Io {
@@ -75,168 +168,572 @@ pub fn write(
             source,
         })?;
     }
-    fs::write(&file, text).map_err(|source| ReproError::Io {
+    fs::write(&file, text(plan, seed, shard, part, threads)).map_err(|source| ReproError::Io {
         path: file.clone(),
         source,
     })?;
     Ok(file)
 }
 
-/// A shard file read back.
-struct ShardFile {
-    shard: Shard,
-    threads: usize,
-    part: Part,
+/// Why `--merge` refuses a shard file, or the set of them.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ShardProblem {
+    /// Larger than any shard of the plan can be.
+    #[error("{bytes} bytes, more than any shard of this plan can be ({most})")]
+    TooLarge {
+        /// The file's size.
+        bytes: u64,
+        /// The most a shard of the plan can take.
+        most: u64,
+    },
+    /// The first line is not [`MAGIC`].
+    #[error("not a shard file of this format (its first line is `{first}`, not `{MAGIC}`)")]
+    NotAShard {
+        /// The first line, or its first 80 characters.
+        first: String,
+    },
+    /// The file does not end with its checksum line.
+    #[error("truncated: the file does not end with its checksum line")]
+    Truncated,
+    /// The checksum line does not match the content.
+    #[error(
+        "checksum mismatch: the file says {stored}, its content gives {computed:016x}; \
+         it was changed or damaged after it was written"
+    )]
+    Checksum {
+        /// What the checksum line says.
+        stored: String,
+        /// The checksum of the content.
+        computed: u64,
+    },
+    /// Not UTF-8 text.
+    #[error("not text (invalid UTF-8)")]
+    NotText,
+    /// A plan line is missing.
+    #[error("the plan line `{expected}` is missing: a shard of an unknown plan")]
+    PlanMissing {
+        /// The first line that is missing.
+        expected: String,
+    },
+    /// A plan line differs from the merge's.
+    #[error(
+        "a shard of other options or another seed (or another version of the tool) than \
+         this merge's: it has `{shard}` where this merge has `{merge}`"
+    )]
+    PlanDiffers {
+        /// The shard's line.
+        shard: String,
+        /// The merge's line.
+        merge: String,
+    },
+    /// A line that is not the one expected there, or not well formed.
+    #[error("line {line}: `{text}`: expected {expected}")]
+    Malformed {
+        /// The line number, from 1.
+        line: usize,
+        /// The line, or its first 80 characters.
+        text: String,
+        /// What the format has there.
+        expected: String,
+    },
+    /// The file's name and its `shard` line disagree.
+    #[error("its name says shard {named}, its content shard {inside}")]
+    Misnamed {
+        /// The shard the name says.
+        named: Shard,
+        /// The shard the content says.
+        inside: Shard,
+    },
+    /// A run's running bests that no run makes.
+    #[error("line {line}, run {run}: {problem}")]
+    Value {
+        /// The line number, from 1.
+        line: usize,
+        /// The run index.
+        run: usize,
+        /// What is wrong.
+        problem: BadRunningBest,
+    },
+    /// A number out of its range.
+    #[error("line {line}: {what}")]
+    OutOfRange {
+        /// The line number, from 1.
+        line: usize,
+        /// The number and its range.
+        what: String,
+    },
+    /// Counters that overflow when the shards are added.
+    #[error("the shards' {0} overflow when added")]
+    Overflow(&'static str),
+    /// A file named `shard-*.txt` whose name is not `shard-i-of-n.txt`.
+    #[error("named like a shard file, but not shard-i-of-n.txt with 0 <= i < n")]
+    BadName,
+    /// No shard file in the directory.
+    #[error("no shard files to merge")]
+    NoShards,
+    /// Shards of different counts.
+    #[error("shards of different counts: {first} and {other}")]
+    OtherCount {
+        /// The first shard.
+        first: Shard,
+        /// A shard of another count.
+        other: Shard,
+    },
+    /// A shard is missing.
+    #[error("shard {index}/{count} is missing")]
+    Missing {
+        /// The missing shard's index.
+        index: usize,
+        /// The count.
+        count: usize,
+    },
 }
 
-fn corrupt(file: &Path, what: &str) -> ReproError {
-    ReproError::Usage(format!("{}: {what}", file.display()))
-}
-
-fn read_one(file: &Path, plan: &Plan, seed: u64) -> Result<ShardFile, ReproError> {
-    let text = fs::read_to_string(file).map_err(|source| ReproError::Io {
-        path: file.to_path_buf(),
-        source,
-    })?;
-    let mut lines = text.lines();
-    if lines.next() != Some(MAGIC) {
-        return Err(corrupt(file, "not a shard file of this version"));
+fn shard_error(path: &Path, problem: ShardProblem) -> ReproError {
+    ReproError::Shard {
+        path: path.to_path_buf(),
+        problem,
     }
-    let mut part = Part::empty(plan);
-    let (mut shard, mut threads) = (None, 0);
-    let want = format!("{:016x}", fingerprint(plan, seed));
-    let mut runs = 0;
-    for line in lines {
-        let mut f = line.split_whitespace();
-        let key = f.next().unwrap_or("");
-        let mut next = || f.next().ok_or_else(|| corrupt(file, line));
-        let bad = || corrupt(file, line);
-        match key {
-            "protocol" => {
-                if next()? != plan.id.name() {
-                    return Err(corrupt(file, "a shard of another protocol"));
-                }
-            }
-            "plan" => {
-                if next()? != want {
-                    return Err(corrupt(
-                        file,
-                        "a shard of other options or another seed than this merge's",
-                    ));
-                }
-            }
-            "shard" => shard = Some(next()?.parse::<Shard>()?),
-            "wall-ns" => {
-                part.wall = Duration::from_nanos(next()?.parse().map_err(|_| bad())?);
-            }
-            "chain-steps" => part.chain_steps = next()?.parse().map_err(|_| bad())?,
-            "threads" => threads = next()?.parse().map_err(|_| bad())?,
-            "diverged" | "evaluations" | "run-wall-ns" | "counts" | "run" => {
-                let c: usize = next()?.parse().map_err(|_| bad())?;
-                if c >= plan.configs.len() {
-                    return Err(bad());
-                }
-                let rest: Vec<&str> = f.collect();
-                let first = rest.first().copied().ok_or_else(bad);
-                match key {
-                    "diverged" => part.diverged[c] = first?.parse().map_err(|_| bad())?,
-                    "evaluations" => {
-                        part.evaluations[c] = first?.parse().map_err(|_| bad())?;
-                    }
-                    "run-wall-ns" => {
-                        let ns = first?.parse().map_err(|_| bad())?;
-                        part.run_wall[c] = Duration::from_nanos(ns);
-                    }
-                    "counts" => {
-                        let counts: Vec<u32> = rest
-                            .iter()
-                            .map(|v| v.parse().map_err(|_| bad()))
-                            .collect::<Result<_, _>>()?;
-                        if counts.len() != part.counts[c].len() {
-                            return Err(bad());
-                        }
-                        part.counts[c] = counts;
-                    }
-                    _ => {
-                        let (run, values) = rest.split_first().ok_or_else(bad)?;
-                        let values: Vec<f64> = values
-                            .iter()
-                            .map(|v| {
-                                u64::from_str_radix(v, 16)
-                                    .map(f64::from_bits)
-                                    .map_err(|_| bad())
-                            })
-                            .collect::<Result<_, _>>()?;
-                        if values.len() != plan.configs[c].checkpoints.len() {
-                            return Err(bad());
-                        }
-                        part.values[c].push((run.parse().map_err(|_| bad())?, values));
-                        runs += 1;
-                    }
-                }
-            }
-            _ => return Err(bad()),
+}
+
+/// At most 80 characters of `s`, for messages.
+fn clip(s: &str) -> String {
+    s.chars().take(80).collect()
+}
+
+/// The most bytes a shard of `plan` can take: every number at the most
+/// digits of its type. A bound only, saturating.
+fn most_bytes(plan: &Plan, seed: u64) -> u64 {
+    const NUMBER: u64 = 21; // a space and up to 20 digits
+    let lines: u64 = plan_lines(plan, seed)
+        .iter()
+        .map(|l| l.len() as u64 + 1)
+        .sum();
+    let mut most = lines + 512;
+    for s in &plan.configs {
+        let counts = s.count_len() as u64;
+        let per_run = NUMBER * 3 + 17 * s.checkpoints.len() as u64;
+        let runs = (plan.runs as u64).saturating_mul(per_run);
+        most = most
+            .saturating_add(4 * 3 * NUMBER + 64)
+            .saturating_add(counts.saturating_mul(11))
+            .saturating_add(runs);
+    }
+    most
+}
+
+/// The lines of a shard file's content, numbered from 1, read in order.
+struct Lines<'a> {
+    lines: std::iter::Enumerate<std::str::Lines<'a>>,
+    last: usize,
+}
+
+impl<'a> Lines<'a> {
+    /// The next line, which must start with `key` (and the configuration
+    /// `c`), as its line number and its other fields.
+    fn keyed(
+        &mut self,
+        key: &str,
+        c: Option<usize>,
+    ) -> Result<(usize, Vec<&'a str>), ShardProblem> {
+        let expected = || match c {
+            Some(c) => format!("`{key} {c} ...`"),
+            None => format!("`{key} ...`"),
+        };
+        let Some((i, line)) = self.lines.next() else {
+            return Err(ShardProblem::Malformed {
+                line: self.last + 1,
+                text: String::new(),
+                expected: expected(),
+            });
+        };
+        self.last = i + 1;
+        let mut fields = line.split(' ');
+        let head_ok = fields.next() == Some(key)
+            && c.is_none_or(|c| fields.next().and_then(number::<usize>) == Some(c));
+        if !head_ok {
+            return Err(self.malformed(line, &expected()));
+        }
+        Ok((i + 1, fields.collect()))
+    }
+
+    /// The next line, `key` and one number.
+    fn one<T: std::str::FromStr>(
+        &mut self,
+        key: &str,
+        c: Option<usize>,
+    ) -> Result<(usize, T), ShardProblem> {
+        let (line, fields) = self.keyed(key, c)?;
+        match fields[..] {
+            [v] => number(v)
+                .map(|v| (line, v))
+                .ok_or_else(|| self.malformed_at(line, key, "one number")),
+            _ => Err(self.malformed_at(line, key, "one number")),
         }
     }
-    let shard = shard.ok_or_else(|| corrupt(file, "no shard line"))?;
-    if runs != shard.tasks(plan).len() {
-        return Err(corrupt(file, "runs missing"));
+
+    fn malformed(&self, line: &str, expected: &str) -> ShardProblem {
+        ShardProblem::Malformed {
+            line: self.last,
+            text: clip(line),
+            expected: expected.to_string(),
+        }
     }
-    Ok(ShardFile {
-        shard,
-        threads,
-        part,
-    })
+
+    fn malformed_at(&self, line: usize, key: &str, what: &str) -> ShardProblem {
+        ShardProblem::Malformed {
+            line,
+            text: key.to_string(),
+            expected: format!("`{key}` with {what}"),
+        }
+    }
+}
+
+/// A decimal number, digits only (no sign, no spaces).
+fn number<T: std::str::FromStr>(s: &str) -> Option<T> {
+    if s.is_empty() || !s.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    s.parse().ok()
+}
+
+/// An `f64` as the 16 lowercase hexadecimal digits of its bits.
+fn bits(s: &str) -> Option<f64> {
+    if s.len() != 16 || !s.bytes().all(|b| matches!(b, b'0'..=b'9' | b'a'..=b'f')) {
+        return None;
+    }
+    u64::from_str_radix(s, 16).ok().map(f64::from_bits)
+}
+
+/// The checked content of a shard file: its bytes have the right size,
+/// end with a checksum line that matches, and are text.
+fn content(file: &Path, plan: &Plan, seed: u64) -> Result<String, ReproError> {
+    let io = |source| ReproError::Io {
+        path: file.to_path_buf(),
+        source,
+    };
+    let most = most_bytes(plan, seed);
+    let handle = fs::File::open(file).map_err(io)?;
+    let size = handle.metadata().map_err(io)?.len();
+    let too_large = |bytes| shard_error(file, ShardProblem::TooLarge { bytes, most });
+    if size > most {
+        return Err(too_large(size));
+    }
+    let mut bytes = Vec::new();
+    handle.take(most + 1).read_to_end(&mut bytes).map_err(io)?;
+    if bytes.len() as u64 > most {
+        return Err(too_large(bytes.len() as u64));
+    }
+    let first = bytes.split(|&b| b == b'\n').next().unwrap_or(&[]);
+    if first != MAGIC.as_bytes() {
+        let first = clip(&String::from_utf8_lossy(first));
+        return Err(shard_error(file, ShardProblem::NotAShard { first }));
+    }
+    let body = bytes
+        .strip_suffix(b"\n")
+        .ok_or_else(|| shard_error(file, ShardProblem::Truncated))?;
+    let start = body.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    let stored = body[start..]
+        .strip_prefix(b"checksum fnv1a64 ")
+        .ok_or_else(|| shard_error(file, ShardProblem::Truncated))?;
+    let stored = String::from_utf8_lossy(stored).into_owned();
+    let computed = checksum(&bytes[..start]);
+    if stored != format!("{computed:016x}") {
+        let stored = clip(&stored);
+        return Err(shard_error(
+            file,
+            ShardProblem::Checksum { stored, computed },
+        ));
+    }
+    bytes.truncate(start);
+    String::from_utf8(bytes).map_err(|_| shard_error(file, ShardProblem::NotText))
+}
+
+/// A shard file read back and checked: its part and its thread count.
+fn read_one(
+    file: &Path,
+    plan: &Plan,
+    seed: u64,
+    named: Shard,
+) -> Result<(Part, usize), ReproError> {
+    let text = content(file, plan, seed)?;
+    parse(&text, plan, seed, named).map_err(|problem| shard_error(file, problem))
+}
+
+/// The content of shard `named` of `plan` (its checksum line removed),
+/// checked line by line.
+fn parse(text: &str, plan: &Plan, seed: u64, named: Shard) -> Result<(Part, usize), ShardProblem> {
+    let mut lines = Lines {
+        lines: text.lines().enumerate(),
+        last: 0,
+    };
+    lines.keyed("hrla-repro", None)?;
+    for merge in plan_lines(plan, seed) {
+        match lines.lines.next() {
+            Some((i, shard)) if shard == merge => lines.last = i + 1,
+            Some((_, shard)) if shard.starts_with("plan ") => {
+                return Err(ShardProblem::PlanDiffers {
+                    shard: clip(shard),
+                    merge,
+                });
+            }
+            _ => return Err(ShardProblem::PlanMissing { expected: merge }),
+        }
+    }
+    let (line, fields) = lines.keyed("shard", None)?;
+    let inside = match fields[..] {
+        [s] => s.parse::<Shard>().ok(),
+        _ => None,
+    }
+    .ok_or_else(|| lines.malformed_at(line, "shard", "i/n"))?;
+    if inside != named {
+        return Err(ShardProblem::Misnamed { named, inside });
+    }
+    let mut part = Part::empty(plan);
+    part.wall = Duration::from_nanos(lines.one("wall-ns", None)?.1);
+    let (line, chain_steps) = lines.one::<u64>("chain-steps", None)?;
+    let tasks = named.tasks(plan);
+    let expected = tasks.iter().try_fold(0u64, |sum, &(c, _)| {
+        sum.checked_add(plan.configs[c].chain_steps())
+    });
+    if Some(chain_steps) != expected {
+        return Err(ShardProblem::OutOfRange {
+            line,
+            what: format!(
+                "{chain_steps} chain-steps, where the shard's runs make {}",
+                expected.map_or("more than 2^64".to_string(), |e| e.to_string())
+            ),
+        });
+    }
+    part.chain_steps = chain_steps;
+    let (line, threads) = lines.one::<usize>("threads", None)?;
+    if threads == 0 {
+        return Err(ShardProblem::OutOfRange {
+            line,
+            what: "0 threads".to_string(),
+        });
+    }
+    for (c, spec) in plan.configs.iter().enumerate() {
+        let runs: Vec<usize> = tasks.iter().filter(|t| t.0 == c).map(|t| t.1).collect();
+        let n_runs = runs.len() as u64;
+        let chains = spec.chains as u64;
+        let over = |line, what: &str, value: u64, most: Option<u64>| {
+            let most = most.unwrap_or(u64::MAX);
+            (value > most).then(|| ShardProblem::OutOfRange {
+                line,
+                what: format!(
+                    "{what} {value} of configuration {c}, more than its {n_runs} runs in this \
+                     shard can make ({most})"
+                ),
+            })
+        };
+        let (line, diverged) = lines.one::<usize>("diverged", Some(c))?;
+        if let Some(e) = over(
+            line,
+            "diverged chains",
+            diverged as u64,
+            n_runs.checked_mul(chains),
+        ) {
+            return Err(e);
+        }
+        part.diverged[c] = diverged;
+        let (line, evaluations) = lines.one::<u64>("evaluations", Some(c))?;
+        let most = spec
+            .steps
+            .checked_add(1)
+            .and_then(|k| k.checked_mul(chains))
+            .and_then(|per_run| per_run.checked_mul(n_runs));
+        if let Some(e) = over(line, "evaluations", evaluations, most) {
+            return Err(e);
+        }
+        part.evaluations[c] = evaluations;
+        part.run_wall[c] = Duration::from_nanos(lines.one("run-wall-ns", Some(c))?.1);
+        let (line, fields) = lines.keyed("counts", Some(c))?;
+        if fields != [""] || spec.count_len() != 0 {
+            if fields.len() != spec.count_len() {
+                return Err(lines.malformed_at(
+                    line,
+                    "counts",
+                    &format!("{} hit counts", spec.count_len()),
+                ));
+            }
+            for (slot, field) in part.counts[c].iter_mut().zip(fields) {
+                let hits = number::<u32>(field)
+                    .ok_or_else(|| lines.malformed_at(line, "counts", "hit counts (u32)"))?;
+                if let Some(e) = over(line, "hit count", u64::from(hits), Some(n_runs)) {
+                    return Err(e);
+                }
+                *slot = hits;
+            }
+        }
+        for run in runs {
+            let (line, fields) = lines.keyed("run", Some(c))?;
+            let bad = || {
+                lines.malformed_at(
+                    line,
+                    "run",
+                    &format!(
+                        "run {run} of configuration {c} and {} values as 16 hex digits",
+                        spec.checkpoints.len()
+                    ),
+                )
+            };
+            let (i, values) = fields.split_first().ok_or_else(bad)?;
+            if number::<usize>(i) != Some(run) || values.len() != spec.checkpoints.len() {
+                return Err(bad());
+            }
+            let values: Vec<f64> = values
+                .iter()
+                .map(|v| bits(v).ok_or_else(bad))
+                .collect::<Result<_, _>>()?;
+            check_running_best(&values, &spec.checkpoints, U_STAR)
+                .map_err(|problem| ShardProblem::Value { line, run, problem })?;
+            part.values[c].push((run, values));
+        }
+    }
+    if let Some((i, extra)) = lines.lines.next() {
+        return Err(ShardProblem::Malformed {
+            line: i + 1,
+            text: clip(extra),
+            expected: "the checksum line".to_string(),
+        });
+    }
+    Ok((part, threads))
+}
+
+/// The shard a file's name says, `shard-i-of-n.txt`.
+fn shard_of_name(name: &str) -> Option<Shard> {
+    let rest = name.strip_prefix("shard-")?.strip_suffix(".txt")?;
+    let (i, n) = rest.split_once("-of-")?;
+    let (index, count) = (number(i)?, number(n)?);
+    (index < count).then_some(Shard { index, count })
 }
 
 /// Every shard of the plan under `out`, merged: the part, and the most
 /// threads a shard ran on. Errors unless the directory holds exactly the
-/// shards `0..n` of one `n`, all of this plan and seed.
+/// shards `0..n` of one `n`, each a valid shard of this plan and seed
+/// (see the module's documentation), whose counters add up without
+/// overflow, and the merged plan fits in the machine's memory.
 pub fn merge(out: &Path, plan: &Plan, seed: u64) -> Result<(Part, usize), ReproError> {
+    crate::limits::check_memory(plan, None, crate::limits::machine_memory())?;
     let dir = out.join(plan.id.name().to_lowercase());
     let entries = fs::read_dir(&dir).map_err(|source| ReproError::Io {
         path: dir.clone(),
         source,
     })?;
-    let mut files: Vec<PathBuf> = entries
-        .filter_map(Result::ok)
-        .map(|e| e.path())
-        .filter(|p| {
-            p.file_name()
-                .and_then(|n| n.to_str())
-                .is_some_and(|n| n.starts_with("shard-") && n.ends_with(".txt"))
-        })
-        .collect();
-    files.sort();
-    if files.is_empty() {
-        return Err(ReproError::Usage(format!(
-            "no shard files in {} to merge",
-            dir.display()
-        )));
+    let mut files: Vec<(Shard, PathBuf)> = Vec::new();
+    for entry in entries {
+        let path = entry
+            .map_err(|source| ReproError::Io {
+                path: dir.clone(),
+                source,
+            })?
+            .path();
+        let Some(name) = path.file_name().and_then(|n| n.to_str()) else {
+            continue;
+        };
+        if !(name.starts_with("shard-") && name.ends_with(".txt")) {
+            continue;
+        }
+        let shard = shard_of_name(name).ok_or_else(|| shard_error(&path, ShardProblem::BadName))?;
+        files.push((shard, path));
     }
-    let shards = files
-        .iter()
-        .map(|f| read_one(f, plan, seed))
-        .collect::<Result<Vec<_>, _>>()?;
-    let count = shards[0].shard.count;
-    let mut seen = vec![false; count];
-    for s in &shards {
-        if s.shard.count != count || std::mem::replace(&mut seen[s.shard.index], true) {
-            return Err(ReproError::Usage(format!(
-                "{}: shards of different counts, or one shard twice",
-                dir.display()
-            )));
+    files.sort_by_key(|(s, _)| s.index);
+    let first = files
+        .first()
+        .map(|f| f.0)
+        .ok_or_else(|| shard_error(&dir, ShardProblem::NoShards))?;
+    if let Some(&(other, _)) = files.iter().find(|(s, _)| s.count != first.count) {
+        return Err(shard_error(&dir, ShardProblem::OtherCount { first, other }));
+    }
+    // The names are distinct and of one count, so indices are distinct:
+    // the first index out of place is missing.
+    if let Some(index) = (0..first.count).find(|&i| files.get(i).is_none_or(|f| f.0.index != i)) {
+        let count = first.count;
+        return Err(shard_error(&dir, ShardProblem::Missing { index, count }));
+    }
+    let mut whole = Part::empty(plan);
+    let mut threads = 0;
+    for (shard, file) in &files {
+        let (part, t) = read_one(file, plan, seed, *shard)?;
+        threads = threads.max(t);
+        whole = whole.merge(part).map_err(|e| match e {
+            ReproError::Overflow(what) => shard_error(file, ShardProblem::Overflow(what)),
+            other => other,
+        })?;
+    }
+    Ok((whole, threads))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exec::run_shard;
+    use crate::protocol::{Overrides, ProtocolId, plan};
+    use indicatif::ProgressBar;
+
+    fn e1() -> Plan {
+        let o = Overrides {
+            m: Some(3),
+            k: Some(vec![20]),
+            a: Some(vec![1.0, 4.0]),
+            ..Overrides::default()
+        };
+        plan(ProtocolId::E1, &o, true).unwrap()
+    }
+
+    /// A shard written and parsed back is the part that was run, and the
+    /// plan lines are all different for different seeds and options.
+    #[test]
+    fn a_shard_reads_back_exactly() {
+        let p = e1();
+        let shard = Shard { index: 1, count: 2 };
+        let part = run_shard(&p, 9, shard, &ProgressBar::hidden()).unwrap();
+        let text = text(&p, 9, shard, &part, 3);
+        let body = &text[..text.rfind("checksum").unwrap()];
+        let (back, threads) = parse(body, &p, 9, shard).unwrap();
+        assert_eq!(threads, 3);
+        assert_eq!(back.counts, part.counts);
+        assert_eq!(back.values, part.values);
+        assert_eq!(back.chain_steps, part.chain_steps);
+        assert_eq!(back.evaluations, part.evaluations);
+        assert!(matches!(
+            parse(body, &p, 10, shard),
+            Err(ShardProblem::PlanDiffers { .. })
+        ));
+        assert!(matches!(
+            parse(body, &p, 9, Shard { index: 0, count: 2 }),
+            Err(ShardProblem::Misnamed { .. })
+        ));
+        let mut other = p.clone();
+        other.configs[1].h = 0.010000000000000002;
+        assert!(matches!(
+            parse(body, &other, 9, shard),
+            Err(ShardProblem::PlanDiffers { .. })
+        ));
+    }
+
+    #[test]
+    fn the_checksum_is_fnv1a_64() {
+        // The reference values of FNV-1a 64.
+        assert_eq!(checksum(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(checksum(b"a"), 0xaf63_dc4c_8601_ec8c);
+    }
+
+    #[test]
+    fn shard_names() {
+        assert_eq!(
+            shard_of_name("shard-2-of-5.txt"),
+            Some(Shard { index: 2, count: 5 })
+        );
+        for bad in [
+            "shard-5-of-5.txt",
+            "shard-x-of-2.txt",
+            "shard-1-2.txt",
+            "shard-+1-of-2.txt",
+        ] {
+            assert_eq!(shard_of_name(bad), None, "{bad}");
         }
     }
-    if let Some(missing) = seen.iter().position(|s| !s) {
-        return Err(ReproError::Usage(format!(
-            "{}: shard {missing}/{count} is missing",
-            dir.display()
-        )));
-    }
-    let threads = shards.iter().map(|s| s.threads).max().unwrap_or(0);
-    let part = shards
-        .into_iter()
-        .fold(Part::empty(plan), |acc, s| acc.merge(s.part));
-    Ok((part, threads))
 }

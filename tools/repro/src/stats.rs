@@ -172,6 +172,12 @@ impl Summary {
 
     /// The summary of `values` (in run order, so that the floating-point
     /// sums do not depend on the thread count); `None` when empty.
+    ///
+    /// Finite values give finite statistics: where the plain sums
+    /// overflow (values near `f64::MAX`), they are taken again with every
+    /// term scaled down first (the mean as the sum of `v / M`, the
+    /// deviations over the largest of them); elsewhere the plain sums are
+    /// the statistics, bit for bit.
     pub fn of(values: &[f64]) -> Option<Self> {
         let n = values.len();
         if n == 0 {
@@ -191,7 +197,7 @@ impl Summary {
         } else {
             0.5 * (sorted[n / 2 - 1] + sorted[n / 2])
         };
-        Some(Self {
+        let plain = Self {
             n,
             mean,
             median,
@@ -200,8 +206,112 @@ impl Summary {
             se: sd / (n as f64).sqrt(),
             min: sorted[0],
             max: sorted[n - 1],
-        })
+        };
+        let finite = |s: &Self| {
+            [s.mean, s.median, s.sd, s.sd_population, s.se]
+                .iter()
+                .all(|v| v.is_finite())
+        };
+        if finite(&plain) || !values.iter().all(|v| v.is_finite()) {
+            return Some(plain);
+        }
+        Some(Self::scaled(values, &sorted))
     }
+
+    /// [`Summary::of`] for finite values whose sums overflow: the mean as
+    /// the sum of `v / M`, the deviations divided by the largest of them
+    /// before squaring, the median's middle values halved before adding.
+    fn scaled(values: &[f64], sorted: &[f64]) -> Self {
+        let n = values.len();
+        let mean = values.iter().map(|v| v / n as f64).sum::<f64>();
+        let scale = values.iter().map(|v| (v - mean).abs()).fold(0.0, f64::max);
+        let ss_scaled: f64 = if scale > 0.0 {
+            values.iter().map(|v| ((v - mean) / scale).powi(2)).sum()
+        } else {
+            0.0
+        };
+        let sd = if n > 1 {
+            scale * (ss_scaled / (n - 1) as f64).sqrt()
+        } else {
+            0.0
+        };
+        let median = if n % 2 == 1 {
+            sorted[n / 2]
+        } else {
+            0.5 * sorted[n / 2 - 1] + 0.5 * sorted[n / 2]
+        };
+        Self {
+            n,
+            mean,
+            median,
+            sd,
+            sd_population: scale * (ss_scaled / n as f64).sqrt(),
+            se: sd / (n as f64).sqrt(),
+            min: sorted[0],
+            max: sorted[n - 1],
+        }
+    }
+}
+
+/// Why the running bests of a run at its checkpoints are not those of a
+/// run: not finite (no iterate on the stride had a live chain), below the
+/// potential's minimum, or larger than at an earlier checkpoint (a running
+/// minimum never grows).
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum BadRunningBest {
+    /// Not a finite number.
+    #[error(
+        "the running best at k = {k} is {value}, not finite: no chain was alive at \
+         any iterate on the stride up to k"
+    )]
+    NotFinite {
+        /// The checkpoint.
+        k: u64,
+        /// The value.
+        value: f64,
+    },
+    /// Below the potential's global minimum.
+    #[error("the running best at k = {k} is {value}, below the potential's minimum {minimum}")]
+    BelowMinimum {
+        /// The checkpoint.
+        k: u64,
+        /// The value.
+        value: f64,
+        /// The potential's minimum.
+        minimum: f64,
+    },
+    /// Larger than at the checkpoint before.
+    #[error("the running best at k = {k} is {value}, larger than at the checkpoint before")]
+    Increasing {
+        /// The checkpoint.
+        k: u64,
+        /// The value.
+        value: f64,
+    },
+}
+
+/// Checks a run's running bests `values` at `checkpoints` (as many) on a
+/// potential whose global minimum is `minimum`: every run made by the tool
+/// passes unless it failed, and a merge takes nothing else.
+pub fn check_running_best(
+    values: &[f64],
+    checkpoints: &[u64],
+    minimum: f64,
+) -> Result<(), BadRunningBest> {
+    let mut before = f64::INFINITY;
+    for (&value, &k) in values.iter().zip(checkpoints) {
+        if !value.is_finite() {
+            return Err(BadRunningBest::NotFinite { k, value });
+        }
+        if value < minimum {
+            return Err(BadRunningBest::BelowMinimum { k, value, minimum });
+        }
+        if value > before {
+            return Err(BadRunningBest::Increasing { k, value });
+        }
+        before = value;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -312,6 +422,54 @@ mod tests {
         assert_eq!(odd.median, 3.0);
         assert_eq!(Summary::of(&[7.0]).unwrap().sd, 0.0);
         assert!(Summary::of(&[]).is_none());
+    }
+
+    /// Finite values near `f64::MAX` have finite statistics, the same as
+    /// those of the values scaled down by a power of two (exact), scaled
+    /// back up.
+    #[test]
+    fn summary_of_huge_values_is_finite() {
+        let big = [f64::MAX, 0.5 * f64::MAX, f64::MAX, 0.0];
+        let s = Summary::of(&big).unwrap();
+        let small: Vec<f64> = big.iter().map(|v| v / 1024.0).collect();
+        let t = Summary::of(&small).unwrap();
+        for (x, y) in [
+            (s.mean, t.mean),
+            (s.median, t.median),
+            (s.sd, t.sd),
+            (s.sd_population, t.sd_population),
+            (s.se, t.se),
+        ] {
+            assert!(x.is_finite());
+            // A few roundings apart: relative 1e-15.
+            assert!((x / 1024.0 - y).abs() <= 1e-15 * y, "{x} against {y}");
+        }
+        // Values the plain sums handle are summarised by them, bit for bit.
+        let plain = Summary::of(&[4.0, 1.0, 3.0, 2.0]).unwrap();
+        assert_eq!(plain.mean, 2.5);
+    }
+
+    #[test]
+    fn running_bests_must_be_finite_non_negative_and_non_increasing() {
+        let ks = [50, 500];
+        assert_eq!(check_running_best(&[2.0, 1.0], &ks, 0.0), Ok(()));
+        assert_eq!(check_running_best(&[0.0, 0.0], &ks, 0.0), Ok(()));
+        assert!(matches!(
+            check_running_best(&[f64::INFINITY, 1.0], &ks, 0.0),
+            Err(BadRunningBest::NotFinite { k: 50, .. })
+        ));
+        assert!(matches!(
+            check_running_best(&[2.0, f64::NAN], &ks, 0.0),
+            Err(BadRunningBest::NotFinite { k: 500, .. })
+        ));
+        assert!(matches!(
+            check_running_best(&[2.0, -1e-300], &ks, 0.0),
+            Err(BadRunningBest::BelowMinimum { k: 500, .. })
+        ));
+        assert!(matches!(
+            check_running_best(&[1.0, 2.0], &ks, 0.0),
+            Err(BadRunningBest::Increasing { k: 500, .. })
+        ));
     }
 
     #[test]
