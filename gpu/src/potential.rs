@@ -1,0 +1,153 @@
+//! Potentials on the device: the kernel's built-in ones, ported to WGSL,
+//! and a user's WGSL function.
+
+use crate::error::GpuError;
+
+/// A potential that runs on the device.
+///
+/// The built-ins compute what the kernel's types of the same name compute.
+/// [`Rastrigin`](DevicePotential::Rastrigin), [`Quadratic`](DevicePotential::quadratic),
+/// [`DoubleWell`](DevicePotential::DoubleWell) and
+/// [`StyblinskiTang`](DevicePotential::StyblinskiTang) use additions and
+/// multiplications only, in the kernel's order, so where the device rounds
+/// each operation as IEEE 754 does (no fused multiply-add) they give the
+/// kernel's `f32` bits; [`Ackley`](DevicePotential::Ackley) and
+/// [`Levy`](DevicePotential::Levy) use the device's `sin`, `cos` and `exp`,
+/// which are accurate to a few ulps, not to the kernel's bits.
+///
+/// A user's potential is WGSL source ([`DevicePotential::wgsl`]) defining
+///
+/// ```text
+/// fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real
+/// ```
+///
+/// which writes `∇U(x)` into `grad` and returns `U(x)`; `Real` (`f32`),
+/// `D` (the dimension, a `u32`) and `Point` (`array<Real, D>`) are
+/// declared by the backend. The source may declare its own helper
+/// functions and constants (names starting with an upper-case letter or
+/// `RASTRIGIN_`, `EXPF_`, `LOGF_`, `ZIG_` are the backend's).
+///
+/// ```
+/// use hrla_gpu::DevicePotential;
+///
+/// // Himmelblau's function (D = 2).
+/// let himmelblau = DevicePotential::wgsl("
+///     fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
+///         let p = (*x)[0] * (*x)[0] + (*x)[1] - 11.0;
+///         let q = (*x)[0] + (*x)[1] * (*x)[1] - 7.0;
+///         (*grad)[0] = 4.0 * (*x)[0] * p + 2.0 * q;
+///         (*grad)[1] = 2.0 * p + 4.0 * (*x)[1] * q;
+///         return p * p + q * q;
+///     }
+/// ");
+/// # let _ = himmelblau;
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum DevicePotential {
+    /// Rastrigin in the paper's form ([`hrla::Rastrigin`]).
+    Rastrigin,
+    /// `U(x) = (k/2) |x - m|^2` ([`hrla::Quadratic`]); build it with
+    /// [`DevicePotential::quadratic`].
+    Quadratic {
+        /// `k > 0`.
+        stiffness: f64,
+        /// `m`, one entry per coordinate.
+        centre: Vec<f64>,
+    },
+    /// The separable double well ([`hrla::DoubleWell`]).
+    DoubleWell,
+    /// Styblinski–Tang ([`hrla::StyblinskiTang`]).
+    StyblinskiTang,
+    /// Ackley ([`hrla::Ackley`]).
+    Ackley,
+    /// Levy ([`hrla::Levy`]).
+    Levy,
+    /// A user's WGSL `value_and_gradient`; build it with
+    /// [`DevicePotential::wgsl`].
+    Wgsl(String),
+}
+
+/// What the program is made of: a built-in file with its constants, or a
+/// user's text.
+pub(crate) enum PotentialSource<'a> {
+    Builtin(&'static str, Vec<(&'static str, f32)>),
+    Wgsl(&'a str),
+}
+
+impl DevicePotential {
+    /// The quadratic of stiffness `k` (finite, > 0) about `centre`
+    /// (finite): its Gibbs law is `N(m, I / (a k))`.
+    pub fn quadratic(stiffness: f64, centre: Vec<f64>) -> Result<Self, GpuError> {
+        if !(stiffness.is_finite() && stiffness > 0.0 && (stiffness as f32) > 0.0) {
+            return Err(hrla::Error::NotPositive {
+                name: "stiffness",
+                value: stiffness,
+            }
+            .into());
+        }
+        if let Some(&m) = centre
+            .iter()
+            .find(|m| !(m.is_finite() && (**m as f32).is_finite()))
+        {
+            return Err(hrla::Error::NotFinite {
+                name: "centre",
+                value: m,
+            }
+            .into());
+        }
+        Ok(Self::Quadratic { stiffness, centre })
+    }
+
+    /// A user's potential: WGSL source defining `value_and_gradient` (see
+    /// the type's docs). It is compiled when an ensemble is built, which
+    /// returns [`GpuError::Shader`] with the compiler's message if it
+    /// does not compile.
+    pub fn wgsl(source: impl Into<String>) -> Self {
+        Self::Wgsl(source.into())
+    }
+
+    /// The dimension the potential fixes, if any (the quadratic's centre).
+    pub(crate) fn dimension(&self) -> Option<usize> {
+        match self {
+            Self::Quadratic { centre, .. } => Some(centre.len()),
+            _ => None,
+        }
+    }
+
+    pub(crate) fn centre(&self) -> Option<&[f64]> {
+        match self {
+            Self::Quadratic { centre, .. } => Some(centre),
+            _ => None,
+        }
+    }
+
+    pub(crate) fn source(&self) -> PotentialSource<'_> {
+        let pi = core::f32::consts::PI;
+        match self {
+            Self::Rastrigin => {
+                PotentialSource::Builtin(include_str!("wgsl/potential/rastrigin.wgsl"), vec![])
+            }
+            Self::Quadratic { stiffness, .. } => PotentialSource::Builtin(
+                include_str!("wgsl/potential/quadratic.wgsl"),
+                vec![("QUADRATIC_STIFFNESS", *stiffness as f32)],
+            ),
+            Self::DoubleWell => {
+                PotentialSource::Builtin(include_str!("wgsl/potential/double_well.wgsl"), vec![])
+            }
+            Self::StyblinskiTang => PotentialSource::Builtin(
+                include_str!("wgsl/potential/styblinski_tang.wgsl"),
+                vec![],
+            ),
+            Self::Ackley => PotentialSource::Builtin(
+                include_str!("wgsl/potential/ackley.wgsl"),
+                vec![("ACKLEY_PI", pi), ("ACKLEY_E", core::f32::consts::E)],
+            ),
+            Self::Levy => PotentialSource::Builtin(
+                include_str!("wgsl/potential/levy.wgsl"),
+                vec![("LEVY_PI", pi)],
+            ),
+            Self::Wgsl(text) => PotentialSource::Wgsl(text),
+        }
+    }
+}
