@@ -9,7 +9,7 @@ use rand_xoshiro::Xoshiro128PlusPlus;
 use crate::device::{Gpu, bytes_of, bytes_of_f32, words};
 use crate::error::GpuError;
 use crate::potential::DevicePotential;
-use crate::shader::{Layout, StepKind, WORKGROUP, Ziggurat, program};
+use crate::shader::{Arithmetic, Layout, StepKind, WORKGROUP, Ziggurat, program};
 use crate::start::Start;
 use crate::step::{DeviceKernel, StepCoefficients};
 
@@ -66,6 +66,7 @@ pub struct EnsembleBuilder<F, S, C> {
     stride: u64,
     chains: usize,
     steps_per_dispatch: u32,
+    arithmetic: Arithmetic,
     float: core::marker::PhantomData<F>,
 }
 
@@ -88,6 +89,7 @@ where
             stride: 1,
             chains: 1024,
             steps_per_dispatch: 100,
+            arithmetic: Arithmetic::Ieee,
             float: core::marker::PhantomData,
         }
     }
@@ -118,6 +120,14 @@ where
     /// dispatch runs for seconds).
     pub fn steps_per_dispatch(mut self, steps: u32) -> Self {
         self.steps_per_dispatch = steps;
+        self
+    }
+
+    /// How the device may round products that additions take
+    /// ([`Arithmetic::Ieee`] by default: the kernel's bits where the
+    /// device rounds as IEEE 754 does).
+    pub fn arithmetic(mut self, arithmetic: Arithmetic) -> Self {
+        self.arithmetic = arithmetic;
         self
     }
 
@@ -181,7 +191,13 @@ where
         let coefficients: Box<dyn Fn(u64) -> Result<StepCoefficients, hrla::Error>> =
             Box::new(move |k| Ok(sampler.at(schedule.inverse_temperature(k))?.coefficients()));
         let first = coefficients(0)?;
-        let source = program(dim, &self.potential, &self.start, first.kind());
+        let source = program(
+            dim,
+            &self.potential,
+            &self.start,
+            first.kind(),
+            self.arithmetic,
+        );
         let mut ensemble = Ensemble::allocate(
             gpu,
             &source,
@@ -264,6 +280,7 @@ struct Params {
 
 impl Params {
     fn bytes(&self) -> Vec<u8> {
+        // `zero` and the padding to 64 bytes follow the twelve words.
         bytes_of(&[
             self.chains,
             self.steps,
@@ -277,6 +294,10 @@ impl Params {
             self.pass_out,
             self.coef_offset,
             self.row,
+            0,
+            0,
+            0,
+            0,
         ])
     }
 }
@@ -403,7 +424,7 @@ impl<'g> Ensemble<'g> {
         let params = gpu.checked(GpuError::Device, || {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("params"),
-                size: 48,
+                size: 64,
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             })

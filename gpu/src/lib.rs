@@ -92,6 +92,7 @@ pub use ensemble::{
 };
 pub use error::GpuError;
 pub use potential::DevicePotential;
+pub use shader::Arithmetic;
 pub use start::Start;
 pub use step::{DeviceKernel, StepCoefficients};
 pub use wgpu;

@@ -121,6 +121,33 @@ const COS: [u64; 4] = [
     0xBE92_7E4F_809C_52AD,
 ];
 
+/// How the device may round the kernel's sums and products.
+///
+/// WGSL lets a driver contract `a * b + c` into one fused multiply-add (one
+/// rounding instead of two) and reassociate sums: lavapipe (Mesa 22.3)
+/// turns `(a - b) + 2.5` into another order of additions, and GPU drivers
+/// fuse multiply-adds. The kernel does neither, so for its bits the program
+/// writes every product that an addition takes as `mul(a, b)`, and every
+/// sum that a constant is then added to as `rounded(s)`: in
+/// [`Arithmetic::Ieee`] both pass the value through an integer
+/// exclusive-or with a zero that the compiler cannot see (a uniform): no
+/// floating-point rule (contraction, reassociation, factoring) sees
+/// through it. (A multiplication by an unseen 1.0 does not do: a compiler
+/// factors `a * one + b * one` into `(a + b) * one`.)
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Arithmetic {
+    /// Every product rounded before it is added, as the kernel computes:
+    /// the kernel's bits on a device whose division and square root are
+    /// correctly rounded (lavapipe's are). One more integer operation per
+    /// product and fenced sum.
+    #[default]
+    Ieee,
+    /// The driver fuses as it likes: the same law, not the same bits, and
+    /// fewer instructions.
+    Fused,
+}
+
 /// Which sampler's step the kernel runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum StepKind {
@@ -140,17 +167,17 @@ const OU_STEP: &str = "
         let l_yy = coef(s, 6u);
         for (var i = 0u; i < D; i++) {
             let z = normal_pair();
-            let mx = x[i] + c_xy * y[i] - c_xg * g[i];
-            let my = e * y[i] - c_yg * g[i];
-            x[i] = mx + l_xy * z.x + l_xx * z.y;
-            y[i] = my + l_yy * z.x;
+            let mx = x[i] + mul(c_xy, y[i]) - mul(c_xg, g[i]);
+            let my = mul(e, y[i]) - mul(c_yg, g[i]);
+            x[i] = mx + mul(l_xy, z.x) + mul(l_xx, z.y);
+            y[i] = my + mul(l_yy, z.x);
         }";
 
 const OLA_STEP: &str = "
         let drift = coef(s, 0u);
         let noise = coef(s, 1u);
         for (var i = 0u; i < D; i++) {
-            x[i] = x[i] - drift * g[i] + noise * normal();
+            x[i] = x[i] - mul(drift, g[i]) + mul(noise, normal());
         }";
 
 /// Where the start, `U*` and the eps values sit in the constants buffer.
@@ -178,6 +205,7 @@ pub(crate) fn program(
     potential: &DevicePotential,
     start: &Start,
     step: StepKind,
+    arithmetic: Arithmetic,
 ) -> String {
     let z = Ziggurat::from_kernel();
     let layout = Layout::new(dim);
@@ -200,6 +228,16 @@ pub(crate) fn program(
     }
     src.push_str("\n// ---- hrla-gpu ----\n");
     src.push_str("alias Real = f32;\n");
+    src.push_str(match arithmetic {
+        Arithmetic::Ieee => {
+            "fn mul(a: f32, b: f32) -> f32 {\n    return rounded(a * b);\n}\n\
+             fn rounded(s: f32) -> f32 {\n    return bitcast<f32>(bitcast<u32>(s) ^ params.zero);\n}\n"
+        }
+        Arithmetic::Fused => {
+            "fn mul(a: f32, b: f32) -> f32 {\n    return a * b;\n}\n\
+             fn rounded(s: f32) -> f32 {\n    return s;\n}\n"
+        }
+    });
     src.push_str(&format!("const D: u32 = {dim}u;\n"));
     src.push_str("alias Point = array<Real, D>;\n");
     src.push_str(&format!("const WORKGROUP: u32 = {WORKGROUP}u;\n"));
@@ -231,7 +269,7 @@ pub(crate) fn program(
     src.push_str(include_str!("wgsl/random.wgsl"));
     let start_coordinate = match start {
         Start::Gaussian { .. } => format!(
-            "x[i] = tables[{m}u + i] + tables[{s}u] * normal();",
+            "x[i] = tables[{m}u + i] + mul(tables[{s}u], normal());",
             m = layout.start_mean(),
             s = layout.start_mean() as usize + dim
         ),

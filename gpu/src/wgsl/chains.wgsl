@@ -22,6 +22,8 @@ struct Params {
     // Invocations per row of a two-dimensional dispatch (a dimension holds
     // at most 65535 workgroups).
     row: u32,
+    // 0, unknown to the compiler: see `rounded`.
+    zero: u32,
 }
 
 // A chain's scalars. `stopped`: the iterate at which it diverged.

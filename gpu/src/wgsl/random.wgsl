@@ -4,6 +4,10 @@
 // `Xoshiro128PlusPlus`, with fdlibm's `expf` and `logf` (those of the
 // `libm` crate) for the rare branches.
 //
+// Every product that an addition takes goes through `mul`, and every sum
+// of terms that a constant is then added to through `rounded`, which keep
+// them rounded where the host asks for IEEE arithmetic (see `shader.rs`).
+//
 // Needs, from the module that includes it: `tables` (a read-only storage
 // array of f32 holding the layer edges X at [0, 257) and the densities F
 // at [257, 514)), `ZIG_R` (the start of the tail, in f32) and the `EXPF_*`,
@@ -64,7 +68,7 @@ fn expf_(x_in: f32) -> f32 {
     if hx > 0x3eb17218u {
         if hx > 0x3f851592u {
             let half = select(0.5, -0.5, sign == 1u);
-            k = i32(EXPF_INV_LN2 * x + half);
+            k = i32(mul(EXPF_INV_LN2, x) + half);
         } else {
             k = 1i - i32(sign) - i32(sign);
         }
@@ -78,8 +82,8 @@ fn expf_(x_in: f32) -> f32 {
         return 1.0 + x;
     }
     let xx = x * x;
-    let c = x - xx * (EXPF_P1 + xx * EXPF_P2);
-    let y = 1.0 + (x * c / (2.0 - c) - lo + hi);
+    let c = x - mul(xx, EXPF_P1 + mul(xx, EXPF_P2));
+    let y = 1.0 + rounded(x * c / (2.0 - c) - lo + hi);
     if k == 0i {
         return y;
     }
@@ -101,12 +105,12 @@ fn logf_(x_in: f32) -> f32 {
     let s = f / (2.0 + f);
     let z = s * s;
     let w = z * z;
-    let t1 = w * (LOGF_LG2 + w * LOGF_LG4);
-    let t2 = z * (LOGF_LG1 + w * LOGF_LG3);
+    let t1 = mul(w, LOGF_LG2 + mul(w, LOGF_LG4));
+    let t2 = mul(z, LOGF_LG1 + mul(w, LOGF_LG3));
     let r = t2 + t1;
-    let hfsq = 0.5 * f * f;
+    let hfsq = mul(0.5 * f, f);
     let dk = f32(k);
-    return s * (hfsq + r) + dk * LOGF_LN2_LO - hfsq + f + dk * LOGF_LN2_HI;
+    return mul(s, hfsq + r) + mul(dk, LOGF_LN2_LO) - hfsq + f + mul(dk, LOGF_LN2_HI);
 }
 
 // The base layer's tail, the wedges and the redraws after a rejection:
@@ -126,7 +130,7 @@ fn normal_slow(i_in: u32, u_in: f32, x_in: f32) -> f32 {
                 }
             }
         }
-        let y = zig_f(i + 1u) + (zig_f(i) - zig_f(i + 1u)) * uniform01();
+        let y = zig_f(i + 1u) + mul(zig_f(i) - zig_f(i + 1u), uniform01());
         if y < expf_(-x * x * 0.5) {
             return x;
         }

@@ -5,9 +5,9 @@ fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Re
     var u = 0.0;
     for (var i = 0u; i < D; i++) {
         let xi = (*x)[i];
-        let w = xi * xi - 1.0;
+        let w = mul(xi, xi) - 1.0;
         (*grad)[i] = 4.0 * xi * w;
-        u += w * w;
+        u += mul(w, w);
     }
     return u;
 }

@@ -5,9 +5,9 @@ fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Re
     var kr2 = 0.0;
     for (var i = 0u; i < D; i++) {
         let r = (*x)[i] - QUADRATIC_CENTRE[i];
-        let g = QUADRATIC_STIFFNESS * r;
+        let g = mul(QUADRATIC_STIFFNESS, r);
         (*grad)[i] = g;
-        kr2 += g * r;
+        kr2 += mul(g, r);
     }
     return 0.5 * kr2;
 }

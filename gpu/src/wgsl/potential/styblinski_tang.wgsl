@@ -6,8 +6,8 @@ fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Re
     for (var i = 0u; i < D; i++) {
         let xi = (*x)[i];
         let x2 = xi * xi;
-        (*grad)[i] = 2.0 * xi * x2 - 16.0 * xi + 2.5;
-        u += (x2 * x2 - 16.0 * x2 + 5.0 * xi) * 0.5;
+        (*grad)[i] = rounded(mul(2.0 * xi, x2) - mul(16.0, xi)) + 2.5;
+        u += mul(mul(x2, x2) - mul(16.0, x2) + mul(5.0, xi), 0.5);
     }
     return u;
 }
