@@ -251,6 +251,18 @@ pub struct Ensemble<'g> {
     failed: Option<GpuError>,
 }
 
+impl core::fmt::Debug for Ensemble<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Ensemble")
+            .field("gpu", self.gpu)
+            .field("dim", &self.dim)
+            .field("chains", &self.chains)
+            .field("iteration", &self.iteration)
+            .field("failed", &self.failed)
+            .finish_non_exhaustive()
+    }
+}
+
 struct Pipelines {
     init: wgpu::ComputePipeline,
     step: wgpu::ComputePipeline,
