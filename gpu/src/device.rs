@@ -104,7 +104,9 @@ impl Gpu {
 
     /// The largest storage buffer binding, in bytes.
     pub(crate) fn max_binding(&self) -> u64 {
-        u64::from(self.limits.max_storage_buffer_binding_size).min(self.limits.max_buffer_size)
+        self.limits
+            .max_storage_buffer_binding_size
+            .min(self.limits.max_buffer_size)
     }
 
     /// The first error no scope caught since the last call, if any.

@@ -739,7 +739,7 @@ impl<'g> Ensemble<'g> {
         if group_size == 0 {
             return Err(hrla::Error::Zero { name: "group size" }.into());
         }
-        if self.chains % group_size != 0 {
+        if !self.chains.is_multiple_of(group_size) {
             return Err(hrla::Error::Count {
                 name: "group size (a divisor of the chains)",
                 value: group_size,

@@ -52,7 +52,6 @@ where
     for _ in 0..steps {
         opt.step().unwrap();
     }
-    drop(opt);
     let mut ensemble = EnsembleBuilder::new(
         device_potential,
         sampler,

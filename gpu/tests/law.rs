@@ -171,7 +171,6 @@ fn rastrigin_values_match_the_cpu_kernel_in_law() {
     .build(&mut cpu)
     .unwrap();
     opt.run().unwrap();
-    drop(opt);
     let cpu_values: Vec<f64> = cpu.iter().map(|c| c.value()).collect();
     for (arithmetic, seed) in [(Arithmetic::Ieee, 2), (Arithmetic::Fused, 3)] {
         let mut ensemble =

@@ -4,9 +4,10 @@
 
 mod common;
 
-use hrla::{Builder, Chain, FnPotential, Gaussian, Hrla, Rastrigin, Stop};
+use hrla::{Builder, Chain, FnPotential, Gaussian, Hrla, Rastrigin, StandardNormal, Stop};
 use hrla_gpu::{DevicePotential, EnsembleBuilder, GpuError, Start};
 use rand_xoshiro::Xoshiro128PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
 
 const D: usize = 10;
 const SEED: u64 = 5;
@@ -290,26 +291,32 @@ fn bad_input_is_a_typed_error() {
     ));
     // A start where the potential is not finite: the first such chain, as
     // the CPU's builder reports it.
-    let log = DevicePotential::wgsl(
+    let wall = DevicePotential::wgsl(
         "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
-            (*grad)[0] = 1.0 / (*x)[0];
-            return log((*x)[0]);
+            (*grad)[0] = 1.0;
+            return select((*x)[0], bitcast<f32>(0x7f800000u), (*x)[0] < 0.0);
         }",
     );
+    let first_negative = (0..64u64)
+        .find(|&c| {
+            let mut rng = Xoshiro128PlusPlus::seed_from_u64(hrla::chain_seed(0, c));
+            1.0 + f32::standard_normal(&mut rng) < 0.0
+        })
+        .unwrap() as usize;
     assert_eq!(
         EnsembleBuilder::new(
-            log,
+            wall,
             Hrla::paper(0.01).unwrap(),
             1.0,
             Start::gaussian(vec![1.0], 1.0).unwrap()
         )
         .chains(64)
         .build(gpu)
-        .map(drop)
-        .unwrap_err()
-        .to_string()
-        .contains("is not finite"),
-        true
+        .map(drop),
+        Err(GpuError::Kernel(hrla::Error::NonFiniteStart {
+            chain: first_negative,
+            what: "value"
+        }))
     );
     // The sampler's own checks, at a_0 and along the schedule.
     assert!(matches!(
