@@ -374,6 +374,29 @@ impl<'g> Ensemble<'g> {
         coefficients: Box<dyn Fn(u64) -> Result<StepCoefficients, hrla::Error>>,
     ) -> Result<Self, GpuError> {
         let device = &gpu.device;
+        // Buffers first: a size the device refuses is known before the
+        // program is compiled.
+        let layout = Layout::new(dim);
+        let coef_offset = (layout.u_star as usize + 1 + MAX_EPS).next_multiple_of(8) as u32;
+        let tables_len = coef_offset as u64 + 8 * u64::from(steps_per_dispatch);
+        let (n64, d64) = (n as u64, dim as u64);
+        let params = gpu.checked(GpuError::Device, || {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("params"),
+                size: 64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        })?;
+        let tables = gpu.storage("constants", 4 * tables_len)?;
+        let rngs = gpu.storage("generators", 16 * n64)?;
+        let xs = gpu.storage("positions", 4 * n64 * d64)?;
+        let ys = gpu.storage("velocities", 4 * n64 * d64)?;
+        let best_xs = gpu.storage("best points", 4 * n64 * d64)?;
+        let status = gpu.storage("status", 4 * STATUS_WORDS as u64 * n64)?;
+        let partials = n64.div_ceil(u64::from(WORKGROUP));
+        let candidates = gpu.storage("candidates", 4 * (2 * partials + 2))?;
+        let counts = gpu.storage("counts", 4 * (2 * MAX_EPS as u64 + 8))?;
         let module = gpu.checked(GpuError::Shader, || {
             device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("hrla chains"),
@@ -429,27 +452,6 @@ impl<'g> Ensemble<'g> {
             normals: pipeline("normals")?,
         };
 
-        let layout = Layout::new(dim);
-        let coef_offset = (layout.u_star as usize + 1 + MAX_EPS).next_multiple_of(8) as u32;
-        let tables_len = coef_offset as u64 + 8 * u64::from(steps_per_dispatch);
-        let (n64, d64) = (n as u64, dim as u64);
-        let params = gpu.checked(GpuError::Device, || {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("params"),
-                size: 64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        })?;
-        let tables = gpu.storage("constants", 4 * tables_len)?;
-        let rngs = gpu.storage("generators", 16 * n64)?;
-        let xs = gpu.storage("positions", 4 * n64 * d64)?;
-        let ys = gpu.storage("velocities", 4 * n64 * d64)?;
-        let best_xs = gpu.storage("best points", 4 * n64 * d64)?;
-        let status = gpu.storage("status", 4 * STATUS_WORDS as u64 * n64)?;
-        let partials = n64.div_ceil(u64::from(WORKGROUP));
-        let candidates = gpu.storage("candidates", 4 * (2 * partials + 2))?;
-        let counts = gpu.storage("counts", 4 * (2 * MAX_EPS as u64 + 8))?;
         let buffers = [
             &params,
             &tables,

@@ -344,4 +344,25 @@ fn bad_input_is_a_typed_error() {
         Err(GpuError::Kernel(hrla::Error::Count { .. }))
     ));
     assert!(e.run(0).is_ok());
+    // Positions of 2^21 chains of dimension 1024: 8 GiB in one binding,
+    // beyond every device's limit.
+    assert!(matches!(
+        build(
+            1 << 21,
+            Start::point(vec![0.0; 1024]).unwrap(),
+            DevicePotential::DoubleWell
+        ),
+        Err(GpuError::TooLarge { .. })
+    ));
+    assert!(matches!(
+        build(
+            4,
+            Start::point(vec![0.0; 1025]).unwrap(),
+            DevicePotential::DoubleWell
+        ),
+        Err(GpuError::Kernel(hrla::Error::Count {
+            name: "dimension D",
+            ..
+        }))
+    ));
 }
