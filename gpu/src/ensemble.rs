@@ -582,8 +582,8 @@ impl<'g> Ensemble<'g> {
     /// Advances every live chain by `steps` steps, in dispatches of at
     /// most [`steps_per_dispatch`](EnsembleBuilder::steps_per_dispatch).
     ///
-    /// Errors: the sampler's, if it refuses some `a_k` of the schedule
-    /// (nothing is stepped then); [`hrla::Error::UnboundedBelow`] if a
+    /// Errors: the sampler's, if it refuses some `a_k` of the schedule (the
+    /// chains then stand at iterate `k`, as the CPU optimiser's do); [`hrla::Error::UnboundedBelow`] if a
     /// chain's potential fell below `-sqrt(f32::MAX)` (the earliest such
     /// iterate, then the lowest chain, as the CPU optimiser reports it);
     /// [`hrla::Error::AllDiverged`] once every chain has diverged. After
@@ -600,40 +600,58 @@ impl<'g> Ensemble<'g> {
             }
             .into());
         }
-        // Every coefficient first: a refused a_k leaves the state as it was.
-        let table: Vec<f32> = (self.iteration..self.iteration + steps)
-            .map(|k| (self.coefficients)(k).map(StepCoefficients::to_device))
-            .collect::<Result<Vec<_>, _>>()?
-            .into_iter()
-            .flatten()
-            .collect();
-        if let Some(k) = (self.iteration..self.iteration + steps)
-            .find(|&k| (self.coefficients)(k).is_ok_and(|c| c.kind() != self.kind))
-        {
-            return Err(GpuError::Device(format!(
-                "the sampler changed its kind of step at iterate {k}"
-            )));
-        }
         let per = u64::from(self.steps_per_dispatch);
-        let mut done = 0;
-        while done < steps {
-            let s = (steps - done).min(per);
-            let slice = &table[(8 * done) as usize..(8 * (done + s)) as usize];
+        let end = self.iteration + steps;
+        while self.iteration < end {
+            let s = (end - self.iteration).min(per);
+            // This dispatch's coefficients; a refused a_k ends it (and the
+            // run) before step k, where the CPU optimiser stops.
+            let mut table = Vec::with_capacity(8 * s as usize);
+            let mut refused = None;
+            for k in self.iteration..self.iteration + s {
+                match (self.coefficients)(k) {
+                    Ok(c) if c.kind() == self.kind => table.extend(c.to_device()),
+                    Ok(_) => {
+                        refused = Some(GpuError::Device(format!(
+                            "the sampler changed its kind of step at iterate {k}"
+                        )));
+                        break;
+                    }
+                    Err(e) => {
+                        refused = Some(e.into());
+                        break;
+                    }
+                }
+            }
+            let s = (table.len() / 8) as u64;
+            if let Some(e) = refused.take_if(|_| s == 0) {
+                self.gpu.wait()?;
+                return Err(e);
+            }
             self.gpu.queue.write_buffer(
                 &self.tables,
                 4 * u64::from(self.coef_offset),
-                &bytes_of_f32(slice),
+                &bytes_of_f32(&table),
             );
             let params = Params {
                 steps: s as u32,
-                first_step: (self.iteration + done) as u32,
+                first_step: self.iteration as u32,
                 stride: self.stride,
                 ..Params::default()
             };
             self.dispatch(&self.pipelines.step, self.chains, params)?;
-            done += s;
+            self.iteration += s;
+            if let Some(e) = refused {
+                self.finish()?;
+                return Err(e);
+            }
         }
-        self.iteration += steps;
+        self.finish()
+    }
+
+    /// Waits for the queue, then fails the run for good if its chains
+    /// show a failure (which comes before any later refusal, as on the CPU).
+    fn finish(&mut self) -> Result<(), GpuError> {
         self.gpu.wait()?;
         if let Err(e) = self.check_failures() {
             self.failed = Some(e.clone());

@@ -4,7 +4,9 @@
 
 mod common;
 
-use hrla::{Builder, Chain, FnPotential, Gaussian, Hrla, Rastrigin, StandardNormal, Stop};
+use hrla::{
+    Builder, Chain, FnPotential, FnSchedule, Gaussian, Hrla, Rastrigin, StandardNormal, Stop,
+};
 use hrla_gpu::{DevicePotential, EnsembleBuilder, GpuError, Start};
 use rand_xoshiro::Xoshiro128PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -344,6 +346,24 @@ fn bad_input_is_a_typed_error() {
         Err(GpuError::Kernel(hrla::Error::Count { .. }))
     ));
     assert!(e.run(0).is_ok());
+    // A schedule that the sampler refuses from iterate 150: the chains
+    // stop at iterate 150, where the CPU's stop, and step on from there.
+    let schedule = FnSchedule(|k: u64| if k < 150 { 4.0 } else { -1.0 });
+    let mut e = EnsembleBuilder::new(
+        DevicePotential::Rastrigin,
+        Hrla::paper(0.01).unwrap(),
+        schedule,
+        origin(),
+    )
+    .chains(8)
+    .steps_per_dispatch(100)
+    .build(gpu)
+    .unwrap();
+    assert!(matches!(
+        e.run(300),
+        Err(GpuError::Kernel(hrla::Error::NotPositive { name: "a", .. }))
+    ));
+    assert_eq!(e.iteration(), 150);
     // Positions of 2^21 chains of dimension 1024: 8 GiB in one binding,
     // beyond every device's limit.
     assert!(matches!(
