@@ -741,7 +741,10 @@ impl<'g> Ensemble<'g> {
     /// [`MAX_EPS`] values): chains `m g .. (m + 1) g` form run `m` of
     /// Algorithm 1 with `g = group_size` chains, and the share of runs
     /// whose best lies within eps of `u_star` is counted on the device,
-    /// by the runs' best current values and by their running bests.
+    /// by the runs' best current values and by their running bests. One
+    /// invocation reads one run's chains: runs of a few to a few thousand
+    /// chains (the paper's) spread over the device, one run of all the
+    /// chains does not.
     ///
     /// Errors: [`hrla::Error::Zero`] or [`hrla::Error::Count`] when
     /// `group_size` does not divide the chains into whole runs, or for

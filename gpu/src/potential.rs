@@ -23,9 +23,15 @@ use crate::error::GpuError;
 ///
 /// which writes `∇U(x)` into `grad` and returns `U(x)`; `Real` (`f32`),
 /// `D` (the dimension, a `u32`) and `Point` (`array<Real, D>`) are
-/// declared by the backend. The source may declare its own helper
-/// functions and constants (names starting with an upper-case letter or
-/// `RASTRIGIN_`, `EXPF_`, `LOGF_`, `ZIG_` are the backend's).
+/// declared by the backend, and so are `mul(a, b)` and `rounded(s)`, which
+/// keep a product or a sum rounded as written when the ensemble's
+/// [`Arithmetic`](crate::Arithmetic) is IEEE (the built-ins use them where
+/// an addition takes a product). The source may declare its own helper
+/// functions and constants; the backend's other names (constants in upper
+/// case, `rng`, `next_u32`, `normal`, `normal_pair`, `finite`, `coef`,
+/// `params`, `tables`, the entry points `init`, `step`, `argmin`,
+/// `groups`, `census`, `normals`) are taken, and a clash is a compile
+/// error like any other.
 ///
 /// ```
 /// use hrla_gpu::DevicePotential;

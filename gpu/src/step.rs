@@ -130,3 +130,25 @@ impl<F: Float> DeviceKernel for AnyKernel<F> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    /// `sqrt(v * v) == v` in both float types, the fact that the OLA
+    /// coefficients rest on, over scales from 1e-30 to 1e30.
+    #[test]
+    fn square_roots_of_squares_give_the_number_back() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..1_000_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
+            let v = 10f64.powf(unit * 60.0 - 30.0);
+            assert_eq!((v * v).sqrt(), v);
+            let w = v as f32;
+            if (1e-18..1e18).contains(&w) {
+                assert_eq!((w * w).sqrt(), w);
+            }
+        }
+    }
+}

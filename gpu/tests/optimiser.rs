@@ -267,6 +267,27 @@ fn bad_input_is_a_typed_error() {
             name: "dimension D"
         }))
     );
+    for builder in [
+        EnsembleBuilder::new(
+            DevicePotential::Rastrigin,
+            Hrla::paper(0.01).unwrap(),
+            1.0,
+            origin(),
+        )
+        .stride(0),
+        EnsembleBuilder::new(
+            DevicePotential::Rastrigin,
+            Hrla::paper(0.01).unwrap(),
+            1.0,
+            origin(),
+        )
+        .steps_per_dispatch(0),
+    ] {
+        assert!(matches!(
+            builder.build(gpu).map(drop),
+            Err(GpuError::Kernel(hrla::Error::Zero { .. }))
+        ));
+    }
     assert!(matches!(
         build(
             4,
