@@ -65,10 +65,13 @@
 //!
 //! # Precision
 //!
-//! The device works in `f32`. `f64` needs `SHADER_F64` (lavapipe and the
-//! large NVIDIA cards have it, Apple GPUs and the browser do not) and
-//! software `exp` and `log` (Vulkan has no 64-bit ones) for the
-//! Ziggurat's rare branches; it is not offered yet.
+//! The device works in `f32`. `f64` needs the adapter's `SHADER_F64`
+//! (lavapipe and NVIDIA's data-centre cards have it; Apple GPUs and the
+//! browser do not) and more than a change of type: Vulkan has no 64-bit
+//! `exp` and `log` (the Ziggurat's rare branches need fdlibm's, ported),
+//! and WGSL (naga 30) has no `bitcast` or `frexp` for `f64`, on which the
+//! finiteness checks, the rounding fences and such a port rest in `f32`.
+//! It is not offered yet.
 //!
 //! # Without a GPU
 //!
