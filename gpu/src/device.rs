@@ -17,6 +17,7 @@ pub struct Gpu {
     pub(crate) queue: wgpu::Queue,
     info: wgpu::AdapterInfo,
     limits: wgpu::Limits,
+    features: wgpu::Features,
     /// Errors that no error scope caught (wgpu's default handler would
     /// panic): kept here and returned by the next operation.
     uncaptured: Arc<Mutex<Vec<String>>>,
@@ -61,10 +62,12 @@ impl Gpu {
             max_storage_buffers_per_shader_stage: 8,
             ..wgpu::Limits::default()
         };
+        // f64 where the adapter has it; ensembles in f32 do not need it.
+        let features = adapter.features() & wgpu::Features::SHADER_F64;
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("hrla-gpu"),
-                required_features: wgpu::Features::empty(),
+                required_features: features,
                 required_limits: limits.clone(),
                 experimental_features: wgpu::ExperimentalFeatures::disabled(),
                 memory_hints: wgpu::MemoryHints::Performance,
@@ -84,6 +87,7 @@ impl Gpu {
             queue,
             info,
             limits,
+            features,
             uncaptured,
         })
     }
@@ -91,6 +95,12 @@ impl Gpu {
     /// The adapter: name, backend, driver.
     pub fn info(&self) -> &wgpu::AdapterInfo {
         &self.info
+    }
+
+    /// Whether the device computes in `f64` (`SHADER_F64`), for
+    /// [`Precision::F64`](crate::Precision).
+    pub fn supports_f64(&self) -> bool {
+        self.features.contains(wgpu::Features::SHADER_F64)
     }
 
     /// One line naming the adapter, its backend and driver.
@@ -224,9 +234,4 @@ pub(crate) fn words(bytes: &[u8]) -> Vec<u32> {
 /// `words` as little-endian bytes.
 pub(crate) fn bytes_of(words: &[u32]) -> Vec<u8> {
     words.iter().flat_map(|w| w.to_le_bytes()).collect()
-}
-
-/// `floats` as little-endian bytes.
-pub(crate) fn bytes_of_f32(floats: &[f32]) -> Vec<u8> {
-    floats.iter().flat_map(|w| w.to_le_bytes()).collect()
 }

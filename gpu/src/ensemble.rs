@@ -6,10 +6,10 @@ use hrla::{Float, Sampler, Schedule, chain_seed};
 use rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro128PlusPlus;
 
-use crate::device::{Gpu, bytes_of, bytes_of_f32, words};
+use crate::device::{Gpu, bytes_of, words};
 use crate::error::GpuError;
 use crate::potential::DevicePotential;
-use crate::shader::{Arithmetic, Layout, StepKind, WORKGROUP, Ziggurat, program};
+use crate::shader::{Arithmetic, Layout, Precision, StepKind, WORKGROUP, Ziggurat, program};
 use crate::start::Start;
 use crate::step::{DeviceKernel, StepCoefficients};
 
@@ -26,8 +26,15 @@ const BAD_START_POSITION: u32 = 4;
 const BAD_START_VALUE: u32 = 8;
 const BAD_START_GRADIENT: u32 = 16;
 
-/// Words of one chain's status (value, best, best iterate, flags, stopped).
-const STATUS_WORDS: usize = 5;
+/// Words of one chain's status (value, best, best iterate, flags, stopped;
+/// in f64, the two values take two words each and the struct is padded to
+/// a multiple of 8 bytes).
+fn status_words(precision: Precision) -> usize {
+    match precision {
+        Precision::F32 => 5,
+        Precision::F64 => 8,
+    }
+}
 
 /// The settings of an [`Ensemble`], before it is on a device: a potential,
 /// a sampler (the kernel's [`hrla::Hrla`], [`hrla::Ula`], [`hrla::Ola`] or
@@ -67,6 +74,7 @@ pub struct EnsembleBuilder<F, S, C> {
     chains: usize,
     steps_per_dispatch: u32,
     arithmetic: Arithmetic,
+    precision: Precision,
     float: core::marker::PhantomData<F>,
 }
 
@@ -90,6 +98,7 @@ where
             chains: 1024,
             steps_per_dispatch: 100,
             arithmetic: Arithmetic::Ieee,
+            precision: Precision::F32,
             float: core::marker::PhantomData,
         }
     }
@@ -128,6 +137,15 @@ where
     /// device rounds as IEEE 754 does).
     pub fn arithmetic(mut self, arithmetic: Arithmetic) -> Self {
         self.arithmetic = arithmetic;
+        self
+    }
+
+    /// The float type of the device ([`Precision::F32`] by default).
+    /// [`Precision::F64`] needs an adapter with `SHADER_F64`
+    /// ([`Gpu::supports_f64`]) and a potential without `sin`, `cos` or
+    /// `exp` (Vulkan has them in f32 only: not Ackley or Levy).
+    pub fn precision(mut self, precision: Precision) -> Self {
+        self.precision = precision;
         self
     }
 
@@ -187,6 +205,18 @@ where
                 what: "potential",
             });
         }
+        if self.precision == Precision::F64 && !gpu.supports_f64() {
+            return Err(GpuError::Unsupported(format!(
+                "f64: the adapter {} has no SHADER_F64",
+                gpu.info().name
+            )));
+        }
+        if !self.potential.supports(self.precision) {
+            return Err(GpuError::Unsupported(format!(
+                "{:?} in {:?}: the device has no sin, cos or exp in that type",
+                self.potential, self.precision
+            )));
+        }
         let (sampler, schedule) = (self.sampler, self.schedule);
         let coefficients: Box<dyn Fn(u64) -> Result<StepCoefficients, hrla::Error>> =
             Box::new(move |k| Ok(sampler.at(schedule.inverse_temperature(k))?.coefficients()));
@@ -197,6 +227,7 @@ where
             &self.start,
             first.kind(),
             self.arithmetic,
+            self.precision,
         );
         let mut ensemble = Ensemble::allocate(
             gpu,
@@ -206,6 +237,7 @@ where
             stride,
             self.steps_per_dispatch,
             first.kind(),
+            self.precision,
             coefficients,
         )?;
         ensemble.initialise(self.seed, &self.start)?;
@@ -234,6 +266,7 @@ pub struct Ensemble<'g> {
     iteration: u64,
     coefficients: Box<dyn Fn(u64) -> Result<StepCoefficients, hrla::Error>>,
     kind: StepKind,
+    precision: Precision,
     layout: Layout,
     coef_offset: u32,
     params: wgpu::Buffer,
@@ -292,7 +325,8 @@ struct Params {
 
 impl Params {
     fn bytes(&self) -> Vec<u8> {
-        // `zero` and the padding to 64 bytes follow the twelve words.
+        // `zero`, `negative_zero`, `one` and the padding to 64 bytes follow
+        // the twelve words.
         bytes_of(&[
             self.chains,
             self.steps,
@@ -307,8 +341,8 @@ impl Params {
             self.coef_offset,
             self.row,
             0,
-            0,
-            0,
+            (-0f32).to_bits(),
+            1f32.to_bits(),
             0,
         ])
     }
@@ -320,26 +354,26 @@ pub struct BestPoint {
     /// The chain that holds it.
     pub chain: usize,
     /// `U(x)`.
-    pub value: f32,
+    pub value: f64,
     /// The iterate at which the chain visited it.
     pub iteration: u64,
     /// The point.
-    pub x: Vec<f32>,
+    pub x: Vec<f64>,
 }
 
 /// One chain's state read back from the device.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ChainSnapshot {
     /// Current position.
-    pub x: Vec<f32>,
+    pub x: Vec<f64>,
     /// Current velocity (zero for OLA).
-    pub y: Vec<f32>,
+    pub y: Vec<f64>,
     /// `U(x)` (for a diverged chain, the value at the step that stopped it).
-    pub value: f32,
+    pub value: f64,
     /// The running best's value.
-    pub best_value: f32,
+    pub best_value: f64,
     /// The running best's point.
-    pub best_x: Vec<f32>,
+    pub best_x: Vec<f64>,
     /// The iterate of the running best.
     pub best_iteration: u64,
     /// Whether the chain diverged.
@@ -371,6 +405,7 @@ impl<'g> Ensemble<'g> {
         stride: u32,
         steps_per_dispatch: u32,
         kind: StepKind,
+        precision: Precision,
         coefficients: Box<dyn Fn(u64) -> Result<StepCoefficients, hrla::Error>>,
     ) -> Result<Self, GpuError> {
         let device = &gpu.device;
@@ -379,7 +414,7 @@ impl<'g> Ensemble<'g> {
         let layout = Layout::new(dim);
         let coef_offset = (layout.u_star as usize + 1 + MAX_EPS).next_multiple_of(8) as u32;
         let tables_len = coef_offset as u64 + 8 * u64::from(steps_per_dispatch);
-        let (n64, d64) = (n as u64, dim as u64);
+        let (n64, d64, b) = (n as u64, dim as u64, precision.bytes());
         let params = gpu.checked(GpuError::Device, || {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("params"),
@@ -388,12 +423,12 @@ impl<'g> Ensemble<'g> {
                 mapped_at_creation: false,
             })
         })?;
-        let tables = gpu.storage("constants", 4 * tables_len)?;
+        let tables = gpu.storage("constants", b * tables_len)?;
         let rngs = gpu.storage("generators", 16 * n64)?;
-        let xs = gpu.storage("positions", 4 * n64 * d64)?;
-        let ys = gpu.storage("velocities", 4 * n64 * d64)?;
-        let best_xs = gpu.storage("best points", 4 * n64 * d64)?;
-        let status = gpu.storage("status", 4 * STATUS_WORDS as u64 * n64)?;
+        let xs = gpu.storage("positions", b * n64 * d64)?;
+        let ys = gpu.storage("velocities", b * n64 * d64)?;
+        let best_xs = gpu.storage("best points", b * n64 * d64)?;
+        let status = gpu.storage("status", 4 * status_words(precision) as u64 * n64)?;
         let partials = n64.div_ceil(u64::from(WORKGROUP));
         let candidates = gpu.storage("candidates", 4 * (2 * partials + 2))?;
         let counts = gpu.storage("counts", 4 * (2 * MAX_EPS as u64 + 8))?;
@@ -487,6 +522,7 @@ impl<'g> Ensemble<'g> {
             iteration: 0,
             coefficients,
             kind,
+            precision,
             layout,
             coef_offset,
             params,
@@ -509,12 +545,14 @@ impl<'g> Ensemble<'g> {
     /// constants, and runs `init`.
     fn initialise(&mut self, seed: u64, start: &Start) -> Result<(), GpuError> {
         let z = Ziggurat::from_kernel();
-        let mut constants = z.x.clone();
-        constants.extend(&z.f);
+        let mut constants: Vec<f64> = match self.precision {
+            Precision::F32 => z.x.iter().chain(&z.f).map(|&v| f64::from(v)).collect(),
+            Precision::F64 => z.x64.iter().chain(&z.f64).copied().collect(),
+        };
         constants.extend(start.constants());
         self.gpu
             .queue
-            .write_buffer(&self.tables, 0, &bytes_of_f32(&constants));
+            .write_buffer(&self.tables, 0, &self.bytes(&constants));
         self.seed_generators(seed)?;
         self.dispatch(&self.pipelines.init, self.chains, Params::default())?;
         self.gpu.wait()?;
@@ -630,8 +668,8 @@ impl<'g> Ensemble<'g> {
             }
             self.gpu.queue.write_buffer(
                 &self.tables,
-                4 * u64::from(self.coef_offset),
-                &bytes_of_f32(&table),
+                self.precision.bytes() * u64::from(self.coef_offset),
+                &self.bytes(&table),
             );
             let params = Params {
                 steps: s as u32,
@@ -681,7 +719,7 @@ impl<'g> Ensemble<'g> {
             let s = self.read_status_of(chain)?;
             return Err(hrla::Error::UnboundedBelow {
                 chain,
-                value: f64::from(s.value),
+                value: s.value,
             }
             .into());
         }
@@ -724,11 +762,11 @@ impl<'g> Ensemble<'g> {
                 .read(&self.candidates, &[(4 * u64::from(output), 4)])?,
         )[0] as usize;
         let s = self.read_status_of(chain)?;
-        let n = self.chains as u64;
+        let (n, b) = (self.chains as u64, self.precision.bytes());
         let ranges: Vec<(u64, u64)> = (0..self.dim as u64)
-            .map(|i| (4 * (i * n + chain as u64), 4))
+            .map(|i| (b * (i * n + chain as u64), b))
             .collect();
-        let x = floats(&self.gpu.read(&self.best_xs, &ranges)?);
+        let x = self.floats(&self.gpu.read(&self.best_xs, &ranges)?);
         Ok(BestPoint {
             chain,
             value: s.best,
@@ -786,12 +824,12 @@ impl<'g> Ensemble<'g> {
                 return Err(hrla::Error::NotFinite { name, value: v }.into());
             }
         }
-        let mut values = vec![u_star as f32];
-        values.extend(eps.iter().map(|&e| e as f32));
+        let mut values = vec![u_star];
+        values.extend(eps);
         self.gpu.queue.write_buffer(
             &self.tables,
-            4 * u64::from(self.layout.u_star),
-            &bytes_of_f32(&values),
+            self.precision.bytes() * u64::from(self.layout.u_star),
+            &self.bytes(&values),
         );
         self.gpu
             .queue
@@ -824,15 +862,15 @@ impl<'g> Ensemble<'g> {
     /// copies the whole ensemble to the host).
     pub fn snapshot(&self) -> Result<Vec<ChainSnapshot>, GpuError> {
         let (n, d) = (self.chains, self.dim);
-        let whole = |b: &wgpu::Buffer| {
+        let whole = |buffer: &wgpu::Buffer| {
             self.gpu
-                .read(b, &[(0, 4 * (n * d) as u64)])
-                .map(|v| floats(&v))
+                .read(buffer, &[(0, self.precision.bytes() * (n * d) as u64)])
+                .map(|v| self.floats(&v))
         };
         let (xs, ys, best_xs) = (whole(&self.xs)?, whole(&self.ys)?, whole(&self.best_xs)?);
         let rngs = self.gpu.read(&self.rngs, &[(0, 16 * n as u64)])?;
         let status = self.read_status()?;
-        let gather = |v: &[f32], c: usize| (0..d).map(|i| v[i * n + c]).collect();
+        let gather = |v: &[f64], c: usize| (0..d).map(|i| v[i * n + c]).collect();
         Ok((0..n)
             .map(|c| {
                 let mut seed = [0u8; 16];
@@ -873,7 +911,7 @@ impl<'g> Ensemble<'g> {
 
     /// `count` normals (or pairs) of every chain into the positions'
     /// buffer, which must hold them: see [`Gpu::normals`].
-    pub(crate) fn draw_normals(&self, count: u32, pairs: bool) -> Result<Vec<f32>, GpuError> {
+    pub(crate) fn draw_normals(&self, count: u32, pairs: bool) -> Result<Vec<f64>, GpuError> {
         let width = u64::from(count) * if pairs { 2 } else { 1 };
         let params = Params {
             steps: count,
@@ -881,53 +919,82 @@ impl<'g> Ensemble<'g> {
             ..Params::default()
         };
         self.dispatch(&self.pipelines.normals, self.chains, params)?;
-        Ok(floats(
-            &self
-                .gpu
-                .read(&self.xs, &[(0, 4 * width * self.chains as u64)])?,
-        ))
+        Ok(self.floats(&self.gpu.read(
+            &self.xs,
+            &[(0, self.precision.bytes() * width * self.chains as u64)],
+        )?))
     }
 
     fn read_status(&self) -> Result<Vec<Status>, GpuError> {
-        let bytes = 4 * (STATUS_WORDS * self.chains) as u64;
+        let w = status_words(self.precision);
+        let bytes = 4 * (w * self.chains) as u64;
         Ok(words(&self.gpu.read(&self.status, &[(0, bytes)])?)
-            .chunks_exact(STATUS_WORDS)
-            .map(Status::from_words)
+            .chunks_exact(w)
+            .map(|s| Status::from_words(s, self.precision))
             .collect())
     }
 
     fn read_status_of(&self, chain: usize) -> Result<Status, GpuError> {
-        let at = 4 * (STATUS_WORDS * chain) as u64;
-        let w = words(
-            &self
-                .gpu
-                .read(&self.status, &[(at, 4 * STATUS_WORDS as u64)])?,
-        );
-        Ok(Status::from_words(&w))
+        let w = status_words(self.precision);
+        let at = 4 * (w * chain) as u64;
+        let words = words(&self.gpu.read(&self.status, &[(at, 4 * w as u64)])?);
+        Ok(Status::from_words(&words, self.precision))
+    }
+
+    /// `values` in the device's float type, as bytes.
+    fn bytes(&self, values: &[f64]) -> Vec<u8> {
+        match self.precision {
+            Precision::F32 => values
+                .iter()
+                .flat_map(|&v| (v as f32).to_le_bytes())
+                .collect(),
+            Precision::F64 => values.iter().flat_map(|v| v.to_le_bytes()).collect(),
+        }
+    }
+
+    /// Bytes of the device's float type, as values.
+    fn floats(&self, bytes: &[u8]) -> Vec<f64> {
+        match self.precision {
+            Precision::F32 => words(bytes)
+                .into_iter()
+                .map(|w| f64::from(f32::from_bits(w)))
+                .collect(),
+            Precision::F64 => bytes
+                .chunks_exact(8)
+                .map(|b| f64::from_le_bytes(b.try_into().unwrap_or([0; 8])))
+                .collect(),
+        }
     }
 }
 
 /// A chain's scalars, as `Status` in `chains.wgsl`.
 struct Status {
-    value: f32,
-    best: f32,
+    value: f64,
+    best: f64,
     best_iter: u32,
     flags: u32,
 }
 
 impl Status {
-    fn from_words(w: &[u32]) -> Self {
-        Self {
-            value: f32::from_bits(w[0]),
-            best: f32::from_bits(w[1]),
-            best_iter: w[2],
-            flags: w[3],
+    fn from_words(w: &[u32], precision: Precision) -> Self {
+        match precision {
+            Precision::F32 => Self {
+                value: f64::from(f32::from_bits(w[0])),
+                best: f64::from(f32::from_bits(w[1])),
+                best_iter: w[2],
+                flags: w[3],
+            },
+            Precision::F64 => {
+                let wide = |lo: u32, hi: u32| f64::from_bits(u64::from(lo) | u64::from(hi) << 32);
+                Self {
+                    value: wide(w[0], w[1]),
+                    best: wide(w[2], w[3]),
+                    best_iter: w[4],
+                    flags: w[5],
+                }
+            }
         }
     }
-}
-
-fn floats(bytes: &[u8]) -> Vec<f32> {
-    words(bytes).into_iter().map(f32::from_bits).collect()
 }
 
 impl Gpu {
@@ -937,7 +1004,8 @@ impl Gpu {
     /// the device with the kernel's Ziggurat: single draws as a start
     /// draws them, or, with `pairs`, pairs as one coordinate of an HRLA or
     /// ULA step draws them. Chain `c`'s draws are `[c w, (c + 1) w)` with
-    /// `w = count` (or `2 count` for pairs).
+    /// `w = count` (or `2 count` for pairs). In `precision`: `f32`
+    /// normals (widened) or `f64` ones.
     ///
     /// For checking the device's streams against the kernel's
     /// [`hrla::StandardNormal`].
@@ -947,7 +1015,8 @@ impl Gpu {
         chains: usize,
         count: u32,
         pairs: bool,
-    ) -> Result<Vec<f32>, GpuError> {
+        precision: Precision,
+    ) -> Result<Vec<f64>, GpuError> {
         let width = count as usize * if pairs { 2 } else { 1 };
         if width == 0 {
             return Err(hrla::Error::Zero { name: "normals" }.into());
@@ -961,6 +1030,7 @@ impl Gpu {
         )
         .chains(chains)
         .seed(seed)
+        .precision(precision)
         .build(self)?;
         ensemble.draw_normals(count, pairs)
     }

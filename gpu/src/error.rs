@@ -29,6 +29,9 @@ pub enum GpuError {
         /// That piece.
         what: &'static str,
     },
+    /// What the adapter cannot do: `f64` without `SHADER_F64`, or a
+    /// potential that needs functions the device lacks in that type.
+    Unsupported(String),
     /// A buffer would exceed what the device allows in one binding.
     TooLarge {
         /// The buffer.
@@ -51,6 +54,7 @@ impl fmt::Display for GpuError {
             Self::Device(m) => write!(f, "the device failed: {m}"),
             Self::Shader(m) => write!(f, "the WGSL program does not compile: {m}"),
             Self::Kernel(e) => e.fmt(f),
+            Self::Unsupported(m) => write!(f, "not supported by the device: {m}"),
             Self::Dimension {
                 expected,
                 got,

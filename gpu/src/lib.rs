@@ -40,15 +40,17 @@
 //!   `Xoshiro128PlusPlus::seed_from_u64(chain_seed(seed, c))`, the words
 //!   the CPU kernel's chain `c` draws with that generator, through the
 //!   kernel's 256-layer Ziggurat (its tables read from the kernel's source)
-//!   with fdlibm's `expf` and `logf` in its rare branches, as the `libm`
-//!   crate computes them.
+//!   with fdlibm's `expf` and `logf` (`exp` and `log` in `f64`) in its
+//!   rare branches, as the `libm` crate computes them.
 //! - **Arithmetic.** The step and the built-in potentials use the kernel's
 //!   operations in the kernel's order. WGSL does not promise IEEE rounding
 //!   of every operation: a driver may fuse a multiply and an add, and its
 //!   division need not be correctly rounded. Where it does neither (the
 //!   crate's tests check it on lavapipe), the states after K steps are the
-//!   CPU kernel's bits; elsewhere the tests check the law (moments against
-//!   the closed form, a two-sample test against the CPU kernel).
+//!   CPU kernel's bits, in `f32` and `f64`; elsewhere the tests check the
+//!   law (moments against the closed form, a two-sample test against the
+//!   CPU kernel). [`Arithmetic`] says how the program keeps the kernel's
+//!   roundings against a compiler that fuses or reorders.
 //!
 //! # Why wgpu (and not CubeCL)
 //!
@@ -65,13 +67,16 @@
 //!
 //! # Precision
 //!
-//! The device works in `f32`. `f64` needs the adapter's `SHADER_F64`
-//! (lavapipe and NVIDIA's data-centre cards have it; Apple GPUs and the
-//! browser do not) and more than a change of type: Vulkan has no 64-bit
-//! `exp` and `log` (the Ziggurat's rare branches need fdlibm's, ported),
-//! and WGSL (naga 30) has no `bitcast` or `frexp` for `f64`, on which the
-//! finiteness checks, the rounding fences and such a port rest in `f32`.
-//! It is not offered yet.
+//! The device computes in `f32` ([`Precision::F32`], the default) or, where
+//! the adapter has `SHADER_F64` (lavapipe and NVIDIA's data-centre cards
+//! do; Apple GPUs and the browser do not), in `f64` ([`Precision::F64`]).
+//! In `f64` the chains are those of the CPU kernel's `f64` optimiser over
+//! `Chain<f64, D, Xoshiro128PlusPlus>`: the same 64-bit Ziggurat words
+//! (two of the generator's each), fdlibm's `exp` and `log` ported to WGSL
+//! (Vulkan has none in `f64`, and WGSL no bits of an `f64`: the port
+//! takes numbers apart by exact arithmetic), and Rastrigin's six-term
+//! polynomials. Ackley and Levy, which need the device's `sin`, `cos` and
+//! `exp`, run in `f32` only.
 //!
 //! # Without a GPU
 //!
@@ -95,7 +100,7 @@ pub use ensemble::{
 };
 pub use error::GpuError;
 pub use potential::DevicePotential;
-pub use shader::Arithmetic;
+pub use shader::{Arithmetic, Precision};
 pub use start::Start;
 pub use step::{DeviceKernel, StepCoefficients};
 pub use wgpu;

@@ -2,6 +2,7 @@
 //! and a user's WGSL function.
 
 use crate::error::GpuError;
+use crate::shader::Precision;
 
 /// A potential that runs on the device.
 ///
@@ -21,7 +22,8 @@ use crate::error::GpuError;
 /// fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real
 /// ```
 ///
-/// which writes `∇U(x)` into `grad` and returns `U(x)`; `Real` (`f32`),
+/// which writes `∇U(x)` into `grad` and returns `U(x)`; `Real` (`f32`, or
+/// `f64` with [`Precision::F64`](crate::Precision)),
 /// `D` (the dimension, a `u32`) and `Point` (`array<Real, D>`) are
 /// declared by the backend, and so are `mul(a, b)` and `rounded(s)`, which
 /// keep a product or a sum rounded as written when the ensemble's
@@ -77,7 +79,7 @@ pub enum DevicePotential {
 /// What the program is made of: a built-in file with its constants, or a
 /// user's text.
 pub(crate) enum PotentialSource<'a> {
-    Builtin(&'static str, Vec<(&'static str, f32)>),
+    Builtin(&'static str, Vec<(&'static str, f64)>),
     Wgsl(&'a str),
 }
 
@@ -128,30 +130,38 @@ impl DevicePotential {
         }
     }
 
-    pub(crate) fn source(&self) -> PotentialSource<'_> {
-        let pi = core::f32::consts::PI;
+    /// Whether the device can evaluate it in `precision`: Ackley and
+    /// Levy need `sin`, `cos` and `exp`, which Vulkan has in f32 only.
+    pub(crate) fn supports(&self, precision: Precision) -> bool {
+        precision == Precision::F32 || !matches!(self, Self::Ackley | Self::Levy)
+    }
+
+    pub(crate) fn source(&self, precision: Precision) -> PotentialSource<'_> {
+        use core::f64::consts::{E, PI};
+        let builtin = PotentialSource::Builtin;
         match self {
-            Self::Rastrigin => {
-                PotentialSource::Builtin(include_str!("wgsl/potential/rastrigin.wgsl"), vec![])
-            }
-            Self::Quadratic { stiffness, .. } => PotentialSource::Builtin(
-                include_str!("wgsl/potential/quadratic.wgsl"),
-                vec![("QUADRATIC_STIFFNESS", *stiffness as f32)],
-            ),
-            Self::DoubleWell => {
-                PotentialSource::Builtin(include_str!("wgsl/potential/double_well.wgsl"), vec![])
-            }
-            Self::StyblinskiTang => PotentialSource::Builtin(
-                include_str!("wgsl/potential/styblinski_tang.wgsl"),
+            Self::Rastrigin => builtin(
+                match precision {
+                    Precision::F32 => include_str!("wgsl/potential/rastrigin.wgsl"),
+                    Precision::F64 => include_str!("wgsl/potential/rastrigin64.wgsl"),
+                },
                 vec![],
             ),
-            Self::Ackley => PotentialSource::Builtin(
-                include_str!("wgsl/potential/ackley.wgsl"),
-                vec![("ACKLEY_PI", pi), ("ACKLEY_E", core::f32::consts::E)],
+            Self::Quadratic { stiffness, .. } => builtin(
+                include_str!("wgsl/potential/quadratic.wgsl"),
+                vec![("QUADRATIC_STIFFNESS", *stiffness)],
             ),
-            Self::Levy => PotentialSource::Builtin(
+            Self::DoubleWell => builtin(include_str!("wgsl/potential/double_well.wgsl"), vec![]),
+            Self::StyblinskiTang => {
+                builtin(include_str!("wgsl/potential/styblinski_tang.wgsl"), vec![])
+            }
+            Self::Ackley => builtin(
+                include_str!("wgsl/potential/ackley.wgsl"),
+                vec![("ACKLEY_PI", PI), ("ACKLEY_E", E)],
+            ),
+            Self::Levy => builtin(
                 include_str!("wgsl/potential/levy.wgsl"),
-                vec![("LEVY_PI", pi)],
+                vec![("LEVY_PI", PI)],
             ),
             Self::Wgsl(text) => PotentialSource::Wgsl(text),
         }

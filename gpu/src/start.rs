@@ -56,12 +56,12 @@ impl Start {
 
     /// The mean (or point) and the standard deviation (0 for a point), in
     /// the order of the constants buffer.
-    pub(crate) fn constants(&self) -> Vec<f32> {
+    pub(crate) fn constants(&self) -> Vec<f64> {
         let (m, s) = match self {
             Self::Gaussian { mean, std_dev } => (mean, *std_dev),
             Self::Point(x) => (x, 0.0),
         };
-        m.iter().map(|&v| v as f32).chain([s as f32]).collect()
+        m.iter().copied().chain([s]).collect()
     }
 }
 

@@ -56,7 +56,7 @@ impl StepCoefficients {
     }
 
     /// The eight floats of one step in the constants buffer.
-    pub(crate) fn to_device(self) -> [f32; 8] {
+    pub(crate) fn to_device(self) -> [f64; 8] {
         match self {
             Self::Ou {
                 c_xy,
@@ -66,10 +66,8 @@ impl StepCoefficients {
                 l_xy,
                 l_xx,
                 l_yy,
-            } => [c_xy, e, c_xg, c_yg, l_xy, l_xx, l_yy, 0.0].map(|v| v as f32),
-            Self::Ola { drift, noise } => {
-                [drift, noise, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0].map(|v| v as f32)
-            }
+            } => [c_xy, e, c_xg, c_yg, l_xy, l_xx, l_yy, 0.0],
+            Self::Ola { drift, noise } => [drift, noise, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         }
     }
 }
@@ -77,13 +75,14 @@ impl StepCoefficients {
 /// A kernel whose step the device can run: the kernel's [`OuKernel`]
 /// (HRLA, ULA), [`OlaKernel`] (OLA) and [`AnyKernel`], in `f32` or `f64`.
 ///
-/// With an `f64` kernel, the coefficients are the kernel's f64 ones
-/// rounded once to the device's f32, the most accurate f32 values; with an
+/// On an `f32` device ([`Precision::F32`](crate::Precision)): with an
+/// `f64` kernel, the coefficients are the kernel's f64 ones rounded once
+/// to f32, the most accurate f32 values; with an
 /// `f32` kernel they are exactly the CPU's `f32` optimiser's, which differ
 /// from the former by up to 2 units in the last place (the paper's
 /// settings, `h` from 0.001 to 0.1, `a` from 0.1 to 40): the choice of the
 /// kernel's float type is the choice between the most accurate step and
-/// the CPU's `f32` bits.
+/// the CPU's `f32` bits. On an `f64` device, an `f64` kernel's are exact.
 pub trait DeviceKernel {
     /// The step's coefficients.
     fn coefficients(&self) -> StepCoefficients;

@@ -45,7 +45,7 @@ fn every_chain_of_a_two_dimensional_dispatch_steps_and_counts() {
     let p = ensemble.probability(8, 0.0, &[eps]).unwrap()[0];
     let hits = chains
         .chunks(8)
-        .filter(|run| run.iter().any(|ch| ch.value <= eps as f32))
+        .filter(|run| run.iter().any(|ch| ch.value <= f64::from(eps as f32)))
         .count();
     assert_eq!(p.current, hits as f64 / (n / 8) as f64);
     assert!(hits > 0);

@@ -10,7 +10,7 @@
 mod common;
 
 use hrla::{AnySampler, Builder, Chain, Gaussian, Kernel, Rastrigin, Sampler, SamplerKind, Stop};
-use hrla_gpu::{Arithmetic, DevicePotential, EnsembleBuilder, Start};
+use hrla_gpu::{Arithmetic, DevicePotential, EnsembleBuilder, Precision, Start};
 
 const D: usize = 4;
 const STIFFNESS: f64 = 2.0;
@@ -62,7 +62,7 @@ fn exact_law<K: Kernel<f64>>(kernel: &K, m0: f64, s0: f64, steps: u64) -> Law {
     law
 }
 
-fn moments_match(kind: SamplerKind, arithmetic: Arithmetic, seed: u64) {
+fn moments_match(kind: SamplerKind, arithmetic: Arithmetic, precision: Precision, seed: u64) {
     let (m0, s0, steps) = (3.0, 10f64.sqrt(), 300);
     let chains = 1 << 15;
     let sampler = AnySampler::paper(kind, 0.05).unwrap();
@@ -75,20 +75,15 @@ fn moments_match(kind: SamplerKind, arithmetic: Arithmetic, seed: u64) {
     .chains(chains)
     .seed(seed)
     .arithmetic(arithmetic)
+    .precision(precision)
     .build(common::gpu())
     .unwrap();
     ensemble.run(steps).unwrap();
     let law = exact_law(&sampler.at(A).unwrap(), m0, s0, steps);
     let chains = ensemble.snapshot().unwrap();
     // Coordinates are independent with the same law: pool them.
-    let xs: Vec<f64> = chains
-        .iter()
-        .flat_map(|c| c.x.iter().map(|&v| f64::from(v)))
-        .collect();
-    let ys: Vec<f64> = chains
-        .iter()
-        .flat_map(|c| c.y.iter().map(|&v| f64::from(v)))
-        .collect();
+    let xs: Vec<f64> = chains.iter().flat_map(|c| c.x.iter().copied()).collect();
+    let ys: Vec<f64> = chains.iter().flat_map(|c| c.y.iter().copied()).collect();
     let n = xs.len() as f64;
     let mean = |v: &[f64]| v.iter().sum::<f64>() / n;
     let (mx, my) = (mean(&xs), mean(&ys));
@@ -101,7 +96,7 @@ fn moments_match(kind: SamplerKind, arithmetic: Arithmetic, seed: u64) {
     let check = |what: &str, got: f64, want: f64, se: f64| {
         assert!(
             (got - want).abs() <= z * se,
-            "{kind} {arithmetic:?}: {what} = {got}, exact {want}, {:.1} standard errors",
+            "{kind} {arithmetic:?} {precision:?}: {what} = {got}, exact {want}, {:.1} standard errors",
             (got - want) / se
         );
     };
@@ -125,9 +120,15 @@ fn moments_match(kind: SamplerKind, arithmetic: Arithmetic, seed: u64) {
 
 #[test]
 fn quadratic_moments_match_the_closed_form() {
+    let mut precisions = vec![Precision::F32];
+    if common::gpu().supports_f64() {
+        precisions.push(Precision::F64);
+    }
     for (i, kind) in SamplerKind::ALL.into_iter().enumerate() {
         for arithmetic in [Arithmetic::Ieee, Arithmetic::Fused] {
-            moments_match(kind, arithmetic, 100 + i as u64);
+            for &precision in &precisions {
+                moments_match(kind, arithmetic, precision, 100 + i as u64);
+            }
         }
     }
 }
@@ -185,7 +186,7 @@ fn rastrigin_values_match_the_cpu_kernel_in_law() {
             .snapshot()
             .unwrap()
             .iter()
-            .map(|c| f64::from(c.value))
+            .map(|c| c.value)
             .collect();
         // The KS critical value at level 1e-4 for two samples of n:
         // sqrt(-ln(1e-4 / 2) / 2) sqrt(2 / n) (the asymptotic law, accurate

@@ -67,10 +67,10 @@ fn best_is_the_cpu_optimisers() {
         })
         .unwrap();
     assert_eq!(device.chain, c);
-    assert_eq!(device.value.to_bits(), b.value.to_bits());
+    assert_eq!(device.value.to_bits(), f64::from(b.value).to_bits());
     assert_eq!(device.iteration, b.iteration);
     assert_eq!(device.iteration % stride, 0);
-    assert_eq!(device.x, b.x.to_vec());
+    assert_eq!(device.x, b.x.map(f64::from).to_vec());
 }
 
 /// The empirical probability, counted on the device, against the count
@@ -367,6 +367,21 @@ fn bad_input_is_a_typed_error() {
         Err(GpuError::Kernel(hrla::Error::Count { .. }))
     ));
     assert!(e.run(0).is_ok());
+    // f64 with a potential that needs the device's sin: refused, not run.
+    if gpu.supports_f64() {
+        assert!(matches!(
+            EnsembleBuilder::new(
+                DevicePotential::Ackley,
+                Hrla::paper(0.01).unwrap(),
+                1.0,
+                origin()
+            )
+            .precision(hrla_gpu::Precision::F64)
+            .build(gpu)
+            .map(drop),
+            Err(GpuError::Unsupported(_))
+        ));
+    }
     // A schedule that the sampler refuses from iterate 150: the chains
     // stop at iterate 150, where the CPU's stop, and step on from there.
     let schedule = FnSchedule(|k: u64| if k < 150 { 4.0 } else { -1.0 });

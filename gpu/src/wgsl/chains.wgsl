@@ -22,14 +22,16 @@ struct Params {
     // Invocations per row of a two-dimensional dispatch (a dimension holds
     // at most 65535 workgroups).
     row: u32,
-    // 0, unknown to the compiler: see `rounded`.
+    // 0, -0.0 and 1.0, unknown to the compiler: see `rounded` and `mul`.
     zero: u32,
+    negative_zero: f32,
+    one: f32,
 }
 
 // A chain's scalars. `stopped`: the iterate at which it diverged.
 struct Status {
-    value: f32,
-    best: f32,
+    value: Real,
+    best: Real,
     best_iter: u32,
     flags: u32,
     stopped: u32,
@@ -44,18 +46,14 @@ const BAD_START_GRADIENT: u32 = 16u;
 @group(0) @binding(0) var<uniform> params: Params;
 // The Ziggurat's X and F, the start, U* and the eps of the empirical
 // probability, then the step's coefficients of this dispatch.
-@group(0) @binding(1) var<storage, read> tables: array<f32>;
+@group(0) @binding(1) var<storage, read> tables: array<Real>;
 @group(0) @binding(2) var<storage, read_write> rngs: array<vec4<u32>>;
-@group(0) @binding(3) var<storage, read_write> xs: array<f32>;
-@group(0) @binding(4) var<storage, read_write> ys: array<f32>;
-@group(0) @binding(5) var<storage, read_write> best_xs: array<f32>;
+@group(0) @binding(3) var<storage, read_write> xs: array<Real>;
+@group(0) @binding(4) var<storage, read_write> ys: array<Real>;
+@group(0) @binding(5) var<storage, read_write> best_xs: array<Real>;
 @group(0) @binding(6) var<storage, read_write> status: array<Status>;
 @group(0) @binding(7) var<storage, read_write> candidates: array<u32>;
 @group(0) @binding(8) var<storage, read_write> counts: array<atomic<u32>>;
-
-fn finite(v: f32) -> bool {
-    return (bitcast<u32>(v) & 0x7f800000u) != 0x7f800000u;
-}
 
 fn all_finite(v: ptr<function, Point>) -> bool {
     var ok = true;
@@ -66,7 +64,7 @@ fn all_finite(v: ptr<function, Point>) -> bool {
 }
 
 // One coefficient of the step at iterate `k` of this dispatch's table.
-fn coef(s: u32, j: u32) -> f32 {
+fn coef(s: u32, j: u32) -> Real {
     return tables[params.coef_offset + 8u * s + j];
 }
 
@@ -216,8 +214,8 @@ fn groups(@builtin(global_invocation_id) gid: vec3<u32>) {
     if m >= params.groups {
         return;
     }
-    var current = bitcast<f32>(0x7f800000u);
-    var running = bitcast<f32>(0x7f800000u);
+    var current = none();
+    var running = none();
     let first = m * params.group_size;
     for (var c = first; c < first + params.group_size; c++) {
         let st = status[c];

@@ -2,7 +2,7 @@
 // `hrla::DoubleWell` computes it.
 
 fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
-    var u = 0.0;
+    var u = Real(0.0);
     for (var i = 0u; i < D; i++) {
         let xi = (*x)[i];
         let w = mul(xi, xi) - 1.0;
