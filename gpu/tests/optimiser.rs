@@ -422,3 +422,58 @@ fn bad_input_is_a_typed_error() {
         }))
     ));
 }
+
+/// In f64 (where the adapter has it): the best and the empirical
+/// probability against the CPU's f64 optimiser, whose chains the device's
+/// are bit for bit.
+#[test]
+fn best_and_probability_in_f64() {
+    let gpu = common::gpu();
+    if !gpu.supports_f64() {
+        eprintln!("the adapter has no SHADER_F64: the f64 reductions do not apply");
+        return;
+    }
+    let (n, steps, stride) = (3000, 120, 7);
+    let mut cpu: Vec<Chain<f64, D, Xoshiro128PlusPlus>> =
+        (0..n).map(|_| Chain::default()).collect();
+    let mut opt = Builder::new(
+        Rastrigin,
+        Hrla::paper(0.01).unwrap(),
+        4.0,
+        Gaussian::new([3.0; D], 10f64.sqrt()).unwrap(),
+    )
+    .seed(SEED)
+    .stride(stride)
+    .stop(Stop::new().steps(steps))
+    .build(&mut cpu)
+    .unwrap();
+    opt.run().unwrap();
+    let (c, b) = (opt.best_chain(), *opt.best());
+    let mut ensemble = EnsembleBuilder::new(
+        DevicePotential::Rastrigin,
+        Hrla::paper(0.01).unwrap(),
+        4.0,
+        Start::paper(D),
+    )
+    .chains(n)
+    .seed(SEED)
+    .stride(stride)
+    .precision(hrla_gpu::Precision::F64)
+    .build(gpu)
+    .unwrap();
+    ensemble.run(steps).unwrap();
+    let best = ensemble.best().unwrap();
+    assert_eq!(
+        (best.chain, best.value.to_bits(), best.iteration, best.x),
+        (c, b.value.to_bits(), b.iteration, b.x.to_vec())
+    );
+    let eps = [5.0, 10.0, 20.0];
+    let device = ensemble.probability(10, 0.0, &eps).unwrap();
+    for (p, &e) in device.iter().zip(&eps) {
+        let hits = cpu
+            .chunks(10)
+            .filter(|run| run.iter().any(|ch| ch.value() <= e))
+            .count();
+        assert_eq!(p.current, hits as f64 / (n / 10) as f64, "eps {e}");
+    }
+}
