@@ -1,7 +1,8 @@
 //! Throughput of the device's chains: one optimiser of N chains of HRLA on
-//! 10-D Rastrigin in f32 (a constant a = 4, the value and running best at
-//! every step), N from 10^4 to 10^6 (10^7 with `--chains 10000000` where
-//! the device's memory allows), in both arithmetics.
+//! 10-D Rastrigin (a constant a = 4, the value and running best at every
+//! step), N from 10^4 to 10^6 (10^7 with `--chains 10000000` where the
+//! device's memory allows), in both arithmetics, in f32 and, where the
+//! adapter has it, f64.
 //!
 //! `cargo bench -p hrla-gpu --bench throughput [-- --chains N,N,.. --steps K]`
 //!
@@ -14,7 +15,7 @@
 use std::time::Instant;
 
 use hrla::Hrla;
-use hrla_gpu::{Arithmetic, DevicePotential, EnsembleBuilder, Gpu, Start};
+use hrla_gpu::{Arithmetic, DevicePotential, EnsembleBuilder, Gpu, Precision, Start};
 
 const D: usize = 10;
 
@@ -33,13 +34,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let steps: u64 = value("--steps").map_or(Ok(200), |s| s.parse())?;
     let gpu = Gpu::new()?;
     println!("adapter: {}", gpu.describe());
-    println!("HRLA, {D}-D Rastrigin, f32, a = 4, {steps} steps, 100 steps per dispatch");
+    println!("HRLA, {D}-D Rastrigin, a = 4, {steps} steps, 100 steps per dispatch");
     println!(
-        "{:>10} {:>7} {:>10} {:>16} {:>18}",
-        "chains", "arith", "seconds", "ns/coord-step", "chain-steps/s"
+        "{:>10} {:>5} {:>7} {:>10} {:>16} {:>18}",
+        "chains", "float", "arith", "seconds", "ns/coord-step", "chain-steps/s"
     );
+    let mut precisions = vec![Precision::F32];
+    if gpu.supports_f64() {
+        precisions.push(Precision::F64);
+    }
     for &n in &chains {
-        for arithmetic in [Arithmetic::Ieee, Arithmetic::Fused] {
+        for (precision, arithmetic) in precisions
+            .iter()
+            .flat_map(|&p| [Arithmetic::Ieee, Arithmetic::Fused].map(move |a| (p, a)))
+        {
             let mut ensemble = EnsembleBuilder::new(
                 DevicePotential::Rastrigin,
                 Hrla::paper(0.01)?,
@@ -49,6 +57,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .chains(n)
             .seed(1)
             .arithmetic(arithmetic)
+            .precision(precision)
             .steps_per_dispatch(100)
             .build(&gpu)?;
             ensemble.run(2)?;
@@ -57,8 +66,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let s = t.elapsed().as_secs_f64();
             let chain_steps = n as f64 * steps as f64;
             println!(
-                "{:>10} {:>7} {:>10.3} {:>16.3} {:>18.3e}",
+                "{:>10} {:>5} {:>7} {:>10.3} {:>16.3} {:>18.3e}",
                 n,
+                format!("{precision:?}"),
                 format!("{arithmetic:?}"),
                 s,
                 s * 1e9 / (chain_steps * D as f64),
