@@ -33,9 +33,10 @@
 //! - **Coefficients.** The step's coefficients at each `a_k` come from the
 //!   kernel's own sampler types ([`hrla::Hrla`], [`hrla::Ula`],
 //!   [`hrla::Ola`], [`hrla::AnySampler`]) on the host, through their public
-//!   moments ([`DeviceKernel`]): with an `f64` sampler they are the
-//!   kernel's f64 values rounded once to f32; with an `f32` sampler they
-//!   are the CPU `f32` optimiser's bits.
+//!   moments ([`DeviceKernel`]): on an `f32` device, an `f64` sampler's
+//!   are the kernel's f64 values rounded once, an `f32` sampler's the CPU
+//!   `f32` optimiser's bits; on an `f64` device, an `f64` sampler's are
+//!   the CPU `f64` optimiser's.
 //! - **Streams.** Chain `c` draws from
 //!   `Xoshiro128PlusPlus::seed_from_u64(chain_seed(seed, c))`, the words
 //!   the CPU kernel's chain `c` draws with that generator, through the

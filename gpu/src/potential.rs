@@ -12,7 +12,7 @@ use crate::shader::Precision;
 /// [`StyblinskiTang`](DevicePotential::StyblinskiTang) use additions and
 /// multiplications only, in the kernel's order, so where the device rounds
 /// each operation as IEEE 754 does (no fused multiply-add) they give the
-/// kernel's `f32` bits; [`Ackley`](DevicePotential::Ackley) and
+/// kernel's bits, in `f32` and `f64`; [`Ackley`](DevicePotential::Ackley) and
 /// [`Levy`](DevicePotential::Levy) use the device's `sin`, `cos` and `exp`,
 /// which are accurate to a few ulps, not to the kernel's bits.
 ///
