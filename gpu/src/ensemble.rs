@@ -620,11 +620,11 @@ impl<'g> Ensemble<'g> {
     /// Advances every live chain by `steps` steps, in dispatches of at
     /// most [`steps_per_dispatch`](EnsembleBuilder::steps_per_dispatch).
     ///
-    /// Errors: the sampler's, if it refuses some `a_k` of the schedule (the
-    /// chains then stand at iterate `k`, as the CPU optimiser's do); [`hrla::Error::UnboundedBelow`] if a
-    /// chain's potential fell below `-sqrt(MAX)` of the device's float type
-    /// (the earliest such iterate, then the lowest chain, as the CPU
-    /// optimiser reports it);
+    /// Errors: the sampler's, if it refuses some `a_k` of the schedule
+    /// (the chains then stand at iterate `k`, as the CPU optimiser's do);
+    /// [`hrla::Error::UnboundedBelow`] if a chain's potential fell below
+    /// `-sqrt(MAX)` of the device's float type (the earliest such iterate,
+    /// then the lowest chain, as the CPU optimiser reports it);
     /// [`hrla::Error::AllDiverged`] once every chain has diverged. After
     /// either of the last two, every later call returns the same error.
     pub fn run(&mut self, steps: u64) -> Result<(), GpuError> {
