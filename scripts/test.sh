@@ -39,6 +39,17 @@ for t in $EMBEDDED_TARGETS; do
   fi
 done
 
+step "a software Vulkan (lavapipe) for the GPU backend's tests"
+# hrla-gpu's tests run on whatever adapter wgpu finds and fail, loudly, when
+# there is none: without a GPU, Mesa's lavapipe and the Vulkan loader.
+vulkan_packages="mesa-vulkan-drivers libvulkan1"
+if ! dpkg -s $vulkan_packages >/dev/null 2>&1; then
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $vulkan_packages >/dev/null
+fi
+# The Vulkan loader warns without a runtime directory.
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
+
 step "host tests (unit, doc, statistical, optimiser, property)"
 cargo test --workspace 2>&1 | tee -a "$LOG"
 

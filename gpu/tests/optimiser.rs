@@ -1,0 +1,479 @@
+//! Algorithm 1 on the device: its best and the empirical probability,
+//! reduced on the device, against the CPU optimiser; the run's failures as
+//! the CPU reports them; user potentials, and bad input as typed errors.
+
+mod common;
+
+use hrla::{
+    Builder, Chain, FnPotential, FnSchedule, Gaussian, Hrla, Rastrigin, StandardNormal, Stop,
+};
+use hrla_gpu::{DevicePotential, EnsembleBuilder, GpuError, Start};
+use rand_xoshiro::Xoshiro128PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+
+const D: usize = 10;
+const SEED: u64 = 5;
+
+fn cpu_run(chains: usize, steps: u64, stride: u64) -> Vec<Chain<f32, D, Xoshiro128PlusPlus>> {
+    let mut cpu: Vec<Chain<f32, D, Xoshiro128PlusPlus>> =
+        (0..chains).map(|_| Chain::default()).collect();
+    let mut opt = Builder::new(
+        Rastrigin,
+        Hrla::paper(0.01f32).unwrap(),
+        4.0f32,
+        Gaussian::new([3.0; D], 10f32.sqrt()).unwrap(),
+    )
+    .seed(SEED)
+    .stride(stride)
+    .stop(Stop::new().steps(steps))
+    .build(&mut cpu)
+    .unwrap();
+    opt.run().unwrap();
+    cpu
+}
+
+fn device_run(chains: usize, steps: u64, stride: u64) -> hrla_gpu::Ensemble<'static> {
+    let mut ensemble = EnsembleBuilder::new(
+        DevicePotential::Rastrigin,
+        Hrla::paper(0.01f32).unwrap(),
+        4.0f32,
+        Start::gaussian(vec![3.0; D], f64::from(10f32.sqrt())).unwrap(),
+    )
+    .chains(chains)
+    .seed(SEED)
+    .stride(stride)
+    .steps_per_dispatch(37)
+    .build(common::gpu())
+    .unwrap();
+    ensemble.run(steps).unwrap();
+    ensemble
+}
+
+/// The best over 5000 chains (several reduction passes) with a stride:
+/// the CPU optimiser's chain, value, iterate and point.
+#[test]
+fn best_is_the_cpu_optimisers() {
+    let (n, steps, stride) = (5000, 150, 10);
+    let cpu = cpu_run(n, steps, stride);
+    let device = device_run(n, steps, stride).best().unwrap();
+    let (c, b) = cpu
+        .iter()
+        .enumerate()
+        .map(|(c, ch)| (c, ch.best()))
+        .min_by(|a, b| {
+            a.1.value
+                .total_cmp(&b.1.value)
+                .then(a.1.iteration.cmp(&b.1.iteration))
+        })
+        .unwrap();
+    assert_eq!(device.chain, c);
+    assert_eq!(device.value.to_bits(), f64::from(b.value).to_bits());
+    assert_eq!(device.iteration, b.iteration);
+    assert_eq!(device.iteration % stride, 0);
+    assert_eq!(device.x, b.x.map(f64::from).to_vec());
+}
+
+/// The empirical probability, counted on the device, against the count
+/// over the CPU optimiser's chains, runs of 10 chains, several eps.
+#[test]
+fn probability_is_the_count_over_the_cpu_chains() {
+    let (n, steps) = (4000, 100);
+    let cpu = cpu_run(n, steps, 1);
+    let eps = [0.5, 5.0, 10.0, 20.0, 40.0];
+    let device = device_run(n, steps, 1).probability(10, 0.0, &eps).unwrap();
+    for (p, &e) in device.iter().zip(&eps) {
+        let (mut current, mut running) = (0, 0);
+        for run in cpu.chunks(10) {
+            let now = run.iter().map(|c| c.value()).fold(f32::INFINITY, f32::min);
+            let best = run
+                .iter()
+                .map(|c| c.best().value)
+                .fold(f32::INFINITY, f32::min);
+            current += usize::from(now - 0.0 <= e as f32);
+            running += usize::from(best - 0.0 <= e as f32);
+        }
+        assert_eq!(p.eps, e);
+        assert_eq!(p.current, current as f64 / 400.0, "eps {e}");
+        assert_eq!(p.running, running as f64 / 400.0, "eps {e}");
+    }
+    // Not all 0 or 1: the eps straddle the values.
+    assert!(device.iter().any(|p| p.current > 0.0 && p.current < 1.0));
+}
+
+/// A user's potential that is unbounded below: the same error, chain and
+/// value as the CPU optimiser's.
+#[test]
+fn unbounded_below_is_reported_as_the_cpu_reports_it() {
+    let cpu_potential = FnPotential::new(|x: &[f32; 2], g: &mut [f32; 2]| {
+        *g = [-4.0 * x[0] * x[0] * x[0], 0.0];
+        -(x[0] * x[0]) * (x[0] * x[0]) + x[1] * 0.0
+    });
+    let mut cpu: Vec<Chain<f32, 2, Xoshiro128PlusPlus>> =
+        (0..300).map(|_| Chain::default()).collect();
+    let mut opt = Builder::new(
+        cpu_potential,
+        Hrla::paper(0.01f32).unwrap(),
+        1.0f32,
+        Gaussian::new([0.0; 2], 1.0).unwrap(),
+    )
+    .seed(9)
+    .stop(Stop::new().steps(500))
+    .build(&mut cpu)
+    .unwrap();
+    let cpu_error = opt.run().unwrap_err();
+    let device_potential = DevicePotential::wgsl(
+        "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
+            let x0 = (*x)[0];
+            (*grad)[0] = -4.0 * x0 * x0 * x0;
+            (*grad)[1] = 0.0;
+            return rounded(-(x0 * x0) * (x0 * x0)) + mul((*x)[1], 0.0);
+        }",
+    );
+    let mut ensemble = EnsembleBuilder::new(
+        device_potential,
+        Hrla::paper(0.01f32).unwrap(),
+        1.0f32,
+        Start::gaussian(vec![0.0; 2], 1.0).unwrap(),
+    )
+    .chains(300)
+    .seed(9)
+    .build(common::gpu())
+    .unwrap();
+    let error = ensemble.run(500).unwrap_err();
+    assert!(
+        matches!(cpu_error, hrla::Error::UnboundedBelow { .. }),
+        "{cpu_error}"
+    );
+    assert_eq!(error, GpuError::Kernel(cpu_error));
+    // A failed run stays failed, and has no best to give.
+    assert_eq!(ensemble.run(1).unwrap_err(), error);
+    assert_eq!(ensemble.best().unwrap_err(), error);
+}
+
+/// A potential whose gradient is infinite everywhere but at the start:
+/// every chain diverges at its first step, an error rather than a best.
+#[test]
+fn all_diverged_is_an_error() {
+    let device_potential = DevicePotential::wgsl(
+        "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
+            (*grad)[0] = select(0.0, bitcast<f32>(0x7f800000u), (*x)[0] != 0.0);
+            return (*x)[0] * (*x)[0];
+        }",
+    );
+    let mut ensemble = EnsembleBuilder::new(
+        device_potential,
+        Hrla::paper(0.01).unwrap(),
+        1.0,
+        Start::point(vec![0.0]).unwrap(),
+    )
+    .chains(100)
+    .build(common::gpu())
+    .unwrap();
+    assert_eq!(
+        ensemble.run(10).unwrap_err(),
+        GpuError::Kernel(hrla::Error::AllDiverged { chains: 100 })
+    );
+}
+
+#[test]
+fn a_user_potential_that_does_not_compile_gives_the_compilers_message() {
+    let broken = DevicePotential::wgsl(
+        "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
+            return (*x)[0] * undefined_name;
+        }",
+    );
+    let err = EnsembleBuilder::new(
+        broken,
+        Hrla::paper(0.01).unwrap(),
+        1.0,
+        Start::point(vec![0.0]).unwrap(),
+    )
+    .build(common::gpu())
+    .unwrap_err();
+    let GpuError::Shader(message) = &err else {
+        panic!("not a shader error: {err}");
+    };
+    assert!(message.contains("undefined_name"), "{message}");
+    // The line of the user's text, not of the whole program.
+    assert!(message.contains(":2:"), "{message}");
+    // A wrong signature is caught too.
+    let wrong = DevicePotential::wgsl("fn value_and_gradient(x: f32) -> f32 { return x; }");
+    let err = EnsembleBuilder::new(
+        wrong,
+        Hrla::paper(0.01).unwrap(),
+        1.0,
+        Start::point(vec![0.0]).unwrap(),
+    )
+    .build(common::gpu())
+    .unwrap_err();
+    assert!(matches!(err, GpuError::Shader(_)), "{err}");
+    // The device is still usable after both.
+    assert!(device_run(64, 1, 1).best().is_ok());
+}
+
+/// A user's WGSL quadratic, written as the built-in is, gives the built-in's
+/// bits.
+#[test]
+fn a_user_potential_runs_like_a_builtin() {
+    let user = DevicePotential::wgsl(
+        "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
+            var kr2 = 0.0;
+            for (var i = 0u; i < D; i++) {
+                let r = (*x)[i] - 0.5;
+                let g = mul(2.0, r);
+                (*grad)[i] = g;
+                kr2 += mul(g, r);
+            }
+            return 0.5 * kr2;
+        }",
+    );
+    let builtin = DevicePotential::quadratic(2.0, vec![0.5; 3]).unwrap();
+    let states: Vec<_> = [user, builtin]
+        .into_iter()
+        .map(|p| {
+            let mut e = EnsembleBuilder::new(
+                p,
+                Hrla::paper(0.01).unwrap(),
+                2.0,
+                Start::gaussian(vec![1.0; 3], 1.0).unwrap(),
+            )
+            .chains(256)
+            .build(common::gpu())
+            .unwrap();
+            e.run(50).unwrap();
+            e.snapshot().unwrap()
+        })
+        .collect();
+    assert_eq!(states[0], states[1]);
+}
+
+#[test]
+fn bad_input_is_a_typed_error() {
+    let gpu = common::gpu();
+    let build = |chains: usize, start: Start, potential: DevicePotential| {
+        EnsembleBuilder::new(potential, Hrla::paper(0.01).unwrap(), 1.0, start)
+            .chains(chains)
+            .build(gpu)
+            .map(drop)
+    };
+    let origin = || Start::point(vec![0.0; 3]).unwrap();
+    assert_eq!(
+        build(0, origin(), DevicePotential::Rastrigin),
+        Err(GpuError::Kernel(hrla::Error::Zero { name: "chains" }))
+    );
+    assert_eq!(
+        build(4, Start::point(vec![]).unwrap(), DevicePotential::Rastrigin),
+        Err(GpuError::Kernel(hrla::Error::Zero {
+            name: "dimension D"
+        }))
+    );
+    for builder in [
+        EnsembleBuilder::new(
+            DevicePotential::Rastrigin,
+            Hrla::paper(0.01).unwrap(),
+            1.0,
+            origin(),
+        )
+        .stride(0),
+        EnsembleBuilder::new(
+            DevicePotential::Rastrigin,
+            Hrla::paper(0.01).unwrap(),
+            1.0,
+            origin(),
+        )
+        .steps_per_dispatch(0),
+    ] {
+        assert!(matches!(
+            builder.build(gpu).map(drop),
+            Err(GpuError::Kernel(hrla::Error::Zero { .. }))
+        ));
+    }
+    assert!(matches!(
+        build(
+            4,
+            origin(),
+            DevicePotential::quadratic(1.0, vec![0.0; 2]).unwrap()
+        ),
+        Err(GpuError::Dimension {
+            expected: 3,
+            got: 2,
+            ..
+        })
+    ));
+    assert!(matches!(
+        DevicePotential::quadratic(f64::NAN, vec![0.0]),
+        Err(GpuError::Kernel(hrla::Error::NotPositive { .. }))
+    ));
+    assert!(matches!(
+        Start::gaussian(vec![0.0], -1.0),
+        Err(GpuError::Kernel(hrla::Error::Negative { .. }))
+    ));
+    assert!(matches!(
+        Start::point(vec![f64::INFINITY]),
+        Err(GpuError::Kernel(hrla::Error::NotFinite { .. }))
+    ));
+    // A start where the potential is not finite: the first such chain, as
+    // the CPU's builder reports it.
+    let wall = DevicePotential::wgsl(
+        "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
+            (*grad)[0] = 1.0;
+            return select((*x)[0], bitcast<f32>(0x7f800000u), (*x)[0] < 0.0);
+        }",
+    );
+    let first_negative = (0..64u64)
+        .find(|&c| {
+            let mut rng = Xoshiro128PlusPlus::seed_from_u64(hrla::chain_seed(0, c));
+            1.0 + f32::standard_normal(&mut rng) < 0.0
+        })
+        .unwrap() as usize;
+    assert_eq!(
+        EnsembleBuilder::new(
+            wall,
+            Hrla::paper(0.01).unwrap(),
+            1.0,
+            Start::gaussian(vec![1.0], 1.0).unwrap()
+        )
+        .chains(64)
+        .build(gpu)
+        .map(drop),
+        Err(GpuError::Kernel(hrla::Error::NonFiniteStart {
+            chain: first_negative,
+            what: "value"
+        }))
+    );
+    // The sampler's own checks, at a_0 and along the schedule.
+    assert!(matches!(
+        EnsembleBuilder::new(
+            DevicePotential::Rastrigin,
+            Hrla::paper(0.01).unwrap(),
+            -1.0,
+            origin()
+        )
+        .build(gpu)
+        .map(drop),
+        Err(GpuError::Kernel(hrla::Error::NotPositive { name: "a", .. }))
+    ));
+    let mut e = device_run(40, 1, 1);
+    assert!(matches!(
+        e.probability(3, 0.0, &[1.0]),
+        Err(GpuError::Kernel(hrla::Error::Count { .. }))
+    ));
+    assert!(matches!(
+        e.probability(10, f64::NAN, &[1.0]),
+        Err(GpuError::Kernel(hrla::Error::NotFinite { .. }))
+    ));
+    assert!(matches!(
+        e.probability(10, 0.0, &[1.0; 65]),
+        Err(GpuError::Kernel(hrla::Error::Count { .. }))
+    ));
+    assert!(e.run(0).is_ok());
+    // f64 with a potential that needs the device's sin: refused, not run.
+    if gpu.supports_f64() {
+        assert!(matches!(
+            EnsembleBuilder::new(
+                DevicePotential::Ackley,
+                Hrla::paper(0.01).unwrap(),
+                1.0,
+                origin()
+            )
+            .precision(hrla_gpu::Precision::F64)
+            .build(gpu)
+            .map(drop),
+            Err(GpuError::Unsupported(_))
+        ));
+    }
+    // A schedule that the sampler refuses from iterate 150: the chains
+    // stop at iterate 150, where the CPU's stop, and step on from there.
+    let schedule = FnSchedule(|k: u64| if k < 150 { 4.0 } else { -1.0 });
+    let mut e = EnsembleBuilder::new(
+        DevicePotential::Rastrigin,
+        Hrla::paper(0.01).unwrap(),
+        schedule,
+        origin(),
+    )
+    .chains(8)
+    .steps_per_dispatch(100)
+    .build(gpu)
+    .unwrap();
+    assert!(matches!(
+        e.run(300),
+        Err(GpuError::Kernel(hrla::Error::NotPositive { name: "a", .. }))
+    ));
+    assert_eq!(e.iteration(), 150);
+    // Positions of 2^21 chains of dimension 1024: 8 GiB in one binding,
+    // beyond every device's limit.
+    assert!(matches!(
+        build(
+            1 << 21,
+            Start::point(vec![0.0; 1024]).unwrap(),
+            DevicePotential::DoubleWell
+        ),
+        Err(GpuError::TooLarge { .. })
+    ));
+    assert!(matches!(
+        build(
+            4,
+            Start::point(vec![0.0; 1025]).unwrap(),
+            DevicePotential::DoubleWell
+        ),
+        Err(GpuError::Kernel(hrla::Error::Count {
+            name: "dimension D",
+            ..
+        }))
+    ));
+}
+
+/// In f64 (where the adapter has it): the best and the empirical
+/// probability against the CPU's f64 optimiser, whose chains the device's
+/// are bit for bit.
+#[test]
+fn best_and_probability_in_f64() {
+    let gpu = common::gpu();
+    if !gpu.supports_f64() {
+        eprintln!("the adapter has no SHADER_F64: the f64 reductions do not apply");
+        return;
+    }
+    let (n, steps, stride) = (3000, 120, 7);
+    let mut cpu: Vec<Chain<f64, D, Xoshiro128PlusPlus>> =
+        (0..n).map(|_| Chain::default()).collect();
+    let mut opt = Builder::new(
+        Rastrigin,
+        Hrla::paper(0.01).unwrap(),
+        4.0,
+        Gaussian::new([3.0; D], 10f64.sqrt()).unwrap(),
+    )
+    .seed(SEED)
+    .stride(stride)
+    .stop(Stop::new().steps(steps))
+    .build(&mut cpu)
+    .unwrap();
+    opt.run().unwrap();
+    let (c, b) = (opt.best_chain(), *opt.best());
+    let mut ensemble = EnsembleBuilder::new(
+        DevicePotential::Rastrigin,
+        Hrla::paper(0.01).unwrap(),
+        4.0,
+        Start::paper(D),
+    )
+    .chains(n)
+    .seed(SEED)
+    .stride(stride)
+    .precision(hrla_gpu::Precision::F64)
+    .build(gpu)
+    .unwrap();
+    ensemble.run(steps).unwrap();
+    let best = ensemble.best().unwrap();
+    assert_eq!(
+        (best.chain, best.value.to_bits(), best.iteration, best.x),
+        (c, b.value.to_bits(), b.iteration, b.x.to_vec())
+    );
+    let eps = [5.0, 10.0, 20.0];
+    let device = ensemble.probability(10, 0.0, &eps).unwrap();
+    for (p, &e) in device.iter().zip(&eps) {
+        let hits = cpu
+            .chunks(10)
+            .filter(|run| run.iter().any(|ch| ch.value() <= e))
+            .count();
+        assert_eq!(p.current, hits as f64 / (n / 10) as f64, "eps {e}");
+    }
+}
