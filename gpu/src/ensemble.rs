@@ -158,7 +158,10 @@ where
     /// ([`hrla::Error::Zero`]), more chains or a larger dimension than the
     /// backend takes ([`hrla::Error::Count`]), the sampler's error at
     /// `a_0`, a start whose position, value or gradient is not finite
-    /// ([`hrla::Error::NonFiniteStart`], the first such chain);
+    /// ([`hrla::Error::NonFiniteStart`], the first such chain, with
+    /// `tries = 1`: unlike the CPU's builder, which redraws an infeasible
+    /// start up to [`hrla::START_TRIES`] times, the device draws each start
+    /// once);
     /// [`GpuError::Dimension`] when the potential's dimension is not the
     /// start's; [`GpuError::TooLarge`] when a buffer exceeds the device's
     /// limit.
@@ -569,7 +572,12 @@ impl<'g> Ensemble<'g> {
             } else {
                 continue;
             };
-            return Err(hrla::Error::NonFiniteStart { chain: c, what }.into());
+            return Err(hrla::Error::NonFiniteStart {
+                chain: c,
+                what,
+                tries: 1,
+            }
+            .into());
         }
         Ok(())
     }

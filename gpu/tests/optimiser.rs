@@ -312,8 +312,8 @@ fn bad_input_is_a_typed_error() {
         Start::point(vec![f64::INFINITY]),
         Err(GpuError::Kernel(hrla::Error::NotFinite { .. }))
     ));
-    // A start where the potential is not finite: the first such chain, as
-    // the CPU's builder reports it.
+    // A start where the potential is not finite: the first such chain
+    // (the device draws each start once, where the CPU's builder redraws).
     let wall = DevicePotential::wgsl(
         "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
             (*grad)[0] = 1.0;
@@ -338,7 +338,8 @@ fn bad_input_is_a_typed_error() {
         .map(drop),
         Err(GpuError::Kernel(hrla::Error::NonFiniteStart {
             chain: first_negative,
-            what: "value"
+            what: "value",
+            tries: 1,
         }))
     );
     // The sampler's own checks, at a_0 and along the schedule.
