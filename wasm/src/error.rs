@@ -64,6 +64,25 @@ pub enum Error {
     Grid(GridError),
     /// The kernel refused a parameter, or a run failed.
     Kernel(hrla::Error),
+    /// The chain asked about has diverged: it is frozen and has no next
+    /// step.
+    Diverged {
+        /// The chain.
+        chain: usize,
+    },
+    /// Every chain has run away beyond the escape radius or diverged: the
+    /// step is too long for the landscape, or the potential does not hold
+    /// the chains. The run has no result to trust.
+    RanAway {
+        /// The number of chains.
+        chains: usize,
+        /// The escape radius.
+        radius: f64,
+        /// The largest finite `|x|` of a chain (0 when every chain diverged).
+        farthest: f64,
+        /// How many of the chains diverged rather than ran away.
+        diverged: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -99,6 +118,29 @@ impl fmt::Display for Error {
             ),
             Self::Grid(e) => fmt::Display::fmt(e, f),
             Self::Kernel(e) => fmt::Display::fmt(e, f),
+            Self::Diverged { chain } => write!(
+                f,
+                "`chain` {chain} has diverged: it is frozen and has no next step"
+            ),
+            Self::RanAway {
+                chains,
+                radius,
+                farthest,
+                diverged,
+            } => {
+                write!(
+                    f,
+                    "all {chains} chains ran away beyond |x| = {} (the farthest at {farthest:.2e})",
+                    Num(*radius)
+                )?;
+                if *diverged > 0 {
+                    write!(f, " or diverged ({diverged} of them)")?;
+                }
+                f.write_str(
+                    ": the step is too long for this landscape, or U does not hold the chains: \
+                     try a smaller `h`",
+                )
+            }
         }
     }
 }
@@ -122,6 +164,8 @@ impl Error {
             Self::BadSeed => Some("seed"),
             Self::Grid(e) => Some(e.field()),
             Self::Kernel(e) => kernel_field(e),
+            Self::Diverged { .. } => Some("chain"),
+            Self::RanAway { .. } => Some("h"),
         }
     }
 

@@ -9,7 +9,7 @@ use crate::landscape::{Landscape, UnknownLandscape};
 use crate::read::{get, get_as, get_index, is_array, number, only_keys};
 
 /// The keys a settings object may have.
-pub const KEYS: [&str; 11] = [
+pub const KEYS: [&str; 12] = [
     "potential",
     "sampler",
     "a",
@@ -21,6 +21,7 @@ pub const KEYS: [&str; 11] = [
     "seed",
     "stopSteps",
     "stopTarget",
+    "escape",
 ];
 
 /// The keys of the `annealing` object.
@@ -90,6 +91,10 @@ pub struct Settings {
     pub stop_steps: Option<u64>,
     /// Stop once the best value is at most this (none: never).
     pub stop_target: Option<f64>,
+    /// The escape radius `R`: a chain with `|x| > R` has run away, and the
+    /// run fails ([`Error::RanAway`]) once every chain has run away or
+    /// diverged (none: chains may wander anywhere finite).
+    pub escape: Option<f64>,
 }
 
 impl Default for Settings {
@@ -107,6 +112,7 @@ impl Default for Settings {
             seed: 1,
             stop_steps: None,
             stop_target: None,
+            escape: None,
         }
     }
 }
@@ -125,7 +131,8 @@ impl Settings {
     ///   h: number, chains: number,
     ///   centre: [number, number], spread: number,
     ///   seed: number | bigint,
-    ///   stopSteps: number | null, stopTarget: number | null }  // optional
+    ///   stopSteps: number | null, stopTarget: number | null,   // optional
+    ///   escape: number | null }                                // optional, > 0
     /// ```
     ///
     /// Numbers are checked only for type here (and for being whole where a
@@ -188,6 +195,18 @@ impl Settings {
             .map(|v| safe_whole(v).ok_or(Error::NotAnInteger("stopSteps")))
             .transpose()?;
         let stop_target = optional("stopTarget")?;
+        let escape = optional("escape")?
+            .map(|r| {
+                if r.is_finite() && r > 0.0 {
+                    Ok(r)
+                } else {
+                    Err(hrla::Error::NotPositive {
+                        name: "escape",
+                        value: r,
+                    })
+                }
+            })
+            .transpose()?;
         Ok(Self {
             landscape,
             sampler,
@@ -199,6 +218,7 @@ impl Settings {
             seed,
             stop_steps,
             stop_target,
+            escape,
         })
     }
 
