@@ -2,11 +2,13 @@
 // compare mode) -> canvases, plots and readouts, stepped within a time
 // budget every animation frame.
 
-import { LANDSCAPES } from "./landscapes.js";
+import { LANDSCAPES, MEASURED, PAPER_AND_MEASUREMENT } from "./landscapes.js";
 import { FIELDS, fieldOf, parseNumber, plain, readAddress } from "./fields.js";
 import { stepWithin } from "./pace.js";
 import { Frame, RUN_COLOURS, colourScale, drawChains, drawColourBar, drawLandscape } from "./landscape.js";
 import { drawHistogram, drawLinePlot, exactMarginals, formatCount, histogram } from "./plots.js";
+import { describe, drawPhaseInset, drawPositionInset, readNextStep } from "./anatomy.js";
+import { COMPARE_HINT, SAMPLER_HINTS } from "./words.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -21,12 +23,22 @@ const MARGINAL_GRID = 240;
 const MAX_PIXELS = 1200;
 /** Histogram bins per axis. */
 const BINS = 40;
+/**
+ * A chain beyond this many half-widths of the landscape's view has run
+ * away: no exact sampler of exp(-aU) goes there for any landscape offered,
+ * so it is the step's instability, or a potential that does not hold the
+ * chains.
+ */
+const ESCAPE_HALF_WIDTHS = 1000;
+/** The settings a landscape suggests, by control, and how the notes name them. */
+const SUGGESTED = { cx: "c₁", cy: "c₂", spread: "s", a: "a", aHigh: "a_high", h: "h", eps: "ε" };
 
 let sim = null;
 const state = {
   runs: [],
+  /** Whether the visitor wants the run to play (it does when there is a live run). */
   playing: true,
-  /** Steps the Step control asked for and the frames have not done yet. */
+  /** Steps the "." key asked for and the frames have not done yet. */
   pending: 0,
   frame: null,
   dpr: 1,
@@ -43,9 +55,15 @@ const state = {
   gaps: [],
   /** Problems found in the address, by control (null: not a control's). */
   addressProblems: [],
+  /** The values the current landscape suggested, by control. */
+  suggested: {},
+  /** The last step laid bare: { iteration, chain, parts: [{ sampler, colour, law, draw, drawY }] }. */
+  anatomy: null,
+  /** The chain whose step is laid bare. */
+  anatomyChain: 0,
   /** The clock of the time budget: replaceable by a test's clock. */
   now: () => performance.now(),
-  lastFrame: { asked: 0, done: 0 },
+  lastFrame: { asked: 0, done: 0, ended: false },
   meter: { since: performance.now(), frames: 0, steps: 0 },
 };
 
@@ -58,6 +76,12 @@ function text(id) {
 
 function radio(name) {
   return document.querySelector(`input[name=${name}]:checked`).value;
+}
+
+/** The escape radius of the landscape: ESCAPE_HALF_WIDTHS of its view. */
+function escapeRadius(potential) {
+  const v = LANDSCAPES[potential].view;
+  return ESCAPE_HALF_WIDTHS * v.half + Math.hypot(v.cx, v.cy);
 }
 
 /**
@@ -93,8 +117,86 @@ function readSettings() {
     seed: problems.some((p) => p.id === "seed") ? 0n : BigInt(seedText),
     stopSteps: num("stopSteps", true),
     stopTarget: gap === null ? null : sim.globalMinimum(potential) + gap,
+    escape: escapeRadius(potential),
   };
   return { settings, problems };
+}
+
+/** `settings` with the control `id`'s part replaced by a value the kernel accepts. */
+function withFallback(settings, id) {
+  const l = LANDSCAPES[settings.potential] ?? LANDSCAPES.rastrigin;
+  const s = { ...settings, centre: [...settings.centre] };
+  const annealing = s.annealing && { ...s.annealing };
+  switch (id) {
+    case "h":
+      s.h = l.h;
+      break;
+    case "a":
+      s.a = l.a;
+      break;
+    case "aLow":
+      if (annealing) annealing.aLow = 0.1;
+      break;
+    case "aHigh":
+      if (annealing) annealing.aHigh = l.a;
+      break;
+    case "K":
+      if (annealing) annealing.steps = 10000;
+      break;
+    case "chains":
+      s.chains = 256;
+      break;
+    case "cx":
+    case "cy":
+      s.centre = [l.start.cx, l.start.cy];
+      break;
+    case "spread":
+      s.spread = l.start.spread;
+      break;
+    case "seed":
+      s.seed = 1n;
+      break;
+    case "stopSteps":
+      s.stopSteps = null;
+      break;
+    case "stopTarget":
+      s.stopTarget = null;
+      break;
+    case "sampler":
+      s.sampler = "hrla";
+      break;
+    default:
+      return null;
+  }
+  s.annealing = annealing;
+  return s;
+}
+
+/**
+ * Every setting the kernel refuses, not only the first: each refusal's
+ * field is given an accepted value and the settings are tried again, so
+ * that every bad field is named at once, each in the kernel's own words.
+ * Returns [{ id, text }] (id null for a refusal of no field).
+ */
+function refusals(settings, problems) {
+  const found = [];
+  let s = settings;
+  for (const p of problems) s = withFallback(s, p.id) ?? s;
+  const seen = new Set(problems.map((p) => p.id));
+  for (let tries = 0; tries <= FIELDS.length; tries++) {
+    try {
+      sim.probe(s);
+      return found;
+    } catch (e) {
+      const id = fieldOf(e);
+      found.push({ id, text: plain(e.message) });
+      const next = id && !seen.has(id) ? withFallback(s, id) : null;
+      if (!next) return found;
+      seen.add(id);
+      s = next;
+    }
+  }
+  return found;
 }
 
 function groupSize() {
@@ -119,14 +221,6 @@ function clearErrors() {
   for (const p of state.addressProblems) fieldError(p.id ?? "general", p.text);
 }
 
-/** A refused setting or a failed run: next to the control it is about, and why nothing runs. */
-function showKernelError(e, sampler = null) {
-  const id = fieldOf(e);
-  const who = sampler ? `${sampler.toUpperCase()}: ` : "";
-  if (id) fieldError(id, who + plain(e.message));
-  return id;
-}
-
 // ---- The run. ----
 
 function clearRuns() {
@@ -139,6 +233,7 @@ function restart() {
   clearRuns();
   clearErrors();
   state.pending = 0;
+  state.anatomy = null;
   const potential = $("potential").value;
   if (potential !== state.potential || !state.grid) {
     state.potential = potential;
@@ -153,29 +248,52 @@ function restart() {
   } catch (e) {
     problems.push({ id: e.id, text: e.message });
   }
-  for (const p of problems) fieldError(p.id, p.text);
   const compare = $("compare").checked;
   $("sampler").disabled = compare;
-  if (problems.length === 0) {
-    const samplers = compare ? SAMPLERS : [settings.sampler];
+  const samplers = compare ? SAMPLERS : [settings.sampler];
+  const refused = [...problems, ...refusals({ ...settings, sampler: samplers[0] }, problems.filter((p) => p.id !== "group"))];
+  for (const p of refused) {
+    if (p.id) fieldError(p.id, p.text);
+    else $("error").textContent = p.text;
+  }
+  if (refused.length === 0) {
     try {
       state.runs = samplers.map((sampler) => new sim.Run({ ...settings, sampler }, n));
     } catch (e) {
+      // Refused by one sampler only (the settings passed HRLA's check).
       clearRuns();
-      showKernelError(e);
-      if (!fieldOf(e)) $("error").textContent = plain(e.message);
+      const id = fieldOf(e);
+      if (id) fieldError(id, plain(e.message));
+      else $("error").textContent = plain(e.message);
     }
   }
   if (state.runs.length === 0) {
     const count = document.querySelectorAll("[aria-invalid]").length;
-    $("error").textContent ||= `No run: ${count === 1 ? "a setting is" : "some settings are"} refused (marked beside ${count === 1 ? "it" : "them"}).`;
+    $("error").textContent ||= `No run: ${count === 1 ? "a setting is" : `${count} settings are`} refused (marked beside ${count === 1 ? "it" : "them"}).`;
   } else if (n > state.runs[0].n) {
     $("err-group").textContent = `only ${state.runs[0].n} chains: one group of ${state.runs[0].n}`;
   }
+  if (state.anatomyChain >= (state.runs[0]?.n ?? 0)) state.anatomyChain = 0;
   syncControls();
   writeUrl();
   resetMeter();
   layout(true);
+}
+
+/** Whether any run can still step. */
+const anyLive = () => state.runs.some((r) => r.live);
+
+/** A run's failure, said once: in the alert, with its field marked and a short hint there. */
+function showFailure(run, e) {
+  const multi = state.runs.length > 1;
+  $("error").textContent = (multi ? `${run.sampler.toUpperCase()} stopped: ` : "") + plain(e.message);
+  const id = fieldOf(e);
+  if (id === "h") {
+    $("err-h").textContent = "too long for this landscape: try a smaller h";
+    $("h").setAttribute("aria-invalid", "true");
+  } else if (id) {
+    $(id)?.setAttribute("aria-invalid", "true");
+  }
 }
 
 /** Advances every live run by k steps; false once none can go on. */
@@ -185,21 +303,20 @@ function advanceRuns(k) {
     try {
       run.advance(k);
     } catch (e) {
-      const multi = state.runs.length > 1;
-      showKernelError(e, multi ? run.sampler : null);
-      $("error").textContent = (multi ? `${run.sampler.toUpperCase()} stopped: ` : "") + plain(e.message);
+      showFailure(run, e);
     }
   }
-  return state.runs.some((r) => r.live);
+  return anyLive();
 }
 
 /** Up to `wanted` steps within the frame's time budget; returns the steps done. */
 function stepFrame(wanted) {
-  if (state.runs.length === 0 || wanted <= 0) return 0;
+  if (!anyLive() || wanted <= 0) return 0;
   const { done } = stepWithin(wanted, advanceRuns, state.now);
-  state.lastFrame = { asked: wanted, done };
+  const ended = !anyLive();
+  state.lastFrame = { asked: wanted, done, ended };
   state.meter.steps += done;
-  if (!state.runs.some((r) => r.live)) {
+  if (ended) {
     state.pending = 0;
     setPlaying(false);
   }
@@ -237,6 +354,124 @@ function setOutput(id, text, exact) {
   el.dataset.value = exact === undefined ? "" : String(exact);
 }
 
+// ---- One step laid bare. ----
+
+/**
+ * One step of every live run, paused, with the law of the chosen chain's
+ * step read from the kernel before it and the draw after it.
+ */
+function stepOnce() {
+  setPlaying(false);
+  state.pending = 0;
+  if (!anyLive()) return;
+  const c = state.anatomyChain;
+  const before = state.runs.map((run) => {
+    if (!run.live || run.isLost(c)) return null;
+    try {
+      return readNextStep(run.nextStep(c));
+    } catch {
+      // A chain that diverged has no next step: nothing to lay bare.
+      return null;
+    }
+  });
+  advanceRuns(1);
+  state.lastFrame = { asked: 1, done: 1, ended: !anyLive() };
+  if (!anyLive()) setPlaying(false);
+  const colours = state.runs.length > 1 ? RUN_COLOURS : ["#ffffff"];
+  state.anatomy = {
+    iteration: state.runs[0].iteration,
+    chain: c,
+    parts: state.runs
+      .map((run, k) => {
+        run.rebind();
+        const law = before[k];
+        if (!law) return null;
+        return { sampler: run.sampler, colour: colours[k], law, draw: [run.x[2 * c], run.x[2 * c + 1]], drawY: [run.y[2 * c], run.y[2 * c + 1]] };
+      })
+      .filter(Boolean),
+  };
+  buildAnatomy();
+  render();
+}
+
+/** The anatomy panel's canvases and words, one column per run. */
+function buildAnatomy() {
+  const a = state.anatomy;
+  const box = $("anatomy-runs");
+  box.replaceChildren();
+  if (!a || a.parts.length === 0) return;
+  $("anatomy-intro").textContent =
+    `Step ${a.iteration - 1} → ${a.iteration} of chain ${a.chain} (ringed in the picture), at a = ${+a.parts[0].law.a.toPrecision(4)}, ` +
+    "magnified. Click a chain in the picture to follow another one; Step (s) takes the next step.";
+  for (const part of a.parts) {
+    const column = document.createElement("div");
+    column.className = "anatomy-run";
+    const title = document.createElement("h3");
+    title.innerHTML = `<span class="swatch" style="background:${part.colour}"></span>${part.sampler.toUpperCase()}`;
+    const position = document.createElement("canvas");
+    position.className = "position";
+    position.setAttribute("role", "img");
+    position.setAttribute("aria-label", `${part.sampler.toUpperCase()}: the step in the position plane, magnified`);
+    const phase = document.createElement("canvas");
+    phase.className = "phase";
+    phase.setAttribute("role", "img");
+    phase.setAttribute("aria-label", `${part.sampler.toUpperCase()}: the step's law of the first coordinate's position and velocity`);
+    const list = document.createElement("ol");
+    list.innerHTML = describe(part.sampler, part.law, part.draw)
+      .map((t) => `<li>${t}</li>`)
+      .join("");
+    column.append(title, position, phase, list);
+    box.append(column);
+  }
+  $("anatomy").hidden = false;
+  drawAnatomy();
+}
+
+/** Draws the insets; returns their geometry (see drawPositionInset). */
+function drawAnatomy() {
+  const a = state.anatomy;
+  if (!a) return [];
+  const columns = $("anatomy-runs").children;
+  return a.parts.map((part, k) => {
+    const geometry = drawPositionInset(columns[k].querySelector("canvas.position"), part.law, part.draw);
+    drawPhaseInset(columns[k].querySelector("canvas.phase"), part.law, [part.draw[0], part.drawY[0]]);
+    return { ...geometry, zoom: geometry.scale / (state.frame.width / (state.frame.x1 - state.frame.x0)) };
+  });
+}
+
+/** Hides the panel once the run has moved on or restarted. */
+function syncAnatomy() {
+  const a = state.anatomy;
+  const current = a && state.runs.length > 0 && state.runs[0].iteration === a.iteration;
+  if (!current && !$("anatomy").hidden) {
+    $("anatomy").hidden = true;
+    state.anatomy = null;
+  }
+}
+
+/** Picks the chain nearest a click on the picture for the next step laid bare. */
+function pickChain(event) {
+  const run = state.runs[0];
+  if (!run) return;
+  const box = $("particles").getBoundingClientRect();
+  const px = event.clientX - box.left;
+  const py = event.clientY - box.top;
+  let best = -1;
+  let bestD = Infinity;
+  for (let c = 0; c < run.n; c++) {
+    if (run.isLost(c)) continue;
+    const d = Math.hypot(state.frame.px(run.x[2 * c]) - px, state.frame.py(run.x[2 * c + 1]) - py);
+    if (d < bestD) {
+      bestD = d;
+      best = c;
+    }
+  }
+  if (best >= 0 && bestD < 24) {
+    state.anatomyChain = best;
+    render();
+  }
+}
+
 // ---- Drawing. ----
 
 /** The background and the exact marginals, at the current a (recomputed when a moved by over 1%). */
@@ -267,6 +502,8 @@ function render() {
   const frame = state.frame;
   if (!frame) return;
   refreshBackground(false);
+  syncAnatomy();
+  syncTransport();
   const runs = state.runs;
   // The grids are allocated in wasm memory: it may have grown.
   for (const r of runs) r.rebind();
@@ -276,16 +513,21 @@ function render() {
       const c = $(id);
       c.getContext("2d").clearRect(0, 0, c.width, c.height);
     }
-    for (const id of ["out-iteration", "out-best", "out-best-x", "out-best-at", "out-a", "out-diverged", "out-outside", "out-prob", "out-frame-steps"]) setOutput(id, "–");
+    for (const id of ["out-iteration", "out-best", "out-best-x", "out-best-at", "out-a", "out-lost", "out-outside", "out-prob", "out-frame-steps"]) setOutput(id, "–");
     $("status").replaceChildren();
+    delete $("status").dataset.key;
     return;
   }
   const colours = runs.length > 1 ? RUN_COLOURS : ["#ffffff"];
+  const lead = runs[0];
+  const c = state.anatomyChain;
+  const mark = state.anatomy && !lead.isLost(c) ? [lead.x[2 * c], lead.x[2 * c + 1]] : null;
   drawChains(
     $("particles"),
     frame,
     state.dpr,
     runs.map((r, k) => ({ trails: r.trails, x: r.x, n: r.n, best: [r.s[S.BestX0], r.s[S.BestX1]], colour: colours[k] })),
+    mark,
   );
   const lineColours = runs.length > 1 ? RUN_COLOURS : ["#ff5a36"];
   drawLinePlot(
@@ -345,7 +587,11 @@ function readouts(runs, eps) {
   setOutput("out-best-x", `(${coordinate(s[S.BestX0])}, ${coordinate(s[S.BestX1])})`);
   setOutput("out-best-at", String(s[S.BestIteration]), s[S.BestIteration]);
   setOutput("out-a", s[S.A].toPrecision(4), s[S.A]);
-  setOutput("out-diverged", `${s[S.Diverged]} of ${r.n}`, s[S.Diverged]);
+  const lost = r.lost();
+  setOutput("out-lost", `${lost.diverged + lost.ranAway} of ${r.n}`, lost.diverged + lost.ranAway);
+  $("lost-box").title =
+    `Chains lost: ${lost.diverged} diverged (their position overflowed: frozen), ${lost.ranAway} ran away beyond |x| = ${formatRadius(r.escape)} ` +
+    `(${ESCAPE_HALF_WIDTHS} times the view's half-width); they no longer count`;
   const outside = r.outside(f.x0, f.x1, f.y0, f.y1);
   setOutput("out-outside", `${outside} of ${r.n}`, outside);
   const p = r.fractionWithin(eps);
@@ -354,14 +600,22 @@ function readouts(runs, eps) {
     Number.isFinite(p) ? `${p.toFixed(2)}: ${r.groupsWithin(eps)} of ${r.groups} groups of ${r.groupSize}` : "–",
     p,
   );
-  const { asked, done } = state.lastFrame;
-  setOutput("out-frame-steps", asked ? (done < asked ? `${formatCount(done)} of ${formatCount(asked)} (time budget)` : `${formatCount(done)}`) : "–", done);
-  // What went wrong or ended, in words, beside the picture.
+  const { asked, done, ended } = state.lastFrame;
+  const why = ended ? "the run ended" : "time budget";
+  setOutput("out-frame-steps", asked ? (done < asked ? `${formatCount(done)} of ${formatCount(asked)} (${why})` : `${formatCount(done)}`) : "–", done);
+  // What went wrong or ended, in words, beside the picture; a failed run's
+  // failure is said once, in the alert above.
   const lines = [];
   for (const run of runs) {
+    if (run.failure) continue;
     const who = runs.length > 1 ? `${run.sampler.toUpperCase()}: ` : "";
-    const d = run.s[S.Diverged];
-    if (d > 0) lines.push(["warn", `${who}${d} of ${run.n} chains diverged (their position overflowed): they are frozen and no longer count. A smaller step h avoids this.`]);
+    const l = run.lost();
+    if (l.diverged + l.ranAway > 0) {
+      const parts = [];
+      if (l.diverged) parts.push(`${l.diverged} diverged (their position overflowed)`);
+      if (l.ranAway) parts.push(`${l.ranAway} ran away beyond |x| = ${formatRadius(run.escape)}`);
+      lines.push(["warn", `${who}${parts.join(" and ")}, of ${run.n} chains: they no longer count. A smaller step h avoids this.`]);
+    }
     const out = run.outside(f.x0, f.x1, f.y0, f.y1);
     if (out > 0) lines.push(["warn", `${who}${out} of ${run.n} chains are outside the picture (the farthest at |x| = ${run.reach().toPrecision(3)}).`]);
     if (run.termination) lines.push(["info", `${who}stopped: ${run.termination} at iteration ${run.iteration}.`]);
@@ -388,7 +642,7 @@ function readouts(runs, eps) {
       body.replaceChildren(
         ...runs.map((run, k) => {
           const tr = document.createElement("tr");
-          tr.innerHTML = `<th scope="row"><span class="swatch" style="background:${RUN_COLOURS[k]}"></span>${run.sampler.toUpperCase()}</th><td><output id="cmp-best-${run.sampler}"></output></td><td><output id="cmp-at-${run.sampler}"></output></td><td><output id="cmp-prob-${run.sampler}"></output></td><td><output id="cmp-diverged-${run.sampler}"></output></td>`;
+          tr.innerHTML = `<th scope="row"><span class="swatch" style="background:${RUN_COLOURS[k]}"></span>${run.sampler.toUpperCase()}</th><td><output id="cmp-best-${run.sampler}"></output></td><td><output id="cmp-at-${run.sampler}"></output></td><td><output id="cmp-prob-${run.sampler}"></output></td><td><output id="cmp-lost-${run.sampler}"></output></td>`;
           return tr;
         }),
       );
@@ -399,9 +653,15 @@ function readouts(runs, eps) {
       setOutput(`cmp-at-${run.sampler}`, String(q[S.BestIteration]), q[S.BestIteration]);
       const pr = run.fractionWithin(eps);
       setOutput(`cmp-prob-${run.sampler}`, Number.isFinite(pr) ? pr.toFixed(2) : "–", pr);
-      setOutput(`cmp-diverged-${run.sampler}`, String(q[S.Diverged]), q[S.Diverged]);
+      const l = run.lost();
+      setOutput(`cmp-lost-${run.sampler}`, String(l.diverged + l.ranAway), l.diverged + l.ranAway);
     }
   }
+}
+
+/** An escape radius in a few characters. */
+function formatRadius(r) {
+  return Number.isFinite(r) ? String(+r.toPrecision(3)) : "∞";
 }
 
 /** A coordinate in at most 9 characters, without rounding a small one to 0. */
@@ -422,18 +682,37 @@ function layout(force = false) {
   }
   refreshBackground(true);
   render();
+  drawAnatomy();
 }
 
 function describeLandscape() {
-  const l = LANDSCAPES[$("potential").value];
+  const name = $("potential").value;
+  const l = LANDSCAPES[name];
   $("potential-about").textContent = l.about;
   $("formula").textContent = l.formula;
+  $("compare-landscape").textContent = l.compare;
+  $("compare-measured-caption").textContent =
+    `Success rate P on ${l.label} at its defaults (a = ${l.a}, h = ${l.h}, ε = ${l.eps}), mean over seeds 1 to ${MEASURED.seeds}, ` +
+    `${MEASURED.chains} chains in groups of ${MEASURED.group}, measured on this page's kernel`;
+  const head = $("compare-measured").tHead.rows[0];
+  head.replaceChildren(...["method", ...MEASURED.steps.map((k) => `after ${k} steps`)].map((t) => Object.assign(document.createElement("th"), { scope: "col", textContent: t })));
+  $("compare-measured").tBodies[0].replaceChildren(
+    ...SAMPLERS.map((s, k) => {
+      const tr = document.createElement("tr");
+      tr.innerHTML = `<th scope="row"><span class="swatch" style="background:${RUN_COLOURS[k]}"></span>${s.toUpperCase()}</th>${l.measured[s].map((v) => `<td>${v.toFixed(2)}</td>`).join("")}`;
+      return tr;
+    }),
+  );
+  $("compare-paper").innerHTML = PAPER_AND_MEASUREMENT.replace("docs/REPRODUCTION.md", "<code>docs/REPRODUCTION.md</code>");
 }
 
 function syncControls() {
   const linear = radio("schedule") === "linear";
   $("a").disabled = linear;
   for (const id of ["aLow", "aHigh", "K"]) $(id).disabled = !linear;
+  const compare = $("compare").checked;
+  $("hint-sampler").textContent = compare ? COMPARE_HINT : SAMPLER_HINTS[$("sampler").value];
+  $("compare-about").hidden = state.runs.length < 2;
   const legend = $("legend");
   legend.hidden = state.runs.length < 2;
   if (state.runs.length > 1) {
@@ -441,12 +720,24 @@ function syncControls() {
       .map((r, k) => `<span class="swatch" style="background:${RUN_COLOURS[k]}"></span>${r.sampler.toUpperCase()}`)
       .join(" ");
   }
+  syncTransport();
+}
+
+/** Play and Step only when there is a live run; Play's label says what a press does. */
+function syncTransport() {
+  const live = anyLive();
+  const playing = state.playing && live;
+  const play = $("play");
+  const label = playing ? "Pause" : "Play";
+  if (play.textContent !== label) play.textContent = label;
+  play.setAttribute("aria-pressed", String(playing));
+  play.disabled = !live;
+  $("step").disabled = !live;
 }
 
 function setPlaying(on) {
   state.playing = on;
-  $("play").textContent = on ? "Pause" : "Play";
-  $("play").setAttribute("aria-pressed", String(on));
+  syncTransport();
   resetMeter();
   writeUrl();
 }
@@ -470,7 +761,7 @@ function readUrl() {
   state.addressProblems = problems;
   // A landscape brings its own start, temperature and step first; the
   // address's other values then override them.
-  if (values.potential) applyLandscape(values.potential);
+  if (values.potential) applyLandscape(values.potential, false);
   for (const [id, value] of Object.entries(values)) {
     const f = FIELDS.find((g) => g.id === id);
     if (f.kind === "choice") {
@@ -478,24 +769,50 @@ function readUrl() {
     } else if (f.kind === "flag") $(id).checked = value === "1";
     else if (id !== "potential") $(id).value = value;
   }
-  if (values.play === "0") setPlaying(false);
+  if (values.play === "0") state.playing = false;
 }
 
-/** Sets the landscape and its recommended start, a, h and ε. */
-function applyLandscape(name) {
+/** The settings landscape `name` suggests, by control. */
+function suggestions(name) {
   const l = LANDSCAPES[name];
-  $("potential").value = name;
-  for (const [id, v] of [
-    ["cx", l.start.cx],
-    ["cy", l.start.cy],
-    ["spread", l.start.spread],
-    ["a", l.a],
-    ["aHigh", l.a],
-    ["h", l.h],
-    ["eps", l.eps],
-  ]) {
-    $(id).value = String(v);
+  return { cx: l.start.cx, cy: l.start.cy, spread: l.start.spread, a: l.a, aHigh: l.a, h: l.h, eps: l.eps };
+}
+
+/**
+ * Sets the landscape and the start, a, h and ε it suggests. With `keep`,
+ * a setting the visitor changed from the previous landscape's suggestion
+ * is kept, and the note beside the landscape says which, with a button
+ * that takes the landscape's own.
+ */
+function applyLandscape(name, keep) {
+  const want = suggestions(name);
+  const kept = [];
+  for (const id of Object.keys(SUGGESTED)) {
+    const mine = text(id);
+    if (keep && state.suggested[id] !== undefined && mine !== String(state.suggested[id])) kept.push({ id, mine });
+    else $(id).value = String(want[id]);
   }
+  $("potential").value = name;
+  state.suggested = want;
+  const note = $("landscape-note");
+  if (kept.length === 0) {
+    note.replaceChildren();
+    return;
+  }
+  const label = LANDSCAPES[name].label;
+  note.textContent = `${label}'s suggested settings are in place, except yours: ${kept
+    .map(({ id, mine }) => `kept your ${SUGGESTED[id]} = ${mine} (${label}'s: ${want[id]})`)
+    .join("; ")}.`;
+  const use = document.createElement("button");
+  use.type = "button";
+  use.id = "use-suggested";
+  use.textContent = `use ${label}'s`;
+  use.addEventListener("click", () => {
+    for (const { id } of kept) forgetAddressProblem(id);
+    applyLandscape(name, false);
+    restart();
+  });
+  note.append(" ", use);
 }
 
 function forgetAddressProblem(id) {
@@ -506,7 +823,7 @@ function wire() {
   for (const id of RUN_INPUTS) {
     $(id).addEventListener("change", () => {
       forgetAddressProblem(id);
-      if (id === "potential") applyLandscape($("potential").value);
+      if (id === "potential") applyLandscape($("potential").value, true);
       restart();
     });
   }
@@ -538,8 +855,9 @@ function wire() {
   }
   $("controls").addEventListener("submit", (e) => e.preventDefault());
   $("play").addEventListener("click", () => setPlaying(!state.playing));
-  $("step").addEventListener("click", step);
+  $("step").addEventListener("click", stepOnce);
   $("reset").addEventListener("click", restart);
+  $("particles").addEventListener("click", pickChain);
   $("random-seed").addEventListener("click", () => {
     $("seed").value = sim.randomSeed().toString();
     forgetAddressProblem("seed");
@@ -556,9 +874,11 @@ function wire() {
       // shortcut, not a second press of that button.
       if (onButton && !transport.has(onButton.id)) return;
       e.preventDefault();
-      setPlaying(!state.playing);
+      if (anyLive()) setPlaying(!state.playing);
     } else if (e.key === ".") {
-      step();
+      frameOfSteps();
+    } else if (e.key === "s") {
+      stepOnce();
     } else if (e.key === "r") {
       restart();
     }
@@ -573,9 +893,9 @@ function wire() {
 }
 
 /** One frame of steps, paused: as much as the budget allows now, the rest on the next frames. */
-function step() {
+function frameOfSteps() {
   setPlaying(false);
-  if (state.runs.length === 0) return;
+  if (!anyLive()) return;
   state.pending += stepsPerFrame();
   state.pending -= stepFrame(state.pending);
   render();
@@ -603,12 +923,12 @@ async function main() {
   for (const name of sim.potentialNames()) {
     select.add(new Option(LANDSCAPES[name]?.label ?? name, name));
   }
-  applyLandscape("rastrigin");
+  applyLandscape("rastrigin", false);
   readUrl();
   wire();
   restart();
-  // For the browser tests: the runs, and a way to replace the budget's clock.
-  window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now) };
+  // For the browser tests: the runs, the budget's clock, the anatomy's geometry.
+  window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now), anatomySpans: drawAnatomy };
   document.body.dataset.ready = "true";
   requestAnimationFrame(tick);
 }

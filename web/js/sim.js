@@ -28,6 +28,10 @@ export const potentialNames = () => potential_names();
 export const globalMinimum = (name) => global_minimum(name);
 /** The kernel's U on a grid (see the wrapper's potential_grid). */
 export const potentialGrid = (name, x0, x1, y0, y1, nx, ny) => potential_grid(name, x0, x1, y0, y1, nx, ny);
+/** Throws the wrapper's Error when it refuses `settings`; creates and frees a run otherwise. */
+export function probe(settings) {
+  new Optimizer(settings).free();
+}
 
 /** Points kept per plotted series; the history is halved when full. */
 const HISTORY = 1024;
@@ -49,6 +53,8 @@ export class Run {
     // setting is refused.
     this.opt = new Optimizer(settings);
     this.sampler = settings.sampler;
+    /** Beyond this |x| a chain has run away (the wrapper's `escape`). */
+    this.escape = settings.escape ?? Infinity;
     this.n = this.opt.chains();
     this.seed = this.opt.seed();
     this.groupSize = Math.min(groupSize, this.n);
@@ -161,22 +167,46 @@ export class Run {
     return out;
   }
 
-  /** Chains with a finite position outside the box [x0, x1] x [y0, y1]. */
+  /** Whether chain c diverged (its value is not finite) or ran away beyond the escape radius. */
+  isLost(c) {
+    return !Number.isFinite(this.u[c]) || Math.hypot(this.x[2 * c], this.x[2 * c + 1]) > this.escape;
+  }
+
+  /** Chains lost: { diverged, ranAway }. */
+  lost() {
+    let diverged = 0;
+    let ranAway = 0;
+    for (let c = 0; c < this.n; c++) {
+      if (!Number.isFinite(this.u[c])) diverged++;
+      else if (this.isLost(c)) ranAway++;
+    }
+    return { diverged, ranAway };
+  }
+
+  /** Chains not lost whose position is outside the box [x0, x1] x [y0, y1]. */
   outside(x0, x1, y0, y1) {
     let n = 0;
     for (let c = 0; c < this.n; c++) {
       const x = this.x[2 * c];
       const y = this.x[2 * c + 1];
-      if (Number.isFinite(x) && Number.isFinite(y) && !(x >= x0 && x <= x1 && y >= y0 && y <= y1)) n++;
+      if (!this.isLost(c) && !(x >= x0 && x <= x1 && y >= y0 && y <= y1)) n++;
     }
     return n;
   }
 
-  /** The largest |x_i| of a live chain. */
+  /** The largest |x_i| of a chain not lost. */
   reach() {
     let r = 0;
-    for (const v of this.x) if (Number.isFinite(v)) r = Math.max(r, Math.abs(v));
+    for (let c = 0; c < this.n; c++) {
+      if (this.isLost(c)) continue;
+      r = Math.max(r, Math.abs(this.x[2 * c]), Math.abs(this.x[2 * c + 1]));
+    }
     return r;
+  }
+
+  /** The law of chain c's next step (the wrapper's nextStep). */
+  nextStep(c) {
+    return Float64Array.from(this.opt.nextStep(c));
   }
 
   record() {
