@@ -407,7 +407,7 @@ function buildAnatomy() {
     const column = document.createElement("div");
     column.className = "anatomy-run";
     const title = document.createElement("h3");
-    title.innerHTML = `<span class="swatch" style="background:${part.colour}"></span>${part.sampler.toUpperCase()}`;
+    title.innerHTML = `<span class="swatch" style="background:${part.colour}"></span>${part.sampler.toUpperCase()} <span class="zoom"></span>`;
     const position = document.createElement("canvas");
     position.className = "position";
     position.setAttribute("role", "img");
@@ -435,7 +435,9 @@ function drawAnatomy() {
   return a.parts.map((part, k) => {
     const geometry = drawPositionInset(columns[k].querySelector("canvas.position"), part.law, part.draw);
     drawPhaseInset(columns[k].querySelector("canvas.phase"), part.law, [part.draw[0], part.drawY[0]]);
-    return { ...geometry, zoom: geometry.scale / (state.frame.width / (state.frame.x1 - state.frame.x0)) };
+    const zoom = geometry.scale / (state.frame.width / (state.frame.x1 - state.frame.x0));
+    columns[k].querySelector(".zoom").textContent = `magnified ×${formatCount(Math.round(zoom))}`;
+    return { ...geometry, zoom };
   });
 }
 
