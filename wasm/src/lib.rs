@@ -1,8 +1,10 @@
 //! WebAssembly face of the `hrla` kernel for the live 2-D demo page.
 //!
-//! A thin `wasm-bindgen` layer with no maths of its own: one exported type,
-//! [`Optimizer`], owns the kernel's [`hrla::Optimizer`] on one of the
-//! kernel's built-in potentials in 2-D ([`Landscape`]), in f64, with its
+//! A thin `wasm-bindgen` layer with no maths of its own but a visitor's
+//! formula ([`Formula`]: parsed, differentiated exactly in forward mode):
+//! one exported type, [`Optimizer`], owns the kernel's [`hrla::Optimizer`]
+//! on one of the kernel's built-in potentials in 2-D or a formula
+//! ([`Landscape`]), in f64, with its
 //! chain storage (a `Vec` of up to [`MAX_CHAINS`] chains, each
 //! with its own generator), and flat buffers that JavaScript reads through
 //! typed-array views into wasm memory:
@@ -51,6 +53,7 @@
 #![forbid(unsafe_code)]
 
 mod error;
+mod formula;
 mod landscape;
 mod read;
 mod settings;
@@ -60,8 +63,9 @@ use hrla::{Kernel as _, Sampler as _, Schedule as _, StepMoments};
 use wasm_bindgen::prelude::*;
 
 pub use error::Error;
-pub use landscape::{GridError, Landscape, MAX_GRID, UnknownLandscape};
-pub use settings::{KEYS, Settings, Temperature, parse_sampler};
+pub use formula::{Formula, FormulaError, FormulaErrorKind};
+pub use landscape::{Custom, GridError, Landscape, MAX_GRID, UnknownLandscape};
+pub use settings::{KEYS, Settings, Temperature, parse_sampler, potential};
 
 /// The most chains a run may have (the page offers up to 1024): more is
 /// refused with [`hrla::Error::Count`].
@@ -164,7 +168,7 @@ impl Optimizer {
         // end. Takes the sampler's kernel at a_0: a bad first temperature
         // is caught here.
         let builder =
-            Builder::new(settings.landscape, sampler, schedule, start).seed(settings.seed);
+            Builder::new(settings.landscape.clone(), sampler, schedule, start).seed(settings.seed);
         let stop = settings.stop();
         let kernel = match stop {
             Some(stop) => builder.stop(stop).build(chains)?,
@@ -515,12 +519,9 @@ impl Optimizer {
     }
 }
 
-/// The landscape a JS value names: a string among [`Landscape::NAMES`].
+/// The landscape a JS value names: see [`settings::potential`].
 fn landscape(name: &JsValue) -> Result<Landscape, Error> {
-    name.as_string()
-        .ok_or(UnknownLandscape)
-        .and_then(|n| n.parse())
-        .map_err(Error::UnknownPotential)
+    settings::potential(name)
 }
 
 /// `U` of the landscape `name` at the cell centres of an `nx` by `ny` grid
@@ -557,12 +558,25 @@ pub fn potential_grid(
 }
 
 /// The global minimum `U*` of the landscape `name` (the kernel's
-/// [`KnownMinimum`]); throws an `Error` with `field` `"potential"` when
-/// `name` is not a landscape's name.
+/// [`KnownMinimum`]; for a visitor's formula, the estimate of
+/// [`Landscape::formula`]); throws an `Error` with `field` `"potential"`
+/// when `name` is not a landscape's name or a formula object, `"formula"`
+/// (with a `column`) when the formula cannot be read, `"box"` when it
+/// cannot be evaluated finitely over its box.
 #[wasm_bindgen]
 pub fn global_minimum(name: &JsValue) -> Result<f64, JsValue> {
     landscape(name)
         .map(|l| l.global_minimum())
+        .map_err(|e| e.to_js())
+}
+
+/// A global minimiser `x*` of the landscape `potential` (one of them when
+/// there are several; for a visitor's formula, where its estimated `U*`
+/// was found), `[x0, x1]`; throws like [`global_minimum`].
+#[wasm_bindgen]
+pub fn global_minimiser(potential: &JsValue) -> Result<Vec<f64>, JsValue> {
+    landscape(potential)
+        .map(|l| l.global_minimiser().to_vec())
         .map_err(|e| e.to_js())
 }
 
@@ -935,10 +949,34 @@ mod tests {
     fn errors_name_the_setting_at_fault() {
         let field = |s: Settings| Optimizer::from_settings(&s).err().unwrap().field();
         let d = Settings::default();
-        assert_eq!(field(Settings { h: 0.0, ..d }), Some("h"));
-        assert_eq!(field(Settings { h: 1e9, ..d }), Some("alpha h"));
-        assert_eq!(field(Settings { chains: 0, ..d }), Some("chains"));
-        assert_eq!(field(Settings { spread: -1.0, ..d }), Some("std_dev"));
+        assert_eq!(
+            field(Settings {
+                h: 0.0,
+                ..d.clone()
+            }),
+            Some("h")
+        );
+        assert_eq!(
+            field(Settings {
+                h: 1e9,
+                ..d.clone()
+            }),
+            Some("alpha h")
+        );
+        assert_eq!(
+            field(Settings {
+                chains: 0,
+                ..d.clone()
+            }),
+            Some("chains")
+        );
+        assert_eq!(
+            field(Settings {
+                spread: -1.0,
+                ..d.clone()
+            }),
+            Some("std_dev")
+        );
         assert_eq!(
             field(Settings {
                 stop_steps: Some(10),
@@ -947,14 +985,14 @@ mod tests {
                     a_high: 2.0,
                     steps: 100
                 },
-                ..d
+                ..d.clone()
             }),
             Some("stopSteps")
         );
         assert_eq!(
             field(Settings {
                 stop_target: Some(f64::NAN),
-                ..d
+                ..d.clone()
             }),
             Some("target")
         );

@@ -56,7 +56,11 @@ pub(crate) fn only_keys(
         if let Some(key) = key.as_string()
             && !known.contains(&key.as_str())
         {
-            return Err(Error::UnknownSetting { key, known });
+            return Err(Error::UnknownSetting {
+                key,
+                known,
+                within: name,
+            });
         }
     }
     Ok(())

@@ -68,7 +68,7 @@ impl Temperature {
 ///
 /// The sampler's other parameters are the paper's (`alpha = beta = 1`,
 /// `b = 10`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
     /// The potential.
     pub landscape: Landscape,
@@ -117,6 +117,36 @@ impl Default for Settings {
     }
 }
 
+/// The keys of a visitor's potential.
+const FORMULA_KEYS: [&str; 2] = ["formula", "box"];
+
+/// A landscape from a JS value: a built-in's name (a string among
+/// [`Landscape::NAMES`]), or a visitor's `{ formula: string, box: [x0, x1,
+/// y0, y1] }` ([`Landscape::formula`]).
+pub fn potential(value: &JsValue) -> Result<Landscape, Error> {
+    if let Some(name) = value.as_string() {
+        return name.parse().map_err(Error::UnknownPotential);
+    }
+    if !value.is_object() || is_array(value, "potential")? {
+        return Err(Error::UnknownPotential(UnknownLandscape));
+    }
+    only_keys(value, &FORMULA_KEYS, "potential")?;
+    let text = get(value, "formula")?
+        .as_string()
+        .ok_or(Error::BadFormulaPotential)?;
+    let bounds = get(value, "box")?;
+    if !is_array(&bounds, "box")? || get_as(&bounds, "length", "box")?.as_f64() != Some(4.0) {
+        return Err(Error::BadFormulaPotential);
+    }
+    let mut b = [0.0; 4];
+    for (i, v) in (0_u32..).zip(b.iter_mut()) {
+        *v = get_index(&bounds, i, "box")?
+            .as_f64()
+            .ok_or(Error::BadFormulaPotential)?;
+    }
+    Landscape::formula(&text, b)
+}
+
 /// Largest integer a JS number holds exactly, `2^53 - 1`.
 const MAX_SAFE_INTEGER: f64 = 9_007_199_254_740_991.0;
 
@@ -153,11 +183,7 @@ impl Settings {
         only_keys(value, &KEYS, "settings")?;
         let landscape = match get(value, "potential")? {
             p if p.is_undefined() || p.is_null() => Landscape::Rastrigin,
-            p => p
-                .as_string()
-                .ok_or(Error::UnknownPotential(UnknownLandscape))?
-                .parse()
-                .map_err(Error::UnknownPotential)?,
+            p => potential(&p)?,
         };
         let sampler = match get(value, "sampler")?.as_string() {
             Some(name) => parse_sampler(&name)?,

@@ -4,6 +4,10 @@
 /** Every setting in the address, with its control and its kind. */
 export const FIELDS = [
   { id: "potential", kind: "select", label: "landscape" },
+  { id: "formula", kind: "text", label: "formula" },
+  { id: "fcx", kind: "number", label: "box centre x₁" },
+  { id: "fcy", kind: "number", label: "box centre x₂" },
+  { id: "fhalf", kind: "number", label: "box half-width" },
   { id: "sampler", kind: "select", label: "method" },
   { id: "compare", kind: "flag", label: "compare HRLA, ULA, OLA" },
   { id: "h", kind: "number", label: "step h" },
@@ -44,6 +48,8 @@ const KERNEL_NAMES = {
   seed: "seed",
   sampler: "sampler",
   potential: "potential",
+  formula: "formula",
+  box: "fhalf",
   stopSteps: "stopSteps",
   "step budget": "stopSteps",
   stopTarget: "stopTarget",

@@ -9,11 +9,12 @@ import { Frame, RUN_COLOURS, colourScale, drawChains, drawColourBar, drawLandsca
 import { drawHistogram, drawLinePlot, exactMarginals, formatCount, histogram } from "./plots.js";
 import { describe, drawPhaseInset, drawPositionInset, readNextStep } from "./anatomy.js";
 import { COMPARE_HINT, SAMPLER_HINTS } from "./words.js";
+import { FORMULA_DEFAULT, customLandscape } from "./custom.js";
 
 const $ = (id) => document.getElementById(id);
 
 /** Controls whose change restarts the run from the seed. */
-const RUN_INPUTS = ["potential", "sampler", "compare", "h", "chains", "a", "aLow", "aHigh", "K", "cx", "cy", "spread", "seed", "stopSteps", "stopTarget", "group"];
+const RUN_INPUTS = ["potential", "formula", "fcx", "fcy", "fhalf", "sampler", "compare", "h", "chains", "a", "aLow", "aHigh", "K", "cx", "cy", "spread", "seed", "stopSteps", "stopTarget", "group"];
 /** Controls that only change the display or the pace. */
 const VIEW_INPUTS = ["spf", "eps"];
 const SAMPLERS = ["hrla", "ula", "ola"];
@@ -43,7 +44,10 @@ const state = {
   frame: null,
   dpr: 1,
   view: LANDSCAPES.rastrigin.view,
-  potential: "rastrigin",
+  /** The landscape shown: a LANDSCAPES entry with its `name` and the wrapper's `arg`. */
+  land: { ...LANDSCAPES.rastrigin, name: "rastrigin", arg: "rastrigin" },
+  /** The wrapper's estimate of a formula's U*, by formula and box. */
+  estimates: new Map(),
   /** U on the plot area's pixels, and on the marginals' grid. */
   grid: null,
   marginalGrid: null,
@@ -78,10 +82,36 @@ function radio(name) {
   return document.querySelector(`input[name=${name}]:checked`).value;
 }
 
-/** The escape radius of the landscape: ESCAPE_HALF_WIDTHS of its view. */
-function escapeRadius(potential) {
-  const v = LANDSCAPES[potential].view;
+/** The escape radius of a landscape: ESCAPE_HALF_WIDTHS of its view. */
+function escapeRadius(land) {
+  const v = land.view;
   return ESCAPE_HALF_WIDTHS * v.half + Math.hypot(v.cx, v.cy);
+}
+
+/** The wrapper's { minimum, minimiser } of a formula, or null when it refuses it (cached). */
+function estimate(arg) {
+  const key = JSON.stringify(arg);
+  if (!state.estimates.has(key)) {
+    let value = null;
+    try {
+      value = { minimum: sim.globalMinimum(arg), minimiser: [...sim.globalMinimiser(arg)] };
+    } catch {
+      // Refused: restart() shows why, beside the field at fault.
+    }
+    if (state.estimates.size > 32) state.estimates.clear();
+    state.estimates.set(key, value);
+  }
+  return state.estimates.get(key);
+}
+
+/** The landscape the controls name: a built-in one, or the visitor's formula over its box. */
+function landscapeOf(name) {
+  if (name !== "formula") return { ...LANDSCAPES[name], name, arg: name };
+  const [cx, cy, half] = ["fcx", "fcy", "fhalf"].map((id) => parseNumber(text(id)));
+  const ok = [cx, cy, half].every(Number.isFinite) && half > 0;
+  const view = ok ? { cx, cy, half } : { cx: FORMULA_DEFAULT.cx, cy: FORMULA_DEFAULT.cy, half: FORMULA_DEFAULT.half };
+  const arg = { formula: $("formula").value, box: [view.cx - view.half, view.cx + view.half, view.cy - view.half, view.cy + view.half] };
+  return customLandscape(arg, view, ok ? estimate(arg) : null);
 }
 
 /**
@@ -103,10 +133,16 @@ function readSettings() {
   if (!/^[0-9]+$/.test(seedText) || BigInt(seedText) >= 2n ** 64n) {
     problems.push({ id: "seed", text: "must be a whole number between 0 and 2^64 − 1" });
   }
-  const potential = $("potential").value;
+  const land = state.land;
+  if (land.name === "formula") {
+    for (const id of ["fcx", "fcy", "fhalf"]) num(id);
+    const half = parseNumber(text("fhalf"));
+    if (Number.isFinite(half) && !(half > 0)) problems.push({ id: "fhalf", text: "must be a number above 0" });
+  }
   const gap = num("stopTarget", true);
+  const minimum = land.name === "formula" ? (estimate(land.arg)?.minimum ?? 0) : sim.globalMinimum(land.arg);
   const settings = {
-    potential,
+    potential: land.arg,
     sampler: $("sampler").value,
     a: linear ? NaN : num("a"),
     annealing: linear ? { aLow: num("aLow"), aHigh: num("aHigh"), steps: num("K") } : null,
@@ -116,15 +152,15 @@ function readSettings() {
     spread: num("spread"),
     seed: problems.some((p) => p.id === "seed") ? 0n : BigInt(seedText),
     stopSteps: num("stopSteps", true),
-    stopTarget: gap === null ? null : sim.globalMinimum(potential) + gap,
-    escape: escapeRadius(potential),
+    stopTarget: gap === null ? null : minimum + gap,
+    escape: escapeRadius(land),
   };
   return { settings, problems };
 }
 
 /** `settings` with the control `id`'s part replaced by a value the kernel accepts. */
 function withFallback(settings, id) {
-  const l = LANDSCAPES[settings.potential] ?? LANDSCAPES.rastrigin;
+  const l = state.land;
   const s = { ...settings, centre: [...settings.centre] };
   const annealing = s.annealing && { ...s.annealing };
   switch (id) {
@@ -189,7 +225,7 @@ function refusals(settings, problems) {
       return found;
     } catch (e) {
       const id = fieldOf(e);
-      found.push({ id, text: plain(e.message) });
+      found.push({ id, text: plain(e.message), column: e.column });
       const next = id && !seen.has(id) ? withFallback(s, id) : null;
       if (!next) return found;
       seen.add(id);
@@ -214,7 +250,17 @@ function fieldError(id, message) {
   if (input) input.setAttribute("aria-invalid", "true");
 }
 
+/** Under the formula as typed, a caret at the column where reading stopped. */
+function showCaret(column) {
+  const typed = $("formula").value;
+  const caret = $("formula-caret");
+  caret.textContent = `${typed}\n${" ".repeat(Math.max(0, column - 1))}^`;
+  caret.dataset.column = String(column);
+  caret.hidden = false;
+}
+
 function clearErrors() {
+  $("formula-caret").hidden = true;
   $("error").textContent = "";
   for (const el of document.querySelectorAll(".field-error")) el.textContent = "";
   for (const el of document.querySelectorAll("[aria-invalid]")) el.removeAttribute("aria-invalid");
@@ -234,12 +280,13 @@ function restart() {
   clearErrors();
   state.pending = 0;
   state.anatomy = null;
-  const potential = $("potential").value;
-  if (potential !== state.potential || !state.grid) {
-    state.potential = potential;
-    state.view = LANDSCAPES[potential].view;
+  const land = landscapeOf($("potential").value);
+  if (JSON.stringify(land.arg) !== JSON.stringify(state.land.arg) || !state.grid) {
+    state.view = land.view;
     state.grid = null;
   }
+  state.land = land;
+  $("formula-fields").hidden = land.name !== "formula";
   describeLandscape();
   const { settings, problems } = readSettings();
   let n = 10;
@@ -255,6 +302,7 @@ function restart() {
   for (const p of refused) {
     if (p.id) fieldError(p.id, p.text);
     else $("error").textContent = p.text;
+    if (p.id === "formula" && p.column) showCaret(p.column);
   }
   if (refused.length === 0) {
     try {
@@ -487,14 +535,23 @@ function refreshBackground(force) {
   state.shownA = a;
   const w = Math.min(MAX_PIXELS, Math.round(frame.width * state.dpr));
   const h = Math.min(MAX_PIXELS, Math.round(frame.height * state.dpr));
+  const land = state.land;
   if (!state.grid || state.grid.w !== w || state.grid.h !== h) {
-    state.grid = { w, h, u: sim.potentialGrid(state.potential, frame.x0, frame.x1, frame.y0, frame.y1, w, h) };
-    state.marginalGrid = sim.potentialGrid(state.potential, frame.x0, frame.x1, frame.y0, frame.y1, MARGINAL_GRID, MARGINAL_GRID);
+    try {
+      state.grid = { w, h, u: sim.potentialGrid(land.arg, frame.x0, frame.x1, frame.y0, frame.y1, w, h) };
+      state.marginalGrid = sim.potentialGrid(land.arg, frame.x0, frame.x1, frame.y0, frame.y1, MARGINAL_GRID, MARGINAL_GRID);
+    } catch {
+      // A formula refused on its box: nothing to draw (restart() says why).
+      state.grid = null;
+      state.marginals = null;
+      for (const id of ["landscape", "colorbar"]) $(id).getContext("2d").clearRect(0, 0, $(id).width, $(id).height);
+      return;
+    }
   }
-  const minimum = sim.globalMinimum(state.potential);
+  const minimum = land.name === "formula" ? state.grid.u.reduce((m, u) => Math.min(m, u), Infinity) : sim.globalMinimum(land.arg);
   if (force || mode === "density") {
     state.scale = colourScale(state.grid.u, mode, a, minimum);
-    drawLandscape($("landscape"), frame, state.dpr, state.scale, w, h, LANDSCAPES[state.potential].minimisers);
+    drawLandscape($("landscape"), frame, state.dpr, state.scale, w, h, land.minimisers);
     drawColourBar($("colorbar"), state.scale);
   }
   state.marginals = exactMarginals(state.marginalGrid, MARGINAL_GRID, MARGINAL_GRID, a, frame.x1 - frame.x0, frame.y1 - frame.y0);
@@ -558,6 +615,7 @@ function render() {
 
 function drawMarginals(runs, colours) {
   const f = state.frame;
+  if (!state.marginals) return;
   const inside = (r) => (c) => {
     const x = r.x[2 * c];
     const y = r.x[2 * c + 1];
@@ -688,11 +746,12 @@ function layout(force = false) {
 }
 
 function describeLandscape() {
-  const name = $("potential").value;
-  const l = LANDSCAPES[name];
+  const l = state.land;
   $("potential-about").textContent = l.about;
-  $("formula").textContent = l.formula;
+  $("formula-shown").textContent = l.formula;
   $("compare-landscape").textContent = l.compare;
+  $("compare-measured").hidden = !l.measured;
+  if (!l.measured) return;
   $("compare-measured-caption").textContent =
     `Success rate P on ${l.label} at its defaults (a = ${l.a}, h = ${l.h}, ε = ${l.eps}), mean over seeds 1 to ${MEASURED.seeds}, ` +
     `${MEASURED.chains} chains in groups of ${MEASURED.group}, measured on this page's kernel`;
@@ -776,7 +835,7 @@ function readUrl() {
 
 /** The settings landscape `name` suggests, by control. */
 function suggestions(name) {
-  const l = LANDSCAPES[name];
+  const l = landscapeOf(name);
   return { cx: l.start.cx, cy: l.start.cy, spread: l.start.spread, a: l.a, aHigh: l.a, h: l.h, eps: l.eps };
 }
 
@@ -801,7 +860,7 @@ function applyLandscape(name, keep) {
     note.replaceChildren();
     return;
   }
-  const label = LANDSCAPES[name].label;
+  const label = landscapeOf(name).label;
   note.textContent = `${label}'s suggested settings are in place, except yours: ${kept
     .map(({ id, mine }) => `kept your ${SUGGESTED[id]} = ${mine} (${label}'s: ${want[id]})`)
     .join("; ")}.`;
@@ -825,7 +884,8 @@ function wire() {
   for (const id of RUN_INPUTS) {
     $(id).addEventListener("change", () => {
       forgetAddressProblem(id);
-      if (id === "potential") applyLandscape($("potential").value, true);
+      // A formula's box moves its suggested start and view as a landscape does.
+      if (id === "potential" || ["formula", "fcx", "fcy", "fhalf"].includes(id)) applyLandscape($("potential").value, true);
       restart();
     });
   }
@@ -925,6 +985,7 @@ async function main() {
   for (const name of sim.potentialNames()) {
     select.add(new Option(LANDSCAPES[name]?.label ?? name, name));
   }
+  select.add(new Option("Your own U(x, y)…", "formula"));
   applyLandscape("rastrigin", false);
   readUrl();
   wire();

@@ -6,6 +6,7 @@
 import init, {
   Optimizer,
   Summary,
+  global_minimiser,
   global_minimum,
   max_chains,
   potential_grid,
@@ -24,8 +25,10 @@ export const maxChains = () => max_chains();
 export const randomSeed = () => random_seed();
 /** The landscapes' names, in the kernel's order. */
 export const potentialNames = () => potential_names();
-/** The landscape's U* (the kernel's). */
-export const globalMinimum = (name) => global_minimum(name);
+/** The landscape's U* (the kernel's; a formula's estimate). */
+export const globalMinimum = (potential) => global_minimum(potential);
+/** A landscape's x* (for a formula, where its estimated U* was found). */
+export const globalMinimiser = (potential) => global_minimiser(potential);
 /** The kernel's U on a grid (see the wrapper's potential_grid). */
 export const potentialGrid = (name, x0, x1, y0, y1, nx, ny) => potential_grid(name, x0, x1, y0, y1, nx, ny);
 /** Throws the wrapper's Error when it refuses `settings`; creates and frees a run otherwise. */

@@ -438,7 +438,7 @@ for (const potential of ["rastrigin", "ackley", "levy", "styblinski-tang", "doub
     const info = await h.page.evaluate(async () => {
       const { LANDSCAPES } = await import("/js/landscapes.js");
       const { state } = window.hrlaDemo;
-      const l = LANDSCAPES[state.potential];
+      const l = LANDSCAPES[state.land.name];
       const c = document.getElementById("landscape");
       const ctx = c.getContext("2d");
       // The cross at each minimiser: white pixels at its centre.
