@@ -68,6 +68,8 @@ pub enum Error {
     Grid(GridError),
     /// A visitor's formula cannot be read.
     Formula(FormulaError),
+    /// A box is not an array of four numbers `[x0, x1, y0, y1]`.
+    BadBox,
     /// A visitor's potential is not an object `{ formula, box }` with a
     /// string and four numbers.
     BadFormulaPotential,
@@ -127,6 +129,7 @@ impl fmt::Display for Error {
             ),
             Self::Grid(e) => fmt::Display::fmt(e, f),
             Self::Formula(e) => fmt::Display::fmt(e, f),
+            Self::BadBox => f.write_str("`box` must be an array of four numbers [x0, x1, y0, y1]"),
             Self::BadFormulaPotential => write!(
                 f,
                 "`potential` must be one of {}, or a formula {{ formula: \"U in x and y\", box: [x0, x1, y0, y1] }}",
@@ -180,6 +183,7 @@ impl Error {
             Self::BadSeed => Some("seed"),
             Self::Grid(e) => Some(e.field()),
             Self::Formula(_) => Some("formula"),
+            Self::BadBox => Some("box"),
             Self::BadFormulaPotential => Some("potential"),
             Self::Kernel(e) => kernel_field(e),
             Self::Diverged { .. } => Some("chain"),

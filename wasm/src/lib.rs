@@ -52,6 +52,7 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+mod descent;
 mod error;
 mod formula;
 mod landscape;
@@ -62,6 +63,7 @@ use hrla::{AnySampler, AnySchedule, Builder, Chain, Gaussian, KnownMinimum, Term
 use hrla::{Kernel as _, Sampler as _, Schedule as _, StepMoments};
 use wasm_bindgen::prelude::*;
 
+pub use descent::Descent;
 pub use error::Error;
 pub use formula::{Formula, FormulaError, FormulaErrorKind};
 pub use landscape::{Custom, GridError, Landscape, MAX_GRID, UnknownLandscape};

@@ -88,6 +88,19 @@ pub(crate) fn count(value: &JsValue, name: &'static str, min: u64, max: u64) -> 
     }
 }
 
+/// An array of exactly four JS numbers (a box `[x0, x1, y0, y1]`); else
+/// [`Error::BadBox`].
+pub(crate) fn four(value: &JsValue, name: &'static str) -> Result<[f64; 4], Error> {
+    if !is_array(value, name)? || get_as(value, "length", name)?.as_f64() != Some(4.0) {
+        return Err(Error::BadBox);
+    }
+    let mut out = [0.0; 4];
+    for (i, v) in (0_u32..).zip(out.iter_mut()) {
+        *v = get_index(value, i, name)?.as_f64().ok_or(Error::BadBox)?;
+    }
+    Ok(out)
+}
+
 /// [`Error::Threw`] for `thrown`, with its message.
 fn threw(field: &'static str, thrown: &JsValue) -> Error {
     Error::Threw {

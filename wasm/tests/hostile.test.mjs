@@ -20,6 +20,18 @@ function refused(f, field, pattern) {
   });
 }
 
+/** The message of what `f` throws, which must be a typed Error naming `box`. */
+function refused2(f) {
+  try {
+    f();
+  } catch (e) {
+    assert.ok(isTypedError(e));
+    assert.equal(e.field, "box");
+    return e.message;
+  }
+  assert.fail("not refused");
+}
+
 /** `settings` with `key` read through a getter that throws `thrown`. */
 function throwingGetter(key, thrown) {
   const s = { ...OK };
@@ -266,4 +278,20 @@ test("a diverged chain has no next step: refused naming `chain`", () => {
   assert.ok(gone >= 0, "no chain diverged: the case tests nothing");
   refused(() => opt.nextStep(gone), "chain", /has diverged/);
   opt.free();
+});
+
+test("gradient descent: a bad box or bad settings are refused by name, its advance counts like the optimiser's", () => {
+  for (const box of [undefined, null, [0, 1, 0], [0, 1, 0, "1"], "0,1,0,1", [1, 0, 0, 1], [0, 1, NaN, 1], [0, Infinity, 0, 1]]) {
+    refused(() => new wasm.Descent(OK, box), "box");
+  }
+  refused(() => new wasm.Descent({ ...OK, h: -1 }, [-5, 5, -5, 5]), "h");
+  refused(() => new wasm.Descent({ ...OK, chains: 0 }, [-5, 5, -5, 5]), "chains");
+  assert.throws(() => new wasm.Descent({ ...OK, extra: 1 }, [-5, 5, -5, 5]), (e) => isTypedError(e) && /`extra` is not a setting/.test(e.message));
+  assert.match(refused2(() => new wasm.Descent(OK, [0, 1, 0])), /`box` must be an array of four numbers/);
+  const d = new wasm.Descent(OK, [-5, 5, -5, 5]);
+  for (const bad of [-1, 1.5, NaN, "5", 5n, 2 ** 32]) refused(() => d.advance(bad), "steps");
+  assert.equal(d.advance(50), 50);
+  assert.equal(d.termination(), undefined);
+  assert.ok(summary(d).every((v, i) => i === S.A || Number.isFinite(v)));
+  d.free();
 });

@@ -10,6 +10,7 @@ export const FIELDS = [
   { id: "fhalf", kind: "number", label: "box half-width" },
   { id: "sampler", kind: "select", label: "method" },
   { id: "compare", kind: "flag", label: "compare HRLA, ULA, OLA" },
+  { id: "descent", kind: "flag", label: "gradient descent with restarts beside" },
   { id: "h", kind: "number", label: "step h" },
   { id: "chains", kind: "number", label: "chains N" },
   { id: "spf", kind: "number", label: "steps per frame" },

@@ -237,7 +237,8 @@ function drawAxes(ctx, frame, color) {
  * For each run: its trails (oldest faintest; consecutive trail points are
  * TRAIL_STRIDE steps apart, so a trail is the chain's path), its chains,
  * and its running best, circled. `runs` is [{ trails, x, n, best: [x0, x1],
- * colour }], the first drawn last, on top (HRLA's in compare mode).
+ * colour, square }], the first drawn last, on top (HRLA's in compare
+ * mode); `square` draws the chains as squares (gradient descent's).
  * `mark`, when given, is a point [x1, x2] ringed (the chain whose step is
  * laid bare).
  */
@@ -253,7 +254,8 @@ export function drawChains(canvas, frame, dpr, runs, mark = null) {
     const { trails, n } = run;
     ctx.strokeStyle = run.colour;
     ctx.lineWidth = 1;
-    const ages = trails.count - 1;
+    // Descent's restarts jump across the picture: no trails for it.
+    const ages = run.square ? 0 : trails.count - 1;
     for (let age = ages; age >= 1; age--) {
       const older = trails.snapshot(age);
       const newer = trails.snapshot(age - 1);
@@ -282,8 +284,12 @@ export function drawChains(canvas, frame, dpr, runs, mark = null) {
       if (!(Number.isFinite(x) && Number.isFinite(y))) continue;
       const px = frame.px(x);
       const py = frame.py(y);
-      ctx.moveTo(px + 2.5, py);
-      ctx.arc(px, py, 2.5, 0, 2 * Math.PI);
+      if (run.square) {
+        ctx.rect(px - 2.2, py - 2.2, 4.4, 4.4);
+      } else {
+        ctx.moveTo(px + 2.5, py);
+        ctx.arc(px, py, 2.5, 0, 2 * Math.PI);
+      }
     }
     ctx.stroke();
     ctx.fill();

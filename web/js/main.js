@@ -6,7 +6,7 @@ import { LANDSCAPES, MEASURED, PAPER_AND_MEASUREMENT } from "./landscapes.js";
 import { FIELDS, fieldOf, parseNumber, plain, readAddress } from "./fields.js";
 import { stepWithin } from "./pace.js";
 import { Frame, RUN_COLOURS, colourScale, drawChains, drawColourBar, drawLandscape } from "./landscape.js";
-import { drawHistogram, drawLinePlot, exactMarginals, formatCount, histogram } from "./plots.js";
+import { drawHistogram, drawLinePlot, drawSchedule, exactMarginals, formatCount, histogram } from "./plots.js";
 import { describe, drawPhaseInset, drawPositionInset, readNextStep } from "./anatomy.js";
 import { COMPARE_HINT, SAMPLER_HINTS } from "./words.js";
 import { FORMULA_DEFAULT, customLandscape } from "./custom.js";
@@ -14,10 +14,14 @@ import { FORMULA_DEFAULT, customLandscape } from "./custom.js";
 const $ = (id) => document.getElementById(id);
 
 /** Controls whose change restarts the run from the seed. */
-const RUN_INPUTS = ["potential", "formula", "fcx", "fcy", "fhalf", "sampler", "compare", "h", "chains", "a", "aLow", "aHigh", "K", "cx", "cy", "spread", "seed", "stopSteps", "stopTarget", "group"];
+const RUN_INPUTS = ["potential", "formula", "fcx", "fcy", "fhalf", "sampler", "compare", "descent", "h", "chains", "a", "aLow", "aHigh", "K", "cx", "cy", "spread", "seed", "stopSteps", "stopTarget", "group"];
 /** Controls that only change the display or the pace. */
 const VIEW_INPUTS = ["spf", "eps"];
 const SAMPLERS = ["hrla", "ula", "ola"];
+/** Gradient descent's colour, beside the samplers'. */
+const DESCENT_COLOUR = "#ff9f43";
+/** Each run's label. */
+const LABEL = { hrla: "HRLA", ula: "ULA", ola: "OLA", gd: "GD + restarts" };
 /** Grid of the exact marginals, per axis. */
 const MARGINAL_GRID = 240;
 /** The background's grid per axis at most: beyond, the picture is scaled. */
@@ -65,6 +69,8 @@ const state = {
   anatomy: null,
   /** The chain whose step is laid bare. */
   anatomyChain: 0,
+  /** What the a(t) plot shows: { points, marker } (see drawSchedule). */
+  schedulePlot: null,
   /** The clock of the time budget: replaceable by a test's clock. */
   now: () => performance.now(),
   lastFrame: { asked: 0, done: 0, ended: false },
@@ -307,6 +313,11 @@ function restart() {
   if (refused.length === 0) {
     try {
       state.runs = samplers.map((sampler) => new sim.Run({ ...settings, sampler }, n));
+      if ($("descent").checked) {
+        // Restarts cover the landscape's own box, whatever the zoom.
+        const v = state.land.view;
+        state.runs.push(new sim.Run({ ...settings, sampler: samplers[0] }, n, [v.cx - v.half, v.cx + v.half, v.cy - v.half, v.cy + v.half]));
+      }
     } catch (e) {
       // Refused by one sampler only (the settings passed HRLA's check).
       clearRuns();
@@ -328,13 +339,20 @@ function restart() {
   layout(true);
 }
 
+/** Each run's colour: white for a single sampler, the run colours in compare mode, orange for descent. */
+function coloursOf(runs) {
+  const samplers = runs.filter((r) => !r.descent).length;
+  let k = 0;
+  return runs.map((r) => (r.descent ? DESCENT_COLOUR : samplers > 1 ? RUN_COLOURS[k++] : "#ffffff"));
+}
+
 /** Whether any run can still step. */
 const anyLive = () => state.runs.some((r) => r.live);
 
 /** A run's failure, said once: in the alert, with its field marked and a short hint there. */
 function showFailure(run, e) {
   const multi = state.runs.length > 1;
-  $("error").textContent = (multi ? `${run.sampler.toUpperCase()} stopped: ` : "") + plain(e.message);
+  $("error").textContent = (multi ? `${LABEL[run.sampler]} stopped: ` : "") + plain(e.message);
   const id = fieldOf(e);
   if (id === "h") {
     $("err-h").textContent = "too long for this landscape: try a smaller h";
@@ -414,7 +432,7 @@ function stepOnce() {
   if (!anyLive()) return;
   const c = state.anatomyChain;
   const before = state.runs.map((run) => {
-    if (!run.live || run.isLost(c)) return null;
+    if (!run.live || run.descent || run.isLost(c)) return null;
     try {
       return readNextStep(run.nextStep(c));
     } catch {
@@ -425,7 +443,7 @@ function stepOnce() {
   advanceRuns(1);
   state.lastFrame = { asked: 1, done: 1, ended: !anyLive() };
   if (!anyLive()) setPlaying(false);
-  const colours = state.runs.length > 1 ? RUN_COLOURS : ["#ffffff"];
+  const colours = coloursOf(state.runs);
   state.anatomy = {
     iteration: state.runs[0].iteration,
     chain: c,
@@ -455,7 +473,7 @@ function buildAnatomy() {
     const column = document.createElement("div");
     column.className = "anatomy-run";
     const title = document.createElement("h3");
-    title.innerHTML = `<span class="swatch" style="background:${part.colour}"></span>${part.sampler.toUpperCase()} <span class="zoom"></span>`;
+    title.innerHTML = `<span class="swatch" style="background:${part.colour}"></span>${LABEL[part.sampler]} <span class="zoom"></span>`;
     const position = document.createElement("canvas");
     position.className = "position";
     position.setAttribute("role", "img");
@@ -577,7 +595,7 @@ function render() {
     delete $("status").dataset.key;
     return;
   }
-  const colours = runs.length > 1 ? RUN_COLOURS : ["#ffffff"];
+  const colours = coloursOf(runs);
   const lead = runs[0];
   const c = state.anatomyChain;
   const mark = state.anatomy && !lead.isLost(c) ? [lead.x[2 * c], lead.x[2 * c + 1]] : null;
@@ -585,10 +603,10 @@ function render() {
     $("particles"),
     frame,
     state.dpr,
-    runs.map((r, k) => ({ trails: r.trails, x: r.x, n: r.n, best: [r.s[S.BestX0], r.s[S.BestX1]], colour: colours[k] })),
+    runs.map((r, k) => ({ trails: r.trails, x: r.x, n: r.n, best: [r.s[S.BestX0], r.s[S.BestX1]], colour: colours[k], square: r.descent })),
     mark,
   );
-  const lineColours = runs.length > 1 ? RUN_COLOURS : ["#ff5a36"];
+  const lineColours = runs.length > 1 ? colours : ["#ff5a36"];
   drawLinePlot(
     $("plot-best"),
     runs.map((r, k) => {
@@ -599,7 +617,7 @@ function render() {
     { log: true },
   );
   const eps = parseNumber(text("eps"));
-  const probColours = runs.length > 1 ? RUN_COLOURS : ["#35b779"];
+  const probColours = runs.length > 1 ? colours : ["#35b779"];
   drawLinePlot(
     $("plot-prob"),
     runs.map((r, k) => {
@@ -611,11 +629,26 @@ function render() {
   );
   drawMarginals(runs, colours);
   readouts(runs, eps);
+  drawScheduleIfAnnealing(runs[0]);
 }
 
-function drawMarginals(runs, colours) {
+/** Under annealing, a(t) of the schedule with the run's place on it. */
+function drawScheduleIfAnnealing(run) {
+  const figure = $("schedule-figure");
+  const linear = radio("schedule") === "linear";
+  figure.hidden = !linear;
+  state.schedulePlot = null;
+  if (!linear || !run) return;
+  const [aLow, aHigh, K] = ["aLow", "aHigh", "K"].map((id) => parseNumber(text(id)));
+  state.schedulePlot = drawSchedule($("plot-a"), aLow, aHigh, K, run.iteration, run.s[sim.Summary.A]);
+}
+
+function drawMarginals(allRuns, allColours) {
   const f = state.frame;
   if (!state.marginals) return;
+  // Descent samples no law: its histogram against exp(-aU) would mislead.
+  const runs = allRuns.filter((r) => !r.descent);
+  const colours = allColours.filter((_, k) => !allRuns[k].descent);
   const inside = (r) => (c) => {
     const x = r.x[2 * c];
     const y = r.x[2 * c + 1];
@@ -668,7 +701,7 @@ function readouts(runs, eps) {
   const lines = [];
   for (const run of runs) {
     if (run.failure) continue;
-    const who = runs.length > 1 ? `${run.sampler.toUpperCase()}: ` : "";
+    const who = runs.length > 1 ? `${LABEL[run.sampler]}: ` : "";
     const l = run.lost();
     if (l.diverged + l.ranAway > 0) {
       const parts = [];
@@ -696,13 +729,17 @@ function readouts(runs, eps) {
   const table = $("compare-table");
   table.hidden = runs.length < 2;
   $("readouts-for").hidden = runs.length < 2;
+  $("readouts-for").textContent = `The readouts below are ${LABEL[runs[0].sampler]}'s; the table under them compares the ${runs.length} runs.`;
   if (runs.length > 1) {
     const body = table.tBodies[0];
-    if (body.rows.length !== runs.length) {
+    const key = runs.map((r) => r.sampler).join();
+    if (body.dataset.key !== key) {
+      body.dataset.key = key;
+      const colours = coloursOf(runs);
       body.replaceChildren(
         ...runs.map((run, k) => {
           const tr = document.createElement("tr");
-          tr.innerHTML = `<th scope="row"><span class="swatch" style="background:${RUN_COLOURS[k]}"></span>${run.sampler.toUpperCase()}</th><td><output id="cmp-best-${run.sampler}"></output></td><td><output id="cmp-at-${run.sampler}"></output></td><td><output id="cmp-prob-${run.sampler}"></output></td><td><output id="cmp-lost-${run.sampler}"></output></td>`;
+          tr.innerHTML = `<th scope="row"><span class="swatch" style="background:${colours[k]}"></span>${LABEL[run.sampler]}</th><td><output id="cmp-best-${run.sampler}"></output></td><td><output id="cmp-at-${run.sampler}"></output></td><td><output id="cmp-prob-${run.sampler}"></output></td><td><output id="cmp-lost-${run.sampler}"></output></td>`;
           return tr;
         }),
       );
@@ -773,13 +810,13 @@ function syncControls() {
   for (const id of ["aLow", "aHigh", "K"]) $(id).disabled = !linear;
   const compare = $("compare").checked;
   $("hint-sampler").textContent = compare ? COMPARE_HINT : SAMPLER_HINTS[$("sampler").value];
-  $("compare-about").hidden = state.runs.length < 2;
+  $("compare-about").hidden = state.runs.filter((r) => !r.descent).length < 2;
+  $("descent-about").hidden = !state.runs.some((r) => r.descent);
   const legend = $("legend");
   legend.hidden = state.runs.length < 2;
   if (state.runs.length > 1) {
-    legend.innerHTML = state.runs
-      .map((r, k) => `<span class="swatch" style="background:${RUN_COLOURS[k]}"></span>${r.sampler.toUpperCase()}`)
-      .join(" ");
+    const colours = coloursOf(state.runs);
+    legend.innerHTML = state.runs.map((r, k) => `<span class="swatch" style="background:${colours[k]}"></span>${LABEL[r.sampler]}`).join(" ");
   }
   syncTransport();
 }
@@ -951,7 +988,7 @@ function wire() {
     if (e.key === " " && transport.has(e.target.id)) e.preventDefault();
   });
   new ResizeObserver(() => layout()).observe($("canvas-wrap"));
-  for (const id of ["plot-best", "plot-prob", "plot-mx", "plot-my"]) new ResizeObserver(() => render()).observe($(id));
+  for (const id of ["plot-best", "plot-prob", "plot-mx", "plot-my", "plot-a"]) new ResizeObserver(() => render()).observe($(id));
 }
 
 /** One frame of steps, paused: as much as the budget allows now, the rest on the next frames. */

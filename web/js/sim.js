@@ -4,6 +4,7 @@
 // web/pkg/ is reported on the page rather than leaving it blank.
 
 import init, {
+  Descent,
   Optimizer,
   Summary,
   global_minimiser,
@@ -51,13 +52,19 @@ export const TRAIL_POINTS = 40;
  * group size above N is taken as N (one group).
  */
 export class Run {
-  constructor(settings, groupSize) {
+  /**
+   * A sampler's run of `settings`; with `descentBox` ([x0, x1, y0, y1]),
+   * gradient descent with random restarts in that box from the same
+   * initial points instead (its values are each chain's best so far).
+   */
+  constructor(settings, groupSize, descentBox = null) {
     // Throws an Error with the kernel's message (and `field`) when a
     // setting is refused.
-    this.opt = new Optimizer(settings);
-    this.sampler = settings.sampler;
-    /** Beyond this |x| a chain has run away (the wrapper's `escape`). */
-    this.escape = settings.escape ?? Infinity;
+    this.opt = descentBox ? new Descent(settings, descentBox) : new Optimizer(settings);
+    this.descent = descentBox !== null;
+    this.sampler = this.descent ? "gd" : settings.sampler;
+    /** Beyond this |x| a chain has run away (the wrapper's `escape`); descent restarts instead. */
+    this.escape = this.descent ? Infinity : (settings.escape ?? Infinity);
     this.n = this.opt.chains();
     this.seed = this.opt.seed();
     this.groupSize = Math.min(groupSize, this.n);
@@ -207,9 +214,9 @@ export class Run {
     return r;
   }
 
-  /** The law of chain c's next step (the wrapper's nextStep). */
+  /** The law of chain c's next step (the wrapper's nextStep); null for descent, whose step draws nothing. */
   nextStep(c) {
-    return Float64Array.from(this.opt.nextStep(c));
+    return this.descent ? null : Float64Array.from(this.opt.nextStep(c));
   }
 
   record() {
