@@ -250,7 +250,7 @@ export function describe(sampler, law, draw) {
       ? "<b>momentum</b>: none, OLA has no velocity."
       : `<b>momentum</b>: the velocity y = ${vec(law.y)} carries the mean by ${vec(law.pushY)} (blue).`;
   const gauss = {
-    hrla: `<b>the exact Gaussian</b> around it, σ = ${num(sd)} per coordinate; in the (x₁, y₁) plane below, position and velocity are correlated, ρ = ${num(rho)}: the closed-form covariance of HRLA's exact step, which no Euler scheme has.`,
+    hrla: `<b>the exact Gaussian</b> around it, σ = ${num(sd)} per coordinate; in the (x₁, y₁) plane below, position and velocity are correlated, ρ = ${num(rho)} (it grows in proportion to h): the closed-form covariance of HRLA's exact step, which no Euler scheme has.`,
     ula: `<b>the exact Gaussian</b> around it, σ = ${num(sd)} per coordinate, all of it through the velocity (ρ = ${num(rho)} below): ULA has no noise of its own on the position.`,
     ola: `<b>Euler's Gaussian</b> around it, σ = √(2h/a) = ${num(sd)} per coordinate, nothing on a velocity.`,
   }[sampler];

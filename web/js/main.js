@@ -10,6 +10,7 @@ import { drawHistogram, drawLinePlot, drawSchedule, exactMarginals, formatCount,
 import { describe, drawPhaseInset, drawPositionInset, readNextStep } from "./anatomy.js";
 import { COMPARE_HINT, SAMPLER_HINTS } from "./words.js";
 import { FORMULA_DEFAULT, customLandscape } from "./custom.js";
+import { formatView, pan, parseView, sameView, zoomAbout } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -50,6 +51,10 @@ const state = {
   view: LANDSCAPES.rastrigin.view,
   /** The landscape shown: a LANDSCAPES entry with its `name` and the wrapper's `arg`. */
   land: { ...LANDSCAPES.rastrigin, name: "rastrigin", arg: "rastrigin" },
+  /** A view from the address, taken once the landscape is set. */
+  pendingView: null,
+  /** A drag on the picture: { x, y (client pixels at the start), view, moved }. */
+  drag: null,
   /** The wrapper's estimate of a formula's U*, by formula and box. */
   estimates: new Map(),
   /** U on the plot area's pixels, and on the marginals' grid. */
@@ -288,7 +293,8 @@ function restart() {
   state.anatomy = null;
   const land = landscapeOf($("potential").value);
   if (JSON.stringify(land.arg) !== JSON.stringify(state.land.arg) || !state.grid) {
-    state.view = land.view;
+    state.view = state.pendingView ?? land.view;
+    state.pendingView = null;
     state.grid = null;
   }
   state.land = land;
@@ -845,12 +851,13 @@ function setPlaying(on) {
 function writeUrl() {
   const q = new URLSearchParams();
   for (const f of FIELDS) {
-    if (f.id === "play") continue;
+    if (f.id === "play" || f.id === "view") continue;
     if (f.kind === "choice") q.set(f.id, radio(f.id));
     else if (f.kind === "flag") q.set(f.id, $(f.id).checked ? "1" : "0");
     else q.set(f.id, $(f.id).value);
   }
   if (!state.playing) q.set("play", "0");
+  if (!sameView(state.view, state.land.view)) q.set("view", formatView(state.view));
   history.replaceState(null, "", `?${q}`);
 }
 
@@ -865,9 +872,89 @@ function readUrl() {
     if (f.kind === "choice") {
       if (id !== "play") $(`${id}-${value}`).checked = true;
     } else if (f.kind === "flag") $(id).checked = value === "1";
+    else if (f.kind === "view") state.pendingView = parseView(value);
     else if (id !== "potential") $(id).value = value;
   }
   if (values.play === "0") state.playing = false;
+}
+
+// ---- Zoom and pan: the view only; the run goes on. ----
+
+/** Shows the landscape over `view` (within the zoom range of its own). */
+function setView(view) {
+  state.view = zoomAbout(view, [view.cx, view.cy], 1, state.land.view);
+  state.grid = null;
+  layout(true);
+  writeUrl();
+}
+
+/** The landscape's point under a client position. */
+function pointAt(clientX, clientY) {
+  const box = $("particles").getBoundingClientRect();
+  const f = state.frame;
+  const px = clientX - box.left;
+  const py = clientY - box.top;
+  return [f.x0 + ((px - f.left) / f.width) * (f.x1 - f.x0), f.y1 - ((py - f.top) / f.height) * (f.y1 - f.y0)];
+}
+
+function wireView() {
+  const canvas = $("particles");
+  canvas.addEventListener(
+    "wheel",
+    (e) => {
+      e.preventDefault();
+      setView(zoomAbout(state.view, pointAt(e.clientX, e.clientY), 1.2 ** (-e.deltaY / 100), state.land.view));
+    },
+    { passive: false },
+  );
+  canvas.addEventListener("pointerdown", (e) => {
+    // A touch that moves scrolls the page: only a mouse or pen pans.
+    state.drag = { x: e.clientX, y: e.clientY, view: state.view, moved: false, pans: e.pointerType !== "touch" };
+    if (state.drag.pans) canvas.setPointerCapture?.(e.pointerId);
+  });
+  canvas.addEventListener("pointermove", (e) => {
+    const d = state.drag;
+    if (!d) return;
+    const dx = e.clientX - d.x;
+    const dy = e.clientY - d.y;
+    // A few pixels of jitter are still a click (which picks a chain).
+    if (!d.moved && Math.hypot(dx, dy) < 4) return;
+    d.moved = true;
+    if (!d.pans) return;
+    const perPixel = (2 * d.view.half) / state.frame.width;
+    setView(pan(d.view, [dx * perPixel, -dy * perPixel]));
+  });
+  const end = (e) => {
+    const d = state.drag;
+    state.drag = null;
+    if (d && !d.moved && e.type === "pointerup") pickChain(e);
+  };
+  canvas.addEventListener("pointerup", end);
+  canvas.addEventListener("pointercancel", end);
+  $("zoom-in").addEventListener("click", () => setView(zoomAbout(state.view, [state.view.cx, state.view.cy], 1.5, state.land.view)));
+  $("zoom-out").addEventListener("click", () => setView(zoomAbout(state.view, [state.view.cx, state.view.cy], 1 / 1.5, state.land.view)));
+  $("zoom-home").addEventListener("click", () => setView(state.land.view));
+}
+
+// ---- The link: the address holds every setting. ----
+
+async function copyLink() {
+  writeUrl();
+  const link = location.href;
+  const note = $("copy-note");
+  try {
+    await navigator.clipboard.writeText(link);
+    note.textContent = "Link copied: it replays this run, every setting included.";
+    $("link-field").hidden = true;
+  } catch {
+    // No clipboard (permission refused, or not a secure context): the
+    // link, selected, to copy by hand.
+    const field = $("link-field");
+    field.value = link;
+    field.hidden = false;
+    field.select();
+    note.textContent = "Copy the link below (Ctrl+C or ⌘C): it replays this run.";
+  }
 }
 
 /** The settings landscape `name` suggests, by control. */
@@ -956,7 +1043,8 @@ function wire() {
   $("play").addEventListener("click", () => setPlaying(!state.playing));
   $("step").addEventListener("click", stepOnce);
   $("reset").addEventListener("click", restart);
-  $("particles").addEventListener("click", pickChain);
+  wireView();
+  $("copy-link").addEventListener("click", copyLink);
   $("random-seed").addEventListener("click", () => {
     $("seed").value = sim.randomSeed().toString();
     forgetAddressProblem("seed");
