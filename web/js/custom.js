@@ -27,6 +27,7 @@ export function customLandscape(arg, view, estimate) {
     h: 0.01,
     eps: 0.1,
     minimisers: estimate ? [estimate.minimiser] : [],
+    headline: "For a function of yours nothing was measured in advance: compare the curves.",
     compare:
       "For a function of yours nothing was measured in advance: the table above compares the three on this run only. Try a landscape whose small ripples sit on a big bowl (momentum helps ULA), or deep wells far apart (ULA's slow wandering hurts it).",
     measured: null,

@@ -28,6 +28,7 @@ export const LANDSCAPES = {
     h: 0.01,
     eps: 0.5,
     minimisers: [[0, 0]],
+    headline: "On Rastrigin ULA wins here: its momentum carries its chains over the ripples down the bowl.",
     compare:
       "On Rastrigin, ULA wins. Its ripples (height 2) sit on a big bowl, and the start at (3, 3) is 18 above the bottom. ULA keeps the energy its chains gain rolling down the bowl as momentum (friction removes it only over a time 1/α = 1), which carries them over the ripples to the centre. HRLA and OLA, nearly overdamped with the paper's parameters, lose that energy at once and must hop each ripple by a random kick, rare at a = 4.",
     measured: { hrla: [0.08, 0.31, 0.79], ula: [0.94, 0.98, 0.99], ola: [0.06, 0.3, 0.78] },
@@ -42,6 +43,7 @@ export const LANDSCAPES = {
     h: 0.01,
     eps: 0.5,
     minimisers: [[0, 0]],
+    headline: "On Ackley HRLA and OLA lead and ULA trails: no slope to roll down, and ULA wanders slowly.",
     compare:
       "On Ackley, HRLA and OLA lead and ULA trails. The plateau has almost no slope to roll down, so momentum does not help; the chains must wander until they fall into the funnel, and ULA moves its position only through its velocity, whose spread is fixed by b = 10: its chains wander more slowly than OLA's and HRLA's, whose kicks on the position grow as a falls.",
     measured: { hrla: [0.22, 0.52, 0.96], ula: [0.03, 0.24, 0.5], ola: [0.12, 0.48, 0.95] },
@@ -60,6 +62,7 @@ export const LANDSCAPES = {
     h: 0.03,
     eps: 0.5,
     minimisers: [[1, 1]],
+    headline: "On Levy HRLA and OLA are alike and ULA is far behind: its chains wander slowly.",
     compare:
       "On Levy, HRLA and OLA are alike and ULA is far behind: the wells are wide and far apart, so the search is a long wander, and ULA's position wanders only through its velocity (spread fixed by b = 10), about ten times more slowly at a = 1 than OLA's.",
     measured: { hrla: [0.23, 0.32, 0.51], ula: [0.01, 0.02, 0.08], ola: [0.2, 0.34, 0.51] },
@@ -77,6 +80,7 @@ export const LANDSCAPES = {
     h: 0.01,
     eps: 2,
     minimisers: [[-2.903534027771177, -2.903534027771177]],
+    headline: "On Styblinski–Tang HRLA and OLA are alike; ULA never leaves the start's well.",
     compare:
       "On Styblinski–Tang, HRLA and OLA are alike and ULA never leaves the start's well: the way out is a barrier of 25 per coordinate, crossed by a large kick, and at a = 0.15 OLA's and HRLA's kicks on the position are large while ULA's position moves only through its velocity, whose spread does not depend on a.",
     measured: { hrla: [0.2, 0.43, 0.65], ula: [0, 0, 0], ola: [0.2, 0.43, 0.66] },
@@ -96,6 +100,7 @@ export const LANDSCAPES = {
       [-1, -1],
       [1, -1],
     ],
+    headline: "The double well favours no one: every sampler slides into a global minimum at once.",
     compare:
       "The double well favours no one: the start sits on the hill between four equally deep minima, every sampler slides into one at once, and all three level off where their law exp(−aU) puts them: within ε of U* about 96% of the time for the best of 10.",
     measured: { hrla: [0.96, 0.95, 0.96], ula: [0.96, 0.96, 0.97], ola: [0.97, 0.98, 0.96] },
@@ -110,6 +115,7 @@ export const LANDSCAPES = {
     h: 0.01,
     eps: 0.1,
     minimisers: [[0, 0]],
+    headline: "In the bowl all three reach the same Gaussian; ULA slides down more slowly.",
     compare:
       "The bowl has no trap: all three end in the same Gaussian N(0, I/a). ULA arrives later: it feels the slope only through its velocity, pulled by γ = a/b = 0.1 of the gradient against friction 1, so it slides down about ten times more slowly than OLA and HRLA.",
     measured: { hrla: [0.6, 0.64, 0.65], ula: [0.04, 0.21, 0.6], ola: [0.68, 0.62, 0.62] },

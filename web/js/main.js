@@ -793,6 +793,7 @@ function describeLandscape() {
   $("potential-about").textContent = l.about;
   $("formula-shown").textContent = l.formula;
   $("compare-landscape").textContent = l.compare;
+  $("compare-headline").textContent = l.headline;
   $("compare-measured").hidden = !l.measured;
   if (!l.measured) return;
   $("compare-measured-caption").textContent =
@@ -817,6 +818,7 @@ function syncControls() {
   const compare = $("compare").checked;
   $("hint-sampler").textContent = compare ? COMPARE_HINT : SAMPLER_HINTS[$("sampler").value];
   $("compare-about").hidden = state.runs.filter((r) => !r.descent).length < 2;
+  $("compare-lead").hidden = $("compare-about").hidden;
   $("descent-about").hidden = !state.runs.some((r) => r.descent);
   const legend = $("legend");
   legend.hidden = state.runs.length < 2;

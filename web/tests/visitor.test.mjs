@@ -52,8 +52,13 @@ test("compare mode draws HRLA's chains on top", async () => {
 test("compare mode says what the visitor sees, which dynamics this landscape favours, and the paper's claim against the measurement", async () => {
   await openPaused({ chains: 64 });
   assert.equal(await h.page.isVisible("#compare-about"), false);
+  assert.equal(await h.page.isVisible("#compare-lead"), false);
   await h.page.check("#compare");
   assert.equal(await h.page.isVisible("#compare-about"), true);
+  // The gist is on the first screen, under the picture's buttons.
+  const lead = await h.page.evaluate(() => ({ text: document.getElementById("compare-lead").textContent, bottom: document.getElementById("compare-lead").getBoundingClientRect().bottom, height: window.innerHeight }));
+  assert.match(lead.text, /ULA wins here.*momentum/);
+  assert.ok(lead.bottom < lead.height, `the compare line ends at ${lead.bottom}px, below the first screen (${lead.height})`);
   const rastrigin = await h.page.textContent("#compare-about");
   // What is on the screen.
   assert.match(rastrigin, /same seed/);
