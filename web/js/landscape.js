@@ -14,8 +14,9 @@ const LEVELS = 12;
 export const RUN_COLOURS = ["#ffffff", "#4fd1ff", "#ff7ad9"];
 /**
  * Decades of the density's log scale: below 1e-6 of its peak the density
- * has the darkest colour. A linear scale showed one bright spot at a = 4
- * (the wells next to the global one hold 1e-2..1e-4 of its peak density).
+ * has the darkest colour. On a linear scale the wells next to the global
+ * one, which hold 1e-2..1e-4 of its peak density at a = 4, would all have
+ * the floor's colour.
  */
 export const DENSITY_DECADES = 6;
 
