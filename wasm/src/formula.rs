@@ -17,13 +17,13 @@
 use core::fmt;
 
 /// The longest formula read, in characters.
-pub const MAX_LEN: usize = 400;
+pub const MAX_FORMULA_LEN: usize = 400;
 /// The deepest nesting of parentheses, function calls and signs.
-pub const MAX_DEPTH: usize = 32;
+pub const MAX_FORMULA_DEPTH: usize = 32;
 /// The most values the program holds at once while it runs: a level of
 /// nesting holds at most three (a sum's left side, a product's, a power's
-/// base), so no formula within [`MAX_DEPTH`] needs more.
-const MAX_STACK: usize = 3 * (MAX_DEPTH + 1) + 1;
+/// base), so no formula within [`MAX_FORMULA_DEPTH`] needs more.
+const MAX_STACK: usize = 3 * (MAX_FORMULA_DEPTH + 1) + 1;
 
 /// A number and its partial derivatives in `x` and `y`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -154,7 +154,7 @@ pub struct FormulaError {
 pub enum FormulaErrorKind {
     /// Nothing but blanks.
     Empty,
-    /// Longer than [`MAX_LEN`] characters.
+    /// Longer than [`MAX_FORMULA_LEN`] characters.
     TooLong {
         /// Its length.
         length: usize,
@@ -186,7 +186,7 @@ pub enum FormulaErrorKind {
     },
     /// A number that does not fit an f64 (`1e400`).
     Number(String),
-    /// Nested deeper than [`MAX_DEPTH`], or needing more than the
+    /// Nested deeper than [`MAX_FORMULA_DEPTH`], or needing more than the
     /// program's stack.
     TooDeep,
 }
@@ -201,7 +201,7 @@ impl fmt::Display for FormulaError {
             FormulaErrorKind::TooLong { length } => {
                 write!(
                     f,
-                    "the formula has {length} characters, more than the {MAX_LEN} read"
+                    "the formula has {length} characters, more than the {MAX_FORMULA_LEN} read"
                 )
             }
             FormulaErrorKind::Character(c) => write!(f, "“{c}” is not part of a formula"),
@@ -222,7 +222,7 @@ impl fmt::Display for FormulaError {
                 if *takes == 1 { "" } else { "s" }
             ),
             FormulaErrorKind::Number(text) => write!(f, "the number {text} is too large"),
-            FormulaErrorKind::TooDeep => write!(f, "nested more than {MAX_DEPTH} deep"),
+            FormulaErrorKind::TooDeep => write!(f, "nested more than {MAX_FORMULA_DEPTH} deep"),
         }
     }
 }
@@ -367,10 +367,10 @@ impl Parser {
     }
 
     /// One level deeper, opened by the token just read (a parenthesis, a
-    /// sign, `^`): refused there beyond [`MAX_DEPTH`].
+    /// sign, `^`): refused there beyond [`MAX_FORMULA_DEPTH`].
     fn deeper(&mut self) -> Result<(), FormulaError> {
         self.depth += 1;
-        if self.depth > MAX_DEPTH {
+        if self.depth > MAX_FORMULA_DEPTH {
             let opened = self.at.checked_sub(1).and_then(|i| self.tokens.get(i));
             return Err(FormulaError {
                 column: opened.map_or(1, |&(_, c)| c + 1),
@@ -537,9 +537,9 @@ impl Formula {
     /// Reads `text`; see the module's documentation for the language.
     pub fn parse(text: &str) -> Result<Self, FormulaError> {
         let length = text.chars().count();
-        if length > MAX_LEN {
+        if length > MAX_FORMULA_LEN {
             return Err(FormulaError {
-                column: MAX_LEN + 1,
+                column: MAX_FORMULA_LEN + 1,
                 kind: FormulaErrorKind::TooLong { length },
             });
         }
@@ -901,7 +901,7 @@ mod tests {
         for _ in 0..30 {
             text = format!("x + (x * {text})");
         }
-        // 30 levels of nesting fit MAX_DEPTH; the stack they need fits too.
+        // 30 levels of nesting fit MAX_FORMULA_DEPTH; the stack they need fits too.
         let f = Formula::parse(&text).unwrap();
         assert!(f.value_and_gradient(0.5, 0.5).0.is_finite());
         let deep = format!("{}x{}", "(x + ".repeat(31), ")".repeat(31));

@@ -65,7 +65,7 @@ use wasm_bindgen::prelude::*;
 
 pub use descent::Descent;
 pub use error::Error;
-pub use formula::{Formula, FormulaError, FormulaErrorKind};
+pub use formula::{Formula, FormulaError, FormulaErrorKind, MAX_FORMULA_DEPTH, MAX_FORMULA_LEN};
 pub use landscape::{Custom, GridError, Landscape, MAX_GRID, UnknownLandscape};
 pub use settings::{KEYS, Settings, Temperature, parse_sampler, potential};
 
