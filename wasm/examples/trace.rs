@@ -85,6 +85,7 @@ fn run(line: &str) -> Result<String, String> {
         seed: int(seed)?,
         stop_steps,
         stop_target,
+        escape: None,
     };
     let mut opt = Optimizer::from_settings(&settings).map_err(|e| e.to_string())?;
     let steps = u32::try_from(int(steps)?).map_err(|e| e.to_string())?;

@@ -6,6 +6,7 @@ use core::fmt;
 
 use wasm_bindgen::JsValue;
 
+use crate::formula::FormulaError;
 use crate::landscape::{GridError, UnknownLandscape};
 
 /// Why the wrapper refused a settings object or an argument, or why the
@@ -22,6 +23,9 @@ pub enum Error {
         key: String,
         /// The keys allowed there.
         known: &'static [&'static str],
+        /// The object: `settings`, or the setting it is the value of
+        /// (`annealing`, `potential`), which is then the field at fault.
+        within: &'static str,
     },
     /// Reading a setting threw (a getter, or a `Proxy` trap): the message
     /// of what was thrown.
@@ -62,15 +66,41 @@ pub enum Error {
     BadSeed,
     /// A grid of the potential cannot be computed finitely.
     Grid(GridError),
+    /// A visitor's formula cannot be read.
+    Formula(FormulaError),
+    /// A box is not an array of four numbers `[x0, x1, y0, y1]`.
+    BadBox,
+    /// A visitor's potential is not an object `{ formula, box }` with a
+    /// string and four numbers.
+    BadFormulaPotential,
     /// The kernel refused a parameter, or a run failed.
     Kernel(hrla::Error),
+    /// The chain asked about has diverged: it is frozen and has no next
+    /// step.
+    Diverged {
+        /// The chain.
+        chain: usize,
+    },
+    /// Every chain has run away beyond the escape radius or diverged: the
+    /// step is too long for the landscape, or the potential does not hold
+    /// the chains. The run has no result to trust.
+    RanAway {
+        /// The number of chains.
+        chains: usize,
+        /// The escape radius.
+        radius: f64,
+        /// The largest finite `|x|` of a chain (0 when every chain diverged).
+        farthest: f64,
+        /// How many of the chains diverged rather than ran away.
+        diverged: usize,
+    },
 }
 
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::NotAnObject => f.write_str("settings must be an object"),
-            Self::UnknownSetting { key, known } => write!(
+            Self::UnknownSetting { key, known, .. } => write!(
                 f,
                 "`{key}` is not a setting; the settings are {}",
                 known.join(", ")
@@ -98,7 +128,37 @@ impl fmt::Display for Error {
                 "`seed` must be a whole number between 0 and 2^53 - 1, or a BigInt between 0 and 2^64 - 1",
             ),
             Self::Grid(e) => fmt::Display::fmt(e, f),
+            Self::Formula(e) => fmt::Display::fmt(e, f),
+            Self::BadBox => f.write_str("`box` must be an array of four numbers [x0, x1, y0, y1]"),
+            Self::BadFormulaPotential => write!(
+                f,
+                "`potential` must be one of {}, or a formula {{ formula: \"U in x and y\", box: [x0, x1, y0, y1] }}",
+                crate::landscape::Landscape::NAMES.join(", ")
+            ),
             Self::Kernel(e) => fmt::Display::fmt(e, f),
+            Self::Diverged { chain } => write!(
+                f,
+                "`chain` {chain} has diverged: it is frozen and has no next step"
+            ),
+            Self::RanAway {
+                chains,
+                radius,
+                farthest,
+                diverged,
+            } => {
+                write!(
+                    f,
+                    "all {chains} chains ran away beyond |x| = {} (the farthest at {farthest:.2e})",
+                    Num(*radius)
+                )?;
+                if *diverged > 0 {
+                    write!(f, " or diverged ({diverged} of them)")?;
+                }
+                f.write_str(
+                    ": the step is too long for this landscape, or U does not hold the chains: \
+                     try a smaller `h`",
+                )
+            }
         }
     }
 }
@@ -111,7 +171,8 @@ impl Error {
     /// field.
     pub fn field(&self) -> Option<&'static str> {
         match self {
-            Self::NotAnObject | Self::UnknownSetting { .. } => None,
+            Self::NotAnObject => None,
+            Self::UnknownSetting { within, .. } => (*within != "settings").then_some(*within),
             Self::Threw { field, .. } => Some(field),
             Self::NotANumber(name) | Self::NotAnInteger(name) => Some(name),
             Self::NotACount { name, .. } => Some(name),
@@ -121,7 +182,12 @@ impl Error {
             Self::BadCentre => Some("centre"),
             Self::BadSeed => Some("seed"),
             Self::Grid(e) => Some(e.field()),
+            Self::Formula(_) => Some("formula"),
+            Self::BadBox => Some("box"),
+            Self::BadFormulaPotential => Some("potential"),
             Self::Kernel(e) => kernel_field(e),
+            Self::Diverged { .. } => Some("chain"),
+            Self::RanAway { .. } => Some("h"),
         }
     }
 
@@ -132,6 +198,9 @@ impl Error {
         if let Some(field) = self.field() {
             // Setting a property on a fresh Error object cannot fail.
             let _ = js_sys::Reflect::set(&error, &"field".into(), &field.into());
+        }
+        if let Self::Formula(e) = self {
+            let _ = js_sys::Reflect::set(&error, &"column".into(), &(e.column as f64).into());
         }
         error.into()
     }

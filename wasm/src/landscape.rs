@@ -1,11 +1,14 @@
 //! The landscapes the page offers: every built-in potential of the kernel
-//! in two dimensions, picked by name at run time, and the potential on a
-//! grid for the page's pictures (heat map, density, exact marginals).
+//! in two dimensions, picked by name at run time, or a visitor's own
+//! formula over a box; and the potential on a grid for the page's pictures
+//! (heat map, density, exact marginals).
 
 use core::fmt;
 use core::str::FromStr;
+use std::rc::Rc;
 
-use crate::error::Num;
+use crate::error::{Error, Num};
+use crate::formula::Formula;
 
 use hrla::{
     Ackley, DoubleWell, KnownMinimum, Levy, Potential, Quadratic, Rastrigin, StyblinskiTang,
@@ -15,8 +18,9 @@ use hrla::{
 ///
 /// Dispatching by `match` keeps one optimiser type for every landscape; the
 /// arms call the kernel's own implementations, so a landscape's numbers are
-/// the kernel's, bit for bit.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// the kernel's, bit for bit. A visitor's formula is the one landscape that
+/// is not the kernel's: its own small interpreter, with an exact gradient.
+#[derive(Clone, Debug, PartialEq)]
 pub enum Landscape {
     /// [`Rastrigin`], the paper's test function.
     Rastrigin,
@@ -31,6 +35,115 @@ pub enum Landscape {
     /// [`Quadratic`] with stiffness 1 centred at the origin: its Gibbs law
     /// is the Gaussian `N(0, I / a)`.
     Quadratic(Quadratic<f64, 2>),
+    /// A visitor's formula over its box ([`Custom`]).
+    Formula(Rc<Custom>),
+}
+
+/// A visitor's formula, with the box it is looked at over and its lowest
+/// value there, which stands for the unknown `U*`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Custom {
+    formula: Formula,
+    bounds: [f64; 4],
+    minimum: f64,
+    minimiser: [f64; 2],
+}
+
+/// Grid points per axis of the search for a formula's lowest value.
+const SEARCH_GRID: usize = 201;
+/// Gradient steps that refine the lowest grid point.
+const SEARCH_STEPS: usize = 200;
+
+impl Custom {
+    /// The formula as typed.
+    pub fn text(&self) -> &str {
+        self.formula.text()
+    }
+
+    /// The box `[x0, x1, y0, y1]`.
+    pub fn bounds(&self) -> [f64; 4] {
+        self.bounds
+    }
+}
+
+impl Landscape {
+    /// A visitor's formula over the box `[x0, x1, y0, y1]`. Its `U*` is not
+    /// known: it is estimated as the lowest value on a 201 x 201 grid of the
+    /// box, refined by gradient descent with backtracking within the box (a
+    /// chain may find lower values, outside the box or between grid points
+    /// in a narrow well). Errors: the formula's ([`Error::Formula`]), a box
+    /// that is not finite and increasing ([`GridError`]), or a point of the
+    /// grid where `U` or its gradient is not finite: the page could not draw
+    /// it, and chains there would diverge.
+    pub fn formula(text: &str, bounds: [f64; 4]) -> Result<Self, Error> {
+        let formula = Formula::parse(text).map_err(Error::Formula)?;
+        let [x0, x1, y0, y1] = bounds;
+        if !(bounds.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
+            return Err(GridError::Box(bounds).into());
+        }
+        if !((x1 - x0).is_finite() && (y1 - y0).is_finite()) {
+            return Err(GridError::TooWide(bounds).into());
+        }
+        let n = SEARCH_GRID;
+        let (dx, dy) = ((x1 - x0) / (n - 1) as f64, (y1 - y0) / (n - 1) as f64);
+        let mut best = (f64::INFINITY, [x0, y0]);
+        for j in 0..n {
+            for i in 0..n {
+                let x = [x0 + i as f64 * dx, y0 + j as f64 * dy];
+                let (u, g) = formula.value_and_gradient(x[0], x[1]);
+                if !(u.is_finite() && g.iter().all(|v| v.is_finite())) {
+                    return Err(GridError::NotFinite { x, value: u }.into());
+                }
+                if u < best.0 {
+                    best = (u, x);
+                }
+            }
+        }
+        let (minimum, minimiser) = descend(&formula, best, bounds);
+        Ok(Self::Formula(Rc::new(Custom {
+            formula,
+            bounds,
+            minimum,
+            minimiser,
+        })))
+    }
+}
+
+/// Gradient descent with backtracking from `start`, kept in the box: the
+/// lowest value found and where.
+fn descend(
+    formula: &Formula,
+    start: (f64, [f64; 2]),
+    [x0, x1, y0, y1]: [f64; 4],
+) -> (f64, [f64; 2]) {
+    let (mut u, mut x) = start;
+    let mut step = (x1 - x0).max(y1 - y0) * 1e-3;
+    for _ in 0..SEARCH_STEPS {
+        let (_, g) = formula.value_and_gradient(x[0], x[1]);
+        let norm = g[0].hypot(g[1]);
+        if !(norm > 0.0 && norm.is_finite()) {
+            break;
+        }
+        let mut moved = false;
+        while step > 1e-15 * (x1 - x0).max(y1 - y0) {
+            let next = [
+                (x[0] - step * g[0] / norm).clamp(x0, x1),
+                (x[1] - step * g[1] / norm).clamp(y0, y1),
+            ];
+            let v = formula.value_and_gradient(next[0], next[1]).0;
+            if v < u {
+                (u, x) = (v, next);
+                step *= 2.0;
+                moved = true;
+                break;
+            }
+            step /= 2.0;
+        }
+        if !moved {
+            break;
+        }
+    }
+    (u, x)
 }
 
 impl Landscape {
@@ -44,9 +157,10 @@ impl Landscape {
         "quadratic",
     ];
 
-    /// The name the page and the address use.
+    /// The name the page and the address use (`formula` for a visitor's).
     pub fn name(&self) -> &'static str {
         match self {
+            Self::Formula(_) => "formula",
             Self::Rastrigin => "rastrigin",
             Self::Ackley => "ackley",
             Self::Levy => "levy",
@@ -222,6 +336,11 @@ impl Potential<f64, 2> for Landscape {
             Self::StyblinskiTang => StyblinskiTang.value_and_gradient(x, grad),
             Self::DoubleWell => DoubleWell.value_and_gradient(x, grad),
             Self::Quadratic(q) => q.value_and_gradient(x, grad),
+            Self::Formula(f) => {
+                let (u, g) = f.formula.value_and_gradient(x[0], x[1]);
+                *grad = g;
+                u
+            }
         }
     }
 }
@@ -235,6 +354,7 @@ impl KnownMinimum<f64, 2> for Landscape {
             Self::StyblinskiTang => KnownMinimum::<f64, 2>::global_minimum(&StyblinskiTang),
             Self::DoubleWell => KnownMinimum::<f64, 2>::global_minimum(&DoubleWell),
             Self::Quadratic(q) => q.global_minimum(),
+            Self::Formula(f) => f.minimum,
         }
     }
 
@@ -246,6 +366,7 @@ impl KnownMinimum<f64, 2> for Landscape {
             Self::StyblinskiTang => StyblinskiTang.global_minimiser(),
             Self::DoubleWell => DoubleWell.global_minimiser(),
             Self::Quadratic(q) => q.global_minimiser(),
+            Self::Formula(f) => f.minimiser,
         }
     }
 }
@@ -253,6 +374,71 @@ impl KnownMinimum<f64, 2> for Landscape {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A formula of a built-in landscape is that landscape: values and
+    /// gradients agree to rounding (the kernel's Rastrigin reduces its
+    /// argument its own way), and the estimated U* is the true one.
+    #[test]
+    fn a_formula_is_the_potential_it_writes() {
+        let typed = Landscape::formula(
+            "2 + x^2 + y^2 - cos(2 pi x) - cos(2 pi y)",
+            [-5.0, 5.0, -5.0, 5.0],
+        )
+        .unwrap();
+        let built = Landscape::Rastrigin;
+        for &x in &[[0.3, -1.7], [2.9, 3.1], [-4.4, 0.05]] {
+            let (mut g1, mut g2) = ([0.0; 2], [0.0; 2]);
+            let (u1, u2) = (
+                typed.value_and_gradient(&x, &mut g1),
+                built.value_and_gradient(&x, &mut g2),
+            );
+            assert!(
+                (u1 - u2).abs() <= 1e-12 * (1.0 + u2.abs()),
+                "{x:?}: {u1} {u2}"
+            );
+            for i in 0..2 {
+                assert!(
+                    (g1[i] - g2[i]).abs() <= 1e-11 * (1.0 + g2[i].abs()),
+                    "{x:?}: {g1:?} {g2:?}"
+                );
+            }
+        }
+        assert!(
+            typed.global_minimum().abs() < 1e-12,
+            "{}",
+            typed.global_minimum()
+        );
+        assert!(typed.global_minimiser().iter().all(|v| v.abs() < 1e-6));
+        // Himmelblau's four global minima are 0; the search finds one.
+        let h = Landscape::formula("(x^2 + y - 11)^2 + (x + y^2 - 7)^2", [-5.0, 5.0, -5.0, 5.0])
+            .unwrap();
+        assert!(
+            h.global_minimum() < 1e-10 && h.global_minimum() >= 0.0,
+            "{}",
+            h.global_minimum()
+        );
+        assert_eq!(h.name(), "formula");
+    }
+
+    #[test]
+    fn a_formula_that_cannot_be_drawn_on_its_box_is_refused() {
+        assert!(matches!(
+            Landscape::formula("log(x)", [-1.0, 1.0, -1.0, 1.0]),
+            Err(Error::Grid(GridError::NotFinite { .. }))
+        ));
+        assert!(Landscape::formula("log(x)", [0.5, 1.0, -1.0, 1.0]).is_ok());
+        assert!(matches!(
+            Landscape::formula("x", [1.0, -1.0, -1.0, 1.0]),
+            Err(Error::Grid(GridError::Box(_)))
+        ));
+        assert!(matches!(
+            Landscape::formula("x +", [-1.0, 1.0, -1.0, 1.0]),
+            Err(Error::Formula(_))
+        ));
+        // Unbounded below: the estimate is the box's lowest, at its edge.
+        let slope = Landscape::formula("x", [-1.0, 1.0, -1.0, 1.0]).unwrap();
+        assert_eq!(slope.global_minimum(), -1.0);
+    }
 
     #[test]
     fn names_round_trip_and_minima_are_minima() {

@@ -1,8 +1,10 @@
 //! WebAssembly face of the `hrla` kernel for the live 2-D demo page.
 //!
-//! A thin `wasm-bindgen` layer with no maths of its own: one exported type,
-//! [`Optimizer`], owns the kernel's [`hrla::Optimizer`] on one of the
-//! kernel's built-in potentials in 2-D ([`Landscape`]), in f64, with its
+//! A thin `wasm-bindgen` layer with no maths of its own but a visitor's
+//! formula ([`Formula`]: parsed, differentiated exactly in forward mode):
+//! one exported type, [`Optimizer`], owns the kernel's [`hrla::Optimizer`]
+//! on one of the kernel's built-in potentials in 2-D or a formula
+//! ([`Landscape`]), in f64, with its
 //! chain storage (a `Vec` of up to [`MAX_CHAINS`] chains, each
 //! with its own generator), and flat buffers that JavaScript reads through
 //! typed-array views into wasm memory:
@@ -50,18 +52,22 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+mod descent;
 mod error;
+mod formula;
 mod landscape;
 mod read;
 mod settings;
 
-use hrla::Kernel as _;
 use hrla::{AnySampler, AnySchedule, Builder, Chain, Gaussian, KnownMinimum, Termination};
+use hrla::{Kernel as _, Sampler as _, Schedule as _, StepMoments};
 use wasm_bindgen::prelude::*;
 
+pub use descent::Descent;
 pub use error::Error;
-pub use landscape::{GridError, Landscape, MAX_GRID, UnknownLandscape};
-pub use settings::{KEYS, Settings, Temperature, parse_sampler};
+pub use formula::{Formula, FormulaError, FormulaErrorKind, MAX_FORMULA_DEPTH, MAX_FORMULA_LEN};
+pub use landscape::{Custom, GridError, Landscape, MAX_GRID, UnknownLandscape};
+pub use settings::{KEYS, Settings, Temperature, parse_sampler, potential};
 
 /// The most chains a run may have (the page offers up to 1024): more is
 /// refused with [`hrla::Error::Count`].
@@ -127,6 +133,11 @@ pub struct Optimizer {
     stops: bool,
     /// Why the run stopped, once it has.
     termination: Option<Termination>,
+    /// The escape radius, squared (see [`Settings::escape`]).
+    escape2: Option<f64>,
+    /// The wrapper's own failure (every chain ran away), returned again by
+    /// every later call, as the kernel does with its own.
+    failed: Option<Error>,
     /// `x` of chain `c` at `2c`, `2c + 1`.
     positions: Vec<f64>,
     /// `y` of chain `c` at `2c`, `2c + 1` (zero for OLA).
@@ -159,7 +170,7 @@ impl Optimizer {
         // end. Takes the sampler's kernel at a_0: a bad first temperature
         // is caught here.
         let builder =
-            Builder::new(settings.landscape, sampler, schedule, start).seed(settings.seed);
+            Builder::new(settings.landscape.clone(), sampler, schedule, start).seed(settings.seed);
         let stop = settings.stop();
         let kernel = match stop {
             Some(stop) => builder.stop(stop).build(chains)?,
@@ -170,6 +181,8 @@ impl Optimizer {
             seed: settings.seed,
             stops: stop.is_some(),
             termination: None,
+            escape2: settings.escape.map(|r| r * r),
+            failed: None,
             positions: vec![0.0; 2 * n],
             velocities: vec![0.0; 2 * n],
             values: vec![0.0; n],
@@ -183,9 +196,16 @@ impl Optimizer {
     /// done; fewer when a stopping rule holds first (then
     /// [`Optimizer::stopped`] says which, and later calls return 0 at
     /// once) or on error: [`hrla::Error::AllDiverged`] once every chain
-    /// has diverged, or the sampler's refusal of a temperature. The
-    /// buffers show the state reached either way.
-    pub fn step_n(&mut self, steps: u32) -> Result<u32, hrla::Error> {
+    /// has diverged, the sampler's refusal of a temperature, or
+    /// [`Error::RanAway`] after the first step at which every chain has run
+    /// away beyond the escape radius or diverged (checked after every
+    /// step, so the run ends at the same iteration however it is driven).
+    /// The buffers show the state reached either way, and a failed run
+    /// keeps failing.
+    pub fn step_n(&mut self, steps: u32) -> Result<u32, Error> {
+        if let Some(e) = &self.failed {
+            return Err(e.clone());
+        }
         let mut done = 0;
         let mut result = Ok(());
         while done < steps {
@@ -197,7 +217,13 @@ impl Optimizer {
             if self.termination.is_some() {
                 break;
             }
-            result = self.kernel.step();
+            result = self.kernel.step().map_err(Error::from);
+            if result.is_ok()
+                && let Some(e) = self.ran_away()
+            {
+                self.failed = Some(e.clone());
+                result = Err(e);
+            }
             if result.is_err() {
                 break;
             }
@@ -210,9 +236,79 @@ impl Optimizer {
         result.map(|()| done)
     }
 
+    /// [`Error::RanAway`] when every chain has diverged or lies beyond the
+    /// escape radius and at least one ran away (every chain diverged is
+    /// the kernel's own error).
+    fn ran_away(&self) -> Option<Error> {
+        let r2 = self.escape2?;
+        let chains = self.kernel.chains();
+        let mut farthest2 = 0.0_f64;
+        let mut diverged = 0;
+        for chain in chains {
+            if chain.is_diverged() {
+                diverged += 1;
+                continue;
+            }
+            let [x0, x1] = *chain.x();
+            let d2 = x0 * x0 + x1 * x1;
+            // A NaN distance is not beyond the radius: such a chain is not away.
+            if d2.is_nan() || d2 <= r2 {
+                return None;
+            }
+            farthest2 = farthest2.max(d2);
+        }
+        (diverged < chains.len()).then(|| Error::RanAway {
+            chains: chains.len(),
+            radius: r2.sqrt(),
+            farthest: farthest2.sqrt(),
+            diverged,
+        })
+    }
+
     /// Why the run stopped, once a stopping rule held.
     pub fn stopped(&self) -> Option<Termination> {
         self.termination
+    }
+
+    /// The law of chain `chain`'s next step, from the kernel's own
+    /// coefficients at the inverse temperature that step runs at
+    /// (`a_k` of the schedule at the current iteration `k`): per
+    /// coordinate, the mean and covariance of the new `(x_i, y_i)` given the
+    /// current `x`, `y` and the gradient frozen at `x`
+    /// ([`hrla::Kernel::moments`]). Coordinates are independent given the
+    /// current state. Errors: a chain index out of range
+    /// ([`Error::NotACount`]), a chain that has diverged
+    /// ([`Error::Diverged`]: it is frozen, it has no next step), or the
+    /// sampler's refusal of `a_k`.
+    pub fn next_step(&self, chain: usize) -> Result<NextStep, Error> {
+        let chains = self.kernel.chains();
+        let c = chains.get(chain).ok_or(Error::NotACount {
+            name: "chain",
+            value: chain as f64,
+            min: 0,
+            max: chains.len() as u64 - 1,
+        })?;
+        if c.is_diverged() {
+            return Err(Error::Diverged { chain });
+        }
+        let a = self
+            .kernel
+            .schedule()
+            .inverse_temperature(self.kernel.iteration());
+        let step = self.kernel.sampler().at(a)?;
+        let (x, y, g) = (*c.x(), *c.y(), *c.gradient());
+        // The mean is affine in (x, y, g): its parts come from the same
+        // moments at a zero position with only the gradient, or only the
+        // velocity.
+        Ok(NextStep {
+            a,
+            x,
+            y,
+            gradient: g,
+            moments: [0, 1].map(|i| step.moments(x[i], y[i], g[i])),
+            gradient_push: [0, 1].map(|i| step.moments(0.0, 0.0, g[i]).mean_x),
+            velocity_push: [0, 1].map(|i| step.moments(0.0, y[i], 0.0).mean_x),
+        })
     }
 
     /// The kernel's optimiser.
@@ -271,9 +367,82 @@ impl Optimizer {
     }
 }
 
+/// One chain's next step laid bare: the state it starts from and the
+/// Gaussian law of where it lands ([`Optimizer::next_step`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NextStep {
+    /// The inverse temperature of the step.
+    pub a: f64,
+    /// The position.
+    pub x: [f64; 2],
+    /// The velocity (zero for OLA, which has none).
+    pub y: [f64; 2],
+    /// `∇U(x)`, frozen over the step.
+    pub gradient: [f64; 2],
+    /// Per coordinate, the mean and covariance of the new `(x_i, y_i)`.
+    pub moments: [StepMoments<f64>; 2],
+    /// The gradient's part of the mean move of the position (`-c g`).
+    pub gradient_push: [f64; 2],
+    /// The velocity's part of the mean move of the position (`c' y`; zero
+    /// for OLA).
+    pub velocity_push: [f64; 2],
+}
+
+impl NextStep {
+    /// Number of f64 in [`NextStep::to_array`].
+    pub const LEN: usize = 21;
+
+    /// Flat, for JavaScript: `a, x0, x1, y0, y1, g0, g1`, then per
+    /// coordinate `mean_x, mean_y, var_x, cov_xy, var_y`, then the
+    /// gradient's push (two) and the velocity's push (two).
+    pub fn to_array(&self) -> [f64; Self::LEN] {
+        let [m0, m1] = self.moments;
+        [
+            self.a,
+            self.x[0],
+            self.x[1],
+            self.y[0],
+            self.y[1],
+            self.gradient[0],
+            self.gradient[1],
+            m0.mean_x,
+            m0.mean_y,
+            m0.var_x,
+            m0.cov_xy,
+            m0.var_y,
+            m1.mean_x,
+            m1.mean_y,
+            m1.var_x,
+            m1.cov_xy,
+            m1.var_y,
+            self.gradient_push[0],
+            self.gradient_push[1],
+            self.velocity_push[0],
+            self.velocity_push[1],
+        ]
+    }
+}
+
 /// Exported to JavaScript.
 #[wasm_bindgen]
 impl Optimizer {
+    /// The law of chain `chain`'s next step (see [`Optimizer::next_step`]),
+    /// flat as [`NextStep::to_array`]: `[a, x0, x1, y0, y1, g0, g1,` then
+    /// per coordinate `mean_x, mean_y, var_x, cov_xy, var_y`, then the
+    /// gradient's and the velocity's push of the mean, two each`]`. `chain` must
+    /// be a JS number holding a whole number below `chains()`; throws an
+    /// `Error` with `field` `"chain"` otherwise, or for a chain that has
+    /// diverged.
+    #[wasm_bindgen(js_name = nextStep)]
+    pub fn next_step_js(&self, chain: &JsValue) -> Result<Vec<f64>, JsValue> {
+        let max = self.values.len() as u64 - 1;
+        let c = read::count(chain, "chain", 0, max).map_err(|e| e.to_js())?;
+        // In range by the check above.
+        self.next_step(c as usize)
+            .map(|s| s.to_array().to_vec())
+            .map_err(|e| e.to_js())
+    }
+
     /// Creates a run from a settings object (see [`Settings::from_js`]);
     /// throws an `Error` with the reason when a setting is refused.
     #[wasm_bindgen(constructor)]
@@ -296,7 +465,7 @@ impl Optimizer {
         let steps = read::count(steps, "steps", 0, MAX_STEPS.into()).map_err(|e| e.to_js())?;
         // In range by the check above.
         let steps = u32::try_from(steps).unwrap_or(MAX_STEPS);
-        self.step_n(steps).map_err(|e| Error::from(e).to_js())
+        self.step_n(steps).map_err(|e| e.to_js())
     }
 
     /// Why the run stopped (`"target reached"`, `"step budget spent"`), or
@@ -352,12 +521,9 @@ impl Optimizer {
     }
 }
 
-/// The landscape a JS value names: a string among [`Landscape::NAMES`].
+/// The landscape a JS value names: see [`settings::potential`].
 fn landscape(name: &JsValue) -> Result<Landscape, Error> {
-    name.as_string()
-        .ok_or(UnknownLandscape)
-        .and_then(|n| n.parse())
-        .map_err(Error::UnknownPotential)
+    settings::potential(name)
 }
 
 /// `U` of the landscape `name` at the cell centres of an `nx` by `ny` grid
@@ -394,12 +560,25 @@ pub fn potential_grid(
 }
 
 /// The global minimum `U*` of the landscape `name` (the kernel's
-/// [`KnownMinimum`]); throws an `Error` with `field` `"potential"` when
-/// `name` is not a landscape's name.
+/// [`KnownMinimum`]; for a visitor's formula, the estimate of
+/// [`Landscape::formula`]); throws an `Error` with `field` `"potential"`
+/// when `name` is not a landscape's name or a formula object, `"formula"`
+/// (with a `column`) when the formula cannot be read, `"box"` when it
+/// cannot be evaluated finitely over its box.
 #[wasm_bindgen]
 pub fn global_minimum(name: &JsValue) -> Result<f64, JsValue> {
     landscape(name)
         .map(|l| l.global_minimum())
+        .map_err(|e| e.to_js())
+}
+
+/// A global minimiser `x*` of the landscape `potential` (one of them when
+/// there are several; for a visitor's formula, where its estimated `U*`
+/// was found), `[x0, x1]`; throws like [`global_minimum`].
+#[wasm_bindgen]
+pub fn global_minimiser(potential: &JsValue) -> Result<Vec<f64>, JsValue> {
+    landscape(potential)
+        .map(|l| l.global_minimiser().to_vec())
         .map_err(|e| e.to_js())
 }
 
@@ -550,7 +729,7 @@ mod tests {
         };
         let mut opt = Optimizer::from_settings(&settings).unwrap();
         let err = opt.step_n(1000).unwrap_err();
-        assert_eq!(err, hrla::Error::AllDiverged { chains: 10 });
+        assert_eq!(err, Error::Kernel(hrla::Error::AllDiverged { chains: 10 }));
         assert_eq!(
             err.to_string(),
             "all 10 chains diverged (non-finite position, potential or gradient): try a smaller step h"
@@ -559,8 +738,167 @@ mod tests {
         assert_eq!(s[Summary::Diverged as usize], 10.0);
         assert!(s[Summary::Iteration as usize] > 0.0 && s[Summary::Iteration as usize] < 1000.0);
         assert!(s[Summary::BestValue as usize].is_finite());
-        assert_eq!(opt.step_n(1), Err(hrla::Error::AllDiverged { chains: 10 }));
+        assert_eq!(
+            opt.step_n(1),
+            Err(Error::Kernel(hrla::Error::AllDiverged { chains: 10 }))
+        );
         assert_eq!(opt.summary(), &s);
+    }
+
+    /// A step far too long for Rastrigin (h = 1): the chains grow
+    /// geometrically with finite values, so the kernel sees no divergence;
+    /// with an escape radius the run fails at the first step where every
+    /// chain is beyond it, whatever the steps asked per call, and keeps
+    /// failing.
+    #[test]
+    fn every_chain_beyond_the_escape_radius_fails_the_run() {
+        let settings = Settings {
+            h: 1.0,
+            chains: 16,
+            centre: [3.0, 3.0],
+            spread: 0.5,
+            escape: Some(5000.0),
+            ..Settings::default()
+        };
+        let mut whole = Optimizer::from_settings(&settings).unwrap();
+        let err = whole.step_n(10_000).unwrap_err();
+        let at = whole.summary()[Summary::Iteration as usize];
+        assert!(at > 1.0 && at < 1000.0, "failed at {at}");
+        assert_eq!(whole.summary()[Summary::Diverged as usize], 0.0);
+        let Error::RanAway {
+            chains,
+            radius,
+            farthest,
+            diverged,
+        } = err
+        else {
+            panic!("{err:?}");
+        };
+        assert_eq!((chains, radius, diverged), (16, 5000.0, 0));
+        assert!(farthest > 5000.0 && farthest.is_finite());
+        for chain in whole.kernel().chains() {
+            let [x0, x1] = *chain.x();
+            assert!(x0.hypot(x1) > 5000.0);
+        }
+        assert!(
+            err.to_string()
+                .starts_with("all 16 chains ran away beyond |x| = 5000")
+        );
+        assert_eq!(err.field(), Some("h"));
+        // One step at a time: the same iteration, the same state.
+        let mut single = Optimizer::from_settings(&settings).unwrap();
+        let mut failed = None;
+        for _ in 0..10_000 {
+            if let Err(e) = single.step_n(1) {
+                failed = Some(e);
+                break;
+            }
+        }
+        assert_eq!(failed, Some(err.clone()));
+        assert_eq!(single.summary(), whole.summary());
+        assert_eq!(single.positions(), whole.positions());
+        assert_eq!(single.step_n(1), Err(err));
+        assert_eq!(single.summary()[Summary::Iteration as usize], at);
+        // Without a radius the same run goes on.
+        let mut free = Optimizer::from_settings(&Settings {
+            escape: None,
+            ..settings
+        })
+        .unwrap();
+        assert_eq!(free.step_n(at as u32 + 10), Ok(at as u32 + 10));
+    }
+
+    /// The law `next_step` shows is the one the next step draws from: over
+    /// 1024 chains (2048 coordinates, seed fixed), the standardised
+    /// residuals of the new position (and for HRLA and ULA of the new
+    /// velocity) have mean 0 and variance 1, and HRLA's and ULA's position
+    /// and velocity residuals the correlation of the covariance shown.
+    /// Tolerances: 4 standard errors (mean 1/sqrt(n), variance sqrt(2/n),
+    /// the mean product of the residuals, whose variance is
+    /// (1 + rho^2)/n), under annealing so that `a_k` matters.
+    #[test]
+    fn next_step_is_the_law_the_step_draws_from() {
+        for sampler in hrla::SamplerKind::ALL {
+            let settings = Settings {
+                sampler,
+                temperature: Temperature::Linear {
+                    a_low: 0.5,
+                    a_high: 4.0,
+                    steps: 40,
+                },
+                chains: 1024,
+                spread: 1.0,
+                seed: 77,
+                ..Settings::default()
+            };
+            let mut opt = Optimizer::from_settings(&settings).unwrap();
+            opt.step_n(17).unwrap();
+            let laws: Vec<NextStep> = (0..1024).map(|c| opt.next_step(c).unwrap()).collect();
+            for law in &laws {
+                for i in 0..2 {
+                    let parts = law.x[i] + law.gradient_push[i] + law.velocity_push[i];
+                    let mean = law.moments[i].mean_x;
+                    assert!(
+                        (parts - mean).abs() <= 1e-12 * (1.0 + mean.abs()),
+                        "{sampler:?}"
+                    );
+                }
+            }
+            assert_eq!(laws[0].a, 0.5 + 3.5 * 17.0 / 40.0, "{sampler:?}");
+            opt.step_n(1).unwrap();
+            let (mut zx, mut zy) = (Vec::new(), Vec::new());
+            let mut rho = 0.0;
+            for (c, law) in laws.iter().enumerate() {
+                for (i, m) in law.moments.iter().enumerate() {
+                    zx.push((opt.positions()[2 * c + i] - m.mean_x) / m.var_x.sqrt());
+                    if m.var_y > 0.0 {
+                        zy.push((opt.velocities()[2 * c + i] - m.mean_y) / m.var_y.sqrt());
+                        rho = m.cov_xy / (m.var_x * m.var_y).sqrt();
+                    } else {
+                        assert_eq!(opt.velocities()[2 * c + i], m.mean_y, "{sampler:?}");
+                    }
+                }
+            }
+            let n = zx.len() as f64;
+            let mean = |z: &[f64]| z.iter().sum::<f64>() / z.len() as f64;
+            let var = |z: &[f64]| {
+                let m = mean(z);
+                z.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (z.len() as f64 - 1.0)
+            };
+            assert!(
+                mean(&zx).abs() < 4.0 / n.sqrt(),
+                "{sampler:?} {}",
+                mean(&zx)
+            );
+            assert!(
+                (var(&zx) - 1.0).abs() < 4.0 * (2.0 / n).sqrt(),
+                "{sampler:?} {}",
+                var(&zx)
+            );
+            if sampler == hrla::SamplerKind::Ola {
+                assert!(zy.is_empty());
+                continue;
+            }
+            assert!(mean(&zy).abs() < 4.0 / n.sqrt(), "{sampler:?}");
+            assert!(
+                (var(&zy) - 1.0).abs() < 4.0 * (2.0 / n).sqrt(),
+                "{sampler:?}"
+            );
+            let r = zx.iter().zip(&zy).map(|(a, b)| a * b).sum::<f64>() / n;
+            assert!(
+                (r - rho).abs() < 4.0 * ((1.0 + rho * rho) / n).sqrt(),
+                "{sampler:?}: correlation {r} against {rho}"
+            );
+        }
+        let opt = Optimizer::from_settings(&Settings {
+            chains: 3,
+            ..Settings::default()
+        })
+        .unwrap();
+        assert!(matches!(
+            opt.next_step(3),
+            Err(Error::NotACount { name: "chain", .. })
+        ));
     }
 
     /// A step budget stops the run there; a target alone stops it when
@@ -613,10 +951,34 @@ mod tests {
     fn errors_name_the_setting_at_fault() {
         let field = |s: Settings| Optimizer::from_settings(&s).err().unwrap().field();
         let d = Settings::default();
-        assert_eq!(field(Settings { h: 0.0, ..d }), Some("h"));
-        assert_eq!(field(Settings { h: 1e9, ..d }), Some("alpha h"));
-        assert_eq!(field(Settings { chains: 0, ..d }), Some("chains"));
-        assert_eq!(field(Settings { spread: -1.0, ..d }), Some("std_dev"));
+        assert_eq!(
+            field(Settings {
+                h: 0.0,
+                ..d.clone()
+            }),
+            Some("h")
+        );
+        assert_eq!(
+            field(Settings {
+                h: 1e9,
+                ..d.clone()
+            }),
+            Some("alpha h")
+        );
+        assert_eq!(
+            field(Settings {
+                chains: 0,
+                ..d.clone()
+            }),
+            Some("chains")
+        );
+        assert_eq!(
+            field(Settings {
+                spread: -1.0,
+                ..d.clone()
+            }),
+            Some("std_dev")
+        );
         assert_eq!(
             field(Settings {
                 stop_steps: Some(10),
@@ -625,14 +987,14 @@ mod tests {
                     a_high: 2.0,
                     steps: 100
                 },
-                ..d
+                ..d.clone()
             }),
             Some("stopSteps")
         );
         assert_eq!(
             field(Settings {
                 stop_target: Some(f64::NAN),
-                ..d
+                ..d.clone()
             }),
             Some("target")
         );

@@ -56,7 +56,11 @@ pub(crate) fn only_keys(
         if let Some(key) = key.as_string()
             && !known.contains(&key.as_str())
         {
-            return Err(Error::UnknownSetting { key, known });
+            return Err(Error::UnknownSetting {
+                key,
+                known,
+                within: name,
+            });
         }
     }
     Ok(())
@@ -82,6 +86,19 @@ pub(crate) fn count(value: &JsValue, name: &'static str, min: u64, max: u64) -> 
             max,
         })
     }
+}
+
+/// An array of exactly four JS numbers (a box `[x0, x1, y0, y1]`); else
+/// [`Error::BadBox`].
+pub(crate) fn four(value: &JsValue, name: &'static str) -> Result<[f64; 4], Error> {
+    if !is_array(value, name)? || get_as(value, "length", name)?.as_f64() != Some(4.0) {
+        return Err(Error::BadBox);
+    }
+    let mut out = [0.0; 4];
+    for (i, v) in (0_u32..).zip(out.iter_mut()) {
+        *v = get_index(value, i, name)?.as_f64().ok_or(Error::BadBox)?;
+    }
+    Ok(out)
 }
 
 /// [`Error::Threw`] for `thrown`, with its message.

@@ -9,7 +9,7 @@ use crate::landscape::{Landscape, UnknownLandscape};
 use crate::read::{get, get_as, get_index, is_array, number, only_keys};
 
 /// The keys a settings object may have.
-pub const KEYS: [&str; 11] = [
+pub const KEYS: [&str; 12] = [
     "potential",
     "sampler",
     "a",
@@ -21,6 +21,7 @@ pub const KEYS: [&str; 11] = [
     "seed",
     "stopSteps",
     "stopTarget",
+    "escape",
 ];
 
 /// The keys of the `annealing` object.
@@ -67,7 +68,7 @@ impl Temperature {
 ///
 /// The sampler's other parameters are the paper's (`alpha = beta = 1`,
 /// `b = 10`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
     /// The potential.
     pub landscape: Landscape,
@@ -90,6 +91,10 @@ pub struct Settings {
     pub stop_steps: Option<u64>,
     /// Stop once the best value is at most this (none: never).
     pub stop_target: Option<f64>,
+    /// The escape radius `R`: a chain with `|x| > R` has run away, and the
+    /// run fails ([`Error::RanAway`]) once every chain has run away or
+    /// diverged (none: chains may wander anywhere finite).
+    pub escape: Option<f64>,
 }
 
 impl Default for Settings {
@@ -107,8 +112,39 @@ impl Default for Settings {
             seed: 1,
             stop_steps: None,
             stop_target: None,
+            escape: None,
         }
     }
+}
+
+/// The keys of a visitor's potential.
+const FORMULA_KEYS: [&str; 2] = ["formula", "box"];
+
+/// A landscape from a JS value: a built-in's name (a string among
+/// [`Landscape::NAMES`]), or a visitor's `{ formula: string, box: [x0, x1,
+/// y0, y1] }` ([`Landscape::formula`]).
+pub fn potential(value: &JsValue) -> Result<Landscape, Error> {
+    if let Some(name) = value.as_string() {
+        return name.parse().map_err(Error::UnknownPotential);
+    }
+    if !value.is_object() || is_array(value, "potential")? {
+        return Err(Error::UnknownPotential(UnknownLandscape));
+    }
+    only_keys(value, &FORMULA_KEYS, "potential")?;
+    let text = get(value, "formula")?
+        .as_string()
+        .ok_or(Error::BadFormulaPotential)?;
+    let bounds = get(value, "box")?;
+    if !is_array(&bounds, "box")? || get_as(&bounds, "length", "box")?.as_f64() != Some(4.0) {
+        return Err(Error::BadFormulaPotential);
+    }
+    let mut b = [0.0; 4];
+    for (i, v) in (0_u32..).zip(b.iter_mut()) {
+        *v = get_index(&bounds, i, "box")?
+            .as_f64()
+            .ok_or(Error::BadFormulaPotential)?;
+    }
+    Landscape::formula(&text, b)
 }
 
 /// Largest integer a JS number holds exactly, `2^53 - 1`.
@@ -125,7 +161,8 @@ impl Settings {
     ///   h: number, chains: number,
     ///   centre: [number, number], spread: number,
     ///   seed: number | bigint,
-    ///   stopSteps: number | null, stopTarget: number | null }  // optional
+    ///   stopSteps: number | null, stopTarget: number | null,   // optional
+    ///   escape: number | null }                                // optional, > 0
     /// ```
     ///
     /// Numbers are checked only for type here (and for being whole where a
@@ -146,11 +183,7 @@ impl Settings {
         only_keys(value, &KEYS, "settings")?;
         let landscape = match get(value, "potential")? {
             p if p.is_undefined() || p.is_null() => Landscape::Rastrigin,
-            p => p
-                .as_string()
-                .ok_or(Error::UnknownPotential(UnknownLandscape))?
-                .parse()
-                .map_err(Error::UnknownPotential)?,
+            p => potential(&p)?,
         };
         let sampler = match get(value, "sampler")?.as_string() {
             Some(name) => parse_sampler(&name)?,
@@ -188,6 +221,18 @@ impl Settings {
             .map(|v| safe_whole(v).ok_or(Error::NotAnInteger("stopSteps")))
             .transpose()?;
         let stop_target = optional("stopTarget")?;
+        let escape = optional("escape")?
+            .map(|r| {
+                if r.is_finite() && r > 0.0 {
+                    Ok(r)
+                } else {
+                    Err(hrla::Error::NotPositive {
+                        name: "escape",
+                        value: r,
+                    })
+                }
+            })
+            .transpose()?;
         Ok(Self {
             landscape,
             sampler,
@@ -199,6 +244,7 @@ impl Settings {
             seed,
             stop_steps,
             stop_target,
+            escape,
         })
     }
 

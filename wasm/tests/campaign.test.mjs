@@ -119,6 +119,7 @@ function validSettings(r) {
     seed: r.chance(0.5) ? r.int(0, 2 ** 31) : BigInt(r.int(0, 2 ** 31)) * 2n ** 32n + BigInt(r.int(0, 2 ** 31)),
     stopSteps: r.chance(0.3) ? r.int(1, 400) : null,
     stopTarget: r.chance(0.2) ? r.pick([-1, 0.01, 1, 100]) : null,
+    escape: r.chance(0.3) ? r.pick([1, 100, 5000]) : null,
   };
 }
 

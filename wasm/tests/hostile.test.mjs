@@ -20,6 +20,18 @@ function refused(f, field, pattern) {
   });
 }
 
+/** The message of what `f` throws, which must be a typed Error naming `box`. */
+function refused2(f) {
+  try {
+    f();
+  } catch (e) {
+    assert.ok(isTypedError(e));
+    assert.equal(e.field, "box");
+    return e.message;
+  }
+  assert.fail("not refused");
+}
+
 /** `settings` with `key` read through a getter that throws `thrown`. */
 function throwingGetter(key, thrown) {
   const s = { ...OK };
@@ -219,4 +231,67 @@ test("a diverged chain's published value is never finite, even when the kernel's
   }
   assert.ok(diverged > 0, "no chain diverged: the case tests nothing");
   opt.free();
+});
+
+test("an escape radius that is not a positive number is refused naming `escape`", () => {
+  for (const bad of [0, -1, -0, NaN, Infinity, -Infinity]) refused(() => new wasm.Optimizer({ ...OK, escape: bad }), "escape");
+  for (const bad of ["5", 5n, {}, [5], true]) refused(() => new wasm.Optimizer({ ...OK, escape: bad }), "escape", /must be a number/);
+  // Absent, null and a positive number are accepted.
+  for (const ok of [undefined, null, 1e-300, 5000, Number.MAX_VALUE]) new wasm.Optimizer({ ...OK, escape: ok }).free();
+});
+
+test("every chain beyond the escape radius is a typed failure that stays, never a report", () => {
+  const opt = new wasm.Optimizer({ ...OK, h: 5, chains: 10, escape: 5000 });
+  refused(() => opt.advance(1000), "h", /^all 10 chains ran away beyond \|x\| = 5000/);
+  const at = summary(opt)[S.Iteration];
+  assert.ok(at > 0 && at < 1000, `failed at ${at}`);
+  refused(() => opt.advance(1), "h", /ran away/);
+  refused(() => opt.advance(0), "h", /ran away/);
+  assert.equal(summary(opt)[S.Iteration], at);
+  opt.free();
+});
+
+test("the law of a chain's next step: a chain index that is not one is refused naming `chain`", () => {
+  const opt = new wasm.Optimizer(OK);
+  for (const bad of [-1, 8, 1.5, NaN, Infinity, "0", 0n, null, undefined, {}, [0], 2 ** 32]) {
+    refused(() => opt.nextStep(bad), "chain");
+  }
+  const law = opt.nextStep(7);
+  assert.equal(law.length, 21);
+  assert.ok(law.every(Number.isFinite));
+  // Asking changes nothing: the next step is the same with or without it.
+  const other = new wasm.Optimizer(OK);
+  opt.advance(5);
+  other.advance(5);
+  assert.deepEqual(positions(opt), positions(other));
+  opt.free();
+  other.free();
+});
+
+test("a diverged chain has no next step: refused naming `chain`", () => {
+  const opt = new wasm.Optimizer({ ...OK, potential: "levy", h: 1, chains: 64, spread: Math.sqrt(10) });
+  let gone = -1;
+  for (let k = 0; k < 100 && gone < 0; k++) {
+    opt.advance(1);
+    gone = values(opt).findIndex((u) => !Number.isFinite(u));
+  }
+  assert.ok(gone >= 0, "no chain diverged: the case tests nothing");
+  refused(() => opt.nextStep(gone), "chain", /has diverged/);
+  opt.free();
+});
+
+test("gradient descent: a bad box or bad settings are refused by name, its advance counts like the optimiser's", () => {
+  for (const box of [undefined, null, [0, 1, 0], [0, 1, 0, "1"], "0,1,0,1", [1, 0, 0, 1], [0, 1, NaN, 1], [0, Infinity, 0, 1]]) {
+    refused(() => new wasm.Descent(OK, box), "box");
+  }
+  refused(() => new wasm.Descent({ ...OK, h: -1 }, [-5, 5, -5, 5]), "h");
+  refused(() => new wasm.Descent({ ...OK, chains: 0 }, [-5, 5, -5, 5]), "chains");
+  assert.throws(() => new wasm.Descent({ ...OK, extra: 1 }, [-5, 5, -5, 5]), (e) => isTypedError(e) && /`extra` is not a setting/.test(e.message));
+  assert.match(refused2(() => new wasm.Descent(OK, [0, 1, 0])), /`box` must be an array of four numbers/);
+  const d = new wasm.Descent(OK, [-5, 5, -5, 5]);
+  for (const bad of [-1, 1.5, NaN, "5", 5n, 2 ** 32]) refused(() => d.advance(bad), "steps");
+  assert.equal(d.advance(50), 50);
+  assert.equal(d.termination(), undefined);
+  assert.ok(summary(d).every((v, i) => i === S.A || Number.isFinite(v)));
+  d.free();
 });

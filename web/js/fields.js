@@ -1,11 +1,18 @@
 // The settings as the page holds them: every control, its place in the
 // address, and the checks and plain-words messages that go next to it.
 
+import { parseView } from "./view.js";
+
 /** Every setting in the address, with its control and its kind. */
 export const FIELDS = [
   { id: "potential", kind: "select", label: "landscape" },
+  { id: "formula", kind: "text", label: "formula" },
+  { id: "fcx", kind: "number", label: "box centre x₁" },
+  { id: "fcy", kind: "number", label: "box centre x₂" },
+  { id: "fhalf", kind: "number", label: "box half-width" },
   { id: "sampler", kind: "select", label: "method" },
   { id: "compare", kind: "flag", label: "compare HRLA, ULA, OLA" },
+  { id: "descent", kind: "flag", label: "gradient descent with restarts beside" },
   { id: "h", kind: "number", label: "step h" },
   { id: "chains", kind: "number", label: "chains N" },
   { id: "spf", kind: "number", label: "steps per frame" },
@@ -24,6 +31,7 @@ export const FIELDS = [
   { id: "eps", kind: "number", label: "ε" },
   { id: "show", kind: "choice", values: ["u", "density"], label: "background" },
   { id: "play", kind: "choice", values: ["0", "1"], label: "play" },
+  { id: "view", kind: "view", label: "view" },
 ];
 
 export const FIELD = Object.fromEntries(FIELDS.map((f) => [f.id, f]));
@@ -44,6 +52,8 @@ const KERNEL_NAMES = {
   seed: "seed",
   sampler: "sampler",
   potential: "potential",
+  formula: "formula",
+  box: "fhalf",
   stopSteps: "stopSteps",
   "step budget": "stopSteps",
   stopTarget: "stopTarget",
@@ -97,6 +107,8 @@ export function readAddress(search, options) {
       bad = "must be 0 or 1";
     } else if (field.kind === "number" && !(field.optional && value === "") && !Number.isFinite(parseNumber(value))) {
       bad = "is not a number";
+    } else if (field.kind === "view" && !parseView(value)) {
+      bad = "must be cx,cy,half with half above 0";
     } else if (field.kind === "seed" && !/^[0-9]+$/.test(value)) {
       bad = "must be a whole number between 0 and 2^64 − 1";
     }

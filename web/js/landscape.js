@@ -1,7 +1,8 @@
 // The landscape panel: the background (U on a log colour scale, or the
-// density exp(-a U) at the current a) with contour lines, axes, the global
-// minimisers and a colour bar, drawn when the view, the size or a changes;
-// and the chains, their trails and the running best, redrawn every frame.
+// density exp(-a U) at the current a, also on a log scale) with contour
+// lines, axes, the global minimisers and a colour bar, drawn when the view,
+// the size or a changes; and the chains, their trails and the running
+// best, redrawn every frame.
 
 import { VIRIDIS, viridisCss } from "./colormap.js";
 
@@ -11,6 +12,13 @@ const MARGIN = { left: 34, right: 10, top: 10, bottom: 26 };
 const LEVELS = 12;
 /** One colour per run in compare mode (and the single run's is the first). */
 export const RUN_COLOURS = ["#ffffff", "#4fd1ff", "#ff7ad9"];
+/**
+ * Decades of the density's log scale: below 1e-6 of its peak the density
+ * has the darkest colour. On a linear scale the wells next to the global
+ * one, which hold 1e-2..1e-4 of its peak density at a = 4, would all have
+ * the floor's colour.
+ */
+export const DENSITY_DECADES = 6;
 
 /** Maps the square view [cx - half, cx + half] x [cy - half, cy + half] to the canvas' plot area. */
 export class Frame {
@@ -37,8 +45,9 @@ export class Frame {
 /**
  * The colour scale of the background: t in [0, 1] for each grid value.
  * "u": log(1 + U - U*) over the view's range, so that low basins get most
- * of the colours; "density": exp(-a (U - min U)), linear, 1 at the view's
- * mode. Returns { t: Float32Array, ticks: [[t, label]], title }.
+ * of the colours; "density": exp(-a (U - min U)) relative to the view's
+ * mode, on a log scale over DENSITY_DECADES decades. Returns
+ * { t: Float32Array, ticks: [[t, label]], title }.
  */
 export function colourScale(grid, mode, a, minimum) {
   const t = new Float32Array(grid.length);
@@ -49,12 +58,12 @@ export function colourScale(grid, mode, a, minimum) {
     if (u > hi) hi = u;
   }
   if (mode === "density") {
-    for (let k = 0; k < grid.length; k++) t[k] = Math.exp(-a * (grid[k] - lo));
-    return {
-      t,
-      title: `exp(−aU) / max, a = ${+a.toPrecision(3)}`,
-      ticks: [0, 0.25, 0.5, 0.75, 1].map((v) => [v, String(v)]),
-    };
+    // log10 of the density relative to its peak is -a (U - lo) / ln 10.
+    const perUnit = a / (Math.LN10 * DENSITY_DECADES);
+    for (let k = 0; k < grid.length; k++) t[k] = Math.max(0, 1 - (grid[k] - lo) * perUnit);
+    const ticks = [];
+    for (let d = 0; d <= DENSITY_DECADES; d += 2) ticks.push([1 - d / DENSITY_DECADES, d === 0 ? "1" : `1e−${d}`]);
+    return { t, ticks, title: `exp(−aU) / max (log scale), a = ${+a.toPrecision(3)}` };
   }
   const scale = 1 / Math.log1p(Math.max(hi - minimum, 1e-12));
   for (let k = 0; k < grid.length; k++) t[k] = Math.min(1, Math.max(0, Math.log1p(grid[k] - minimum) * scale));
@@ -228,9 +237,13 @@ function drawAxes(ctx, frame, color) {
 /**
  * For each run: its trails (oldest faintest; consecutive trail points are
  * TRAIL_STRIDE steps apart, so a trail is the chain's path), its chains,
- * and its running best, circled. `runs` is [{ trails, x, n, best: [x0, x1], colour }].
+ * and its running best, circled. `runs` is [{ trails, x, n, best: [x0, x1],
+ * colour, square }], the first drawn last, on top (HRLA's in compare
+ * mode); `square` draws the chains as squares (gradient descent's).
+ * `mark`, when given, is a point [x1, x2] ringed (the chain whose step is
+ * laid bare).
  */
-export function drawChains(canvas, frame, dpr, runs) {
+export function drawChains(canvas, frame, dpr, runs, mark = null) {
   const ctx = canvas.getContext("2d");
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.clearRect(0, 0, frame.size, frame.size);
@@ -238,11 +251,12 @@ export function drawChains(canvas, frame, dpr, runs) {
   ctx.beginPath();
   ctx.rect(frame.left, frame.top, frame.width, frame.height);
   ctx.clip();
-  for (const run of runs) {
+  for (const run of [...runs].reverse()) {
     const { trails, n } = run;
     ctx.strokeStyle = run.colour;
     ctx.lineWidth = 1;
-    const ages = trails.count - 1;
+    // Descent's restarts jump across the picture: no trails for it.
+    const ages = run.square ? 0 : trails.count - 1;
     for (let age = ages; age >= 1; age--) {
       const older = trails.snapshot(age);
       const newer = trails.snapshot(age - 1);
@@ -260,7 +274,10 @@ export function drawChains(canvas, frame, dpr, runs) {
     ctx.globalAlpha = 1;
     ctx.fillStyle = run.colour;
     ctx.strokeStyle = "rgba(0, 0, 0, 0.5)";
-    ctx.lineWidth = 0.75;
+    // Every outline, then every fill over them: a dense cluster is a light
+    // patch with one dark rim, not a knot of outlines. The fill hides the
+    // inner half of each outline, hence the doubled width.
+    ctx.lineWidth = 1.5;
     ctx.beginPath();
     for (let c = 0; c < n; c++) {
       const x = run.x[2 * c];
@@ -268,13 +285,17 @@ export function drawChains(canvas, frame, dpr, runs) {
       if (!(Number.isFinite(x) && Number.isFinite(y))) continue;
       const px = frame.px(x);
       const py = frame.py(y);
-      ctx.moveTo(px + 2.5, py);
-      ctx.arc(px, py, 2.5, 0, 2 * Math.PI);
+      if (run.square) {
+        ctx.rect(px - 2.2, py - 2.2, 4.4, 4.4);
+      } else {
+        ctx.moveTo(px + 2.5, py);
+        ctx.arc(px, py, 2.5, 0, 2 * Math.PI);
+      }
     }
-    ctx.fill();
     ctx.stroke();
+    ctx.fill();
   }
-  for (const run of runs) {
+  for (const run of [...runs].reverse()) {
     const px = frame.px(run.best[0]);
     const py = frame.py(run.best[1]);
     for (const [colour, width] of [
@@ -287,6 +308,22 @@ export function drawChains(canvas, frame, dpr, runs) {
       ctx.arc(px, py, 8, 0, 2 * Math.PI);
       ctx.stroke();
     }
+  }
+  if (mark) {
+    const px = frame.px(mark[0]);
+    const py = frame.py(mark[1]);
+    ctx.setLineDash([3, 3]);
+    for (const [colour, width] of [
+      ["#000", 3],
+      ["#ffd166", 1.5],
+    ]) {
+      ctx.lineWidth = width;
+      ctx.strokeStyle = colour;
+      ctx.beginPath();
+      ctx.arc(px, py, 12, 0, 2 * Math.PI);
+      ctx.stroke();
+    }
+    ctx.setLineDash([]);
   }
   ctx.restore();
 }

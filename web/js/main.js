@@ -2,36 +2,61 @@
 // compare mode) -> canvases, plots and readouts, stepped within a time
 // budget every animation frame.
 
-import { LANDSCAPES } from "./landscapes.js";
+import { LANDSCAPES, MEASURED, PAPER_AND_MEASUREMENT } from "./landscapes.js";
 import { FIELDS, fieldOf, parseNumber, plain, readAddress } from "./fields.js";
 import { stepWithin } from "./pace.js";
 import { Frame, RUN_COLOURS, colourScale, drawChains, drawColourBar, drawLandscape } from "./landscape.js";
-import { drawHistogram, drawLinePlot, exactMarginals, formatCount, histogram } from "./plots.js";
+import { drawHistogram, drawLinePlot, drawSchedule, exactMarginals, formatCount, histogram } from "./plots.js";
+import { describe, drawPhaseInset, drawPositionInset, readNextStep } from "./anatomy.js";
+import { COMPARE_HINT, SAMPLER_HINTS } from "./words.js";
+import { FORMULA_DEFAULT, customLandscape } from "./custom.js";
+import { formatView, pan, parseView, sameView, zoomAbout } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
 
 /** Controls whose change restarts the run from the seed. */
-const RUN_INPUTS = ["potential", "sampler", "compare", "h", "chains", "a", "aLow", "aHigh", "K", "cx", "cy", "spread", "seed", "stopSteps", "stopTarget", "group"];
+const RUN_INPUTS = ["potential", "formula", "fcx", "fcy", "fhalf", "sampler", "compare", "descent", "h", "chains", "a", "aLow", "aHigh", "K", "cx", "cy", "spread", "seed", "stopSteps", "stopTarget", "group"];
 /** Controls that only change the display or the pace. */
 const VIEW_INPUTS = ["spf", "eps"];
 const SAMPLERS = ["hrla", "ula", "ola"];
+/** Gradient descent's colour, beside the samplers'. */
+const DESCENT_COLOUR = "#ff9f43";
+/** Each run's label. */
+const LABEL = { hrla: "HRLA", ula: "ULA", ola: "OLA", gd: "GD + restarts" };
 /** Grid of the exact marginals, per axis. */
 const MARGINAL_GRID = 240;
 /** The background's grid per axis at most: beyond, the picture is scaled. */
 const MAX_PIXELS = 1200;
 /** Histogram bins per axis. */
 const BINS = 40;
+/**
+ * A chain beyond this many half-widths of the landscape's view has run
+ * away: no exact sampler of exp(-aU) goes there for any landscape offered,
+ * so it is the step's instability, or a potential that does not hold the
+ * chains.
+ */
+const ESCAPE_HALF_WIDTHS = 1000;
+/** The settings a landscape suggests, by control, and how the notes name them. */
+const SUGGESTED = { cx: "c₁", cy: "c₂", spread: "s", a: "a", aHigh: "a_high", h: "h", eps: "ε" };
 
 let sim = null;
 const state = {
   runs: [],
+  /** Whether the visitor wants the run to play (it does when there is a live run). */
   playing: true,
-  /** Steps the Step control asked for and the frames have not done yet. */
+  /** Steps the "." key asked for and the frames have not done yet. */
   pending: 0,
   frame: null,
   dpr: 1,
   view: LANDSCAPES.rastrigin.view,
-  potential: "rastrigin",
+  /** The landscape shown: a LANDSCAPES entry with its `name` and the wrapper's `arg`. */
+  land: { ...LANDSCAPES.rastrigin, name: "rastrigin", arg: "rastrigin" },
+  /** A view from the address, taken once the landscape is set. */
+  pendingView: null,
+  /** A drag on the picture: { x, y (client pixels at the start), view, moved }. */
+  drag: null,
+  /** The wrapper's estimate of a formula's U*, by formula and box. */
+  estimates: new Map(),
   /** U on the plot area's pixels, and on the marginals' grid. */
   grid: null,
   marginalGrid: null,
@@ -43,9 +68,17 @@ const state = {
   gaps: [],
   /** Problems found in the address, by control (null: not a control's). */
   addressProblems: [],
+  /** The values the current landscape suggested, by control. */
+  suggested: {},
+  /** The last step laid bare: { iteration, chain, parts: [{ sampler, colour, law, draw, drawY }] }. */
+  anatomy: null,
+  /** The chain whose step is laid bare. */
+  anatomyChain: 0,
+  /** What the a(t) plot shows: { points, marker } (see drawSchedule). */
+  schedulePlot: null,
   /** The clock of the time budget: replaceable by a test's clock. */
   now: () => performance.now(),
-  lastFrame: { asked: 0, done: 0 },
+  lastFrame: { asked: 0, done: 0, ended: false },
   meter: { since: performance.now(), frames: 0, steps: 0 },
 };
 
@@ -58,6 +91,38 @@ function text(id) {
 
 function radio(name) {
   return document.querySelector(`input[name=${name}]:checked`).value;
+}
+
+/** The escape radius of a landscape: ESCAPE_HALF_WIDTHS of its view. */
+function escapeRadius(land) {
+  const v = land.view;
+  return ESCAPE_HALF_WIDTHS * v.half + Math.hypot(v.cx, v.cy);
+}
+
+/** The wrapper's { minimum, minimiser } of a formula, or null when it refuses it (cached). */
+function estimate(arg) {
+  const key = JSON.stringify(arg);
+  if (!state.estimates.has(key)) {
+    let value = null;
+    try {
+      value = { minimum: sim.globalMinimum(arg), minimiser: [...sim.globalMinimiser(arg)] };
+    } catch {
+      // Refused: restart() shows why, beside the field at fault.
+    }
+    if (state.estimates.size > 32) state.estimates.clear();
+    state.estimates.set(key, value);
+  }
+  return state.estimates.get(key);
+}
+
+/** The landscape the controls name: a built-in one, or the visitor's formula over its box. */
+function landscapeOf(name) {
+  if (name !== "formula") return { ...LANDSCAPES[name], name, arg: name };
+  const [cx, cy, half] = ["fcx", "fcy", "fhalf"].map((id) => parseNumber(text(id)));
+  const ok = [cx, cy, half].every(Number.isFinite) && half > 0;
+  const view = ok ? { cx, cy, half } : { cx: FORMULA_DEFAULT.cx, cy: FORMULA_DEFAULT.cy, half: FORMULA_DEFAULT.half };
+  const arg = { formula: $("formula").value, box: [view.cx - view.half, view.cx + view.half, view.cy - view.half, view.cy + view.half] };
+  return customLandscape(arg, view, ok ? estimate(arg) : null);
 }
 
 /**
@@ -79,10 +144,16 @@ function readSettings() {
   if (!/^[0-9]+$/.test(seedText) || BigInt(seedText) >= 2n ** 64n) {
     problems.push({ id: "seed", text: "must be a whole number between 0 and 2^64 − 1" });
   }
-  const potential = $("potential").value;
+  const land = state.land;
+  if (land.name === "formula") {
+    for (const id of ["fcx", "fcy", "fhalf"]) num(id);
+    const half = parseNumber(text("fhalf"));
+    if (Number.isFinite(half) && !(half > 0)) problems.push({ id: "fhalf", text: "must be a number above 0" });
+  }
   const gap = num("stopTarget", true);
+  const minimum = land.name === "formula" ? (estimate(land.arg)?.minimum ?? 0) : sim.globalMinimum(land.arg);
   const settings = {
-    potential,
+    potential: land.arg,
     sampler: $("sampler").value,
     a: linear ? NaN : num("a"),
     annealing: linear ? { aLow: num("aLow"), aHigh: num("aHigh"), steps: num("K") } : null,
@@ -92,9 +163,87 @@ function readSettings() {
     spread: num("spread"),
     seed: problems.some((p) => p.id === "seed") ? 0n : BigInt(seedText),
     stopSteps: num("stopSteps", true),
-    stopTarget: gap === null ? null : sim.globalMinimum(potential) + gap,
+    stopTarget: gap === null ? null : minimum + gap,
+    escape: escapeRadius(land),
   };
   return { settings, problems };
+}
+
+/** `settings` with the control `id`'s part replaced by a value the kernel accepts. */
+function withFallback(settings, id) {
+  const l = state.land;
+  const s = { ...settings, centre: [...settings.centre] };
+  const annealing = s.annealing && { ...s.annealing };
+  switch (id) {
+    case "h":
+      s.h = l.h;
+      break;
+    case "a":
+      s.a = l.a;
+      break;
+    case "aLow":
+      if (annealing) annealing.aLow = 0.1;
+      break;
+    case "aHigh":
+      if (annealing) annealing.aHigh = l.a;
+      break;
+    case "K":
+      if (annealing) annealing.steps = 10000;
+      break;
+    case "chains":
+      s.chains = 256;
+      break;
+    case "cx":
+    case "cy":
+      s.centre = [l.start.cx, l.start.cy];
+      break;
+    case "spread":
+      s.spread = l.start.spread;
+      break;
+    case "seed":
+      s.seed = 1n;
+      break;
+    case "stopSteps":
+      s.stopSteps = null;
+      break;
+    case "stopTarget":
+      s.stopTarget = null;
+      break;
+    case "sampler":
+      s.sampler = "hrla";
+      break;
+    default:
+      return null;
+  }
+  s.annealing = annealing;
+  return s;
+}
+
+/**
+ * Every setting the kernel refuses, not only the first: each refusal's
+ * field is given an accepted value and the settings are tried again, so
+ * that every bad field is named at once, each in the kernel's own words.
+ * Returns [{ id, text }] (id null for a refusal of no field).
+ */
+function refusals(settings, problems) {
+  const found = [];
+  let s = settings;
+  for (const p of problems) s = withFallback(s, p.id) ?? s;
+  const seen = new Set(problems.map((p) => p.id));
+  for (let tries = 0; tries <= FIELDS.length; tries++) {
+    try {
+      sim.probe(s);
+      return found;
+    } catch (e) {
+      const id = fieldOf(e);
+      found.push({ id, text: plain(e.message), column: e.column });
+      const next = id && !seen.has(id) ? withFallback(s, id) : null;
+      if (!next) return found;
+      seen.add(id);
+      s = next;
+    }
+  }
+  return found;
 }
 
 function groupSize() {
@@ -112,19 +261,21 @@ function fieldError(id, message) {
   if (input) input.setAttribute("aria-invalid", "true");
 }
 
+/** Under the formula as typed, a caret at the column where reading stopped. */
+function showCaret(column) {
+  const typed = $("formula").value;
+  const caret = $("formula-caret");
+  caret.textContent = `${typed}\n${" ".repeat(Math.max(0, column - 1))}^`;
+  caret.dataset.column = String(column);
+  caret.hidden = false;
+}
+
 function clearErrors() {
+  $("formula-caret").hidden = true;
   $("error").textContent = "";
   for (const el of document.querySelectorAll(".field-error")) el.textContent = "";
   for (const el of document.querySelectorAll("[aria-invalid]")) el.removeAttribute("aria-invalid");
   for (const p of state.addressProblems) fieldError(p.id ?? "general", p.text);
-}
-
-/** A refused setting or a failed run: next to the control it is about, and why nothing runs. */
-function showKernelError(e, sampler = null) {
-  const id = fieldOf(e);
-  const who = sampler ? `${sampler.toUpperCase()}: ` : "";
-  if (id) fieldError(id, who + plain(e.message));
-  return id;
 }
 
 // ---- The run. ----
@@ -139,12 +290,15 @@ function restart() {
   clearRuns();
   clearErrors();
   state.pending = 0;
-  const potential = $("potential").value;
-  if (potential !== state.potential || !state.grid) {
-    state.potential = potential;
-    state.view = LANDSCAPES[potential].view;
+  state.anatomy = null;
+  const land = landscapeOf($("potential").value);
+  if (JSON.stringify(land.arg) !== JSON.stringify(state.land.arg) || !state.grid) {
+    state.view = state.pendingView ?? land.view;
+    state.pendingView = null;
     state.grid = null;
   }
+  state.land = land;
+  $("formula-fields").hidden = land.name !== "formula";
   describeLandscape();
   const { settings, problems } = readSettings();
   let n = 10;
@@ -153,29 +307,65 @@ function restart() {
   } catch (e) {
     problems.push({ id: e.id, text: e.message });
   }
-  for (const p of problems) fieldError(p.id, p.text);
   const compare = $("compare").checked;
   $("sampler").disabled = compare;
-  if (problems.length === 0) {
-    const samplers = compare ? SAMPLERS : [settings.sampler];
+  const samplers = compare ? SAMPLERS : [settings.sampler];
+  const refused = [...problems, ...refusals({ ...settings, sampler: samplers[0] }, problems.filter((p) => p.id !== "group"))];
+  for (const p of refused) {
+    if (p.id) fieldError(p.id, p.text);
+    else $("error").textContent = p.text;
+    if (p.id === "formula" && p.column) showCaret(p.column);
+  }
+  if (refused.length === 0) {
     try {
       state.runs = samplers.map((sampler) => new sim.Run({ ...settings, sampler }, n));
+      if ($("descent").checked) {
+        // Restarts cover the landscape's own box, whatever the zoom.
+        const v = state.land.view;
+        state.runs.push(new sim.Run({ ...settings, sampler: samplers[0] }, n, [v.cx - v.half, v.cx + v.half, v.cy - v.half, v.cy + v.half]));
+      }
     } catch (e) {
+      // Refused by one sampler only (the settings passed HRLA's check).
       clearRuns();
-      showKernelError(e);
-      if (!fieldOf(e)) $("error").textContent = plain(e.message);
+      const id = fieldOf(e);
+      if (id) fieldError(id, plain(e.message));
+      else $("error").textContent = plain(e.message);
     }
   }
   if (state.runs.length === 0) {
     const count = document.querySelectorAll("[aria-invalid]").length;
-    $("error").textContent ||= `No run: ${count === 1 ? "a setting is" : "some settings are"} refused (marked beside ${count === 1 ? "it" : "them"}).`;
+    $("error").textContent ||= `No run: ${count === 1 ? "a setting is" : `${count} settings are`} refused (marked beside ${count === 1 ? "it" : "them"}).`;
   } else if (n > state.runs[0].n) {
     $("err-group").textContent = `only ${state.runs[0].n} chains: one group of ${state.runs[0].n}`;
   }
+  if (state.anatomyChain >= (state.runs[0]?.n ?? 0)) state.anatomyChain = 0;
   syncControls();
   writeUrl();
   resetMeter();
   layout(true);
+}
+
+/** Each run's colour: white for a single sampler, the run colours in compare mode, orange for descent. */
+function coloursOf(runs) {
+  const samplers = runs.filter((r) => !r.descent).length;
+  let k = 0;
+  return runs.map((r) => (r.descent ? DESCENT_COLOUR : samplers > 1 ? RUN_COLOURS[k++] : "#ffffff"));
+}
+
+/** Whether any run can still step. */
+const anyLive = () => state.runs.some((r) => r.live);
+
+/** A run's failure, said once: in the alert, with its field marked and a short hint there. */
+function showFailure(run, e) {
+  const multi = state.runs.length > 1;
+  $("error").textContent = (multi ? `${LABEL[run.sampler]} stopped: ` : "") + plain(e.message);
+  const id = fieldOf(e);
+  if (id === "h") {
+    $("err-h").textContent = "too long for this landscape: try a smaller h";
+    $("h").setAttribute("aria-invalid", "true");
+  } else if (id) {
+    $(id)?.setAttribute("aria-invalid", "true");
+  }
 }
 
 /** Advances every live run by k steps; false once none can go on. */
@@ -185,21 +375,20 @@ function advanceRuns(k) {
     try {
       run.advance(k);
     } catch (e) {
-      const multi = state.runs.length > 1;
-      showKernelError(e, multi ? run.sampler : null);
-      $("error").textContent = (multi ? `${run.sampler.toUpperCase()} stopped: ` : "") + plain(e.message);
+      showFailure(run, e);
     }
   }
-  return state.runs.some((r) => r.live);
+  return anyLive();
 }
 
 /** Up to `wanted` steps within the frame's time budget; returns the steps done. */
 function stepFrame(wanted) {
-  if (state.runs.length === 0 || wanted <= 0) return 0;
+  if (!anyLive() || wanted <= 0) return 0;
   const { done } = stepWithin(wanted, advanceRuns, state.now);
-  state.lastFrame = { asked: wanted, done };
+  const ended = !anyLive();
+  state.lastFrame = { asked: wanted, done, ended };
   state.meter.steps += done;
-  if (!state.runs.some((r) => r.live)) {
+  if (ended) {
     state.pending = 0;
     setPlaying(false);
   }
@@ -237,6 +426,126 @@ function setOutput(id, text, exact) {
   el.dataset.value = exact === undefined ? "" : String(exact);
 }
 
+// ---- One step laid bare. ----
+
+/**
+ * One step of every live run, paused, with the law of the chosen chain's
+ * step read from the kernel before it and the draw after it.
+ */
+function stepOnce() {
+  setPlaying(false);
+  state.pending = 0;
+  if (!anyLive()) return;
+  const c = state.anatomyChain;
+  const before = state.runs.map((run) => {
+    if (!run.live || run.descent || run.isLost(c)) return null;
+    try {
+      return readNextStep(run.nextStep(c));
+    } catch {
+      // A chain that diverged has no next step: nothing to lay bare.
+      return null;
+    }
+  });
+  advanceRuns(1);
+  state.lastFrame = { asked: 1, done: 1, ended: !anyLive() };
+  if (!anyLive()) setPlaying(false);
+  const colours = coloursOf(state.runs);
+  state.anatomy = {
+    iteration: state.runs[0].iteration,
+    chain: c,
+    parts: state.runs
+      .map((run, k) => {
+        run.rebind();
+        const law = before[k];
+        if (!law) return null;
+        return { sampler: run.sampler, colour: colours[k], law, draw: [run.x[2 * c], run.x[2 * c + 1]], drawY: [run.y[2 * c], run.y[2 * c + 1]] };
+      })
+      .filter(Boolean),
+  };
+  buildAnatomy();
+  render();
+}
+
+/** The anatomy panel's canvases and words, one column per run. */
+function buildAnatomy() {
+  const a = state.anatomy;
+  const box = $("anatomy-runs");
+  box.replaceChildren();
+  if (!a || a.parts.length === 0) return;
+  $("anatomy-intro").textContent =
+    `Step ${a.iteration - 1} → ${a.iteration} of chain ${a.chain} (ringed in the picture), at a = ${+a.parts[0].law.a.toPrecision(4)}, ` +
+    "magnified. Click a chain in the picture to follow another one; Step (s) takes the next step.";
+  for (const part of a.parts) {
+    const column = document.createElement("div");
+    column.className = "anatomy-run";
+    const title = document.createElement("h3");
+    title.innerHTML = `<span class="swatch" style="background:${part.colour}"></span>${LABEL[part.sampler]} <span class="zoom"></span>`;
+    const position = document.createElement("canvas");
+    position.className = "position";
+    position.setAttribute("role", "img");
+    position.setAttribute("aria-label", `${part.sampler.toUpperCase()}: the step in the position plane, magnified`);
+    const phase = document.createElement("canvas");
+    phase.className = "phase";
+    phase.setAttribute("role", "img");
+    phase.setAttribute("aria-label", `${part.sampler.toUpperCase()}: the step's law of the first coordinate's position and velocity`);
+    const list = document.createElement("ol");
+    list.innerHTML = describe(part.sampler, part.law, part.draw)
+      .map((t) => `<li>${t}</li>`)
+      .join("");
+    column.append(title, position, phase, list);
+    box.append(column);
+  }
+  $("anatomy").hidden = false;
+  drawAnatomy();
+}
+
+/** Draws the insets; returns their geometry (see drawPositionInset). */
+function drawAnatomy() {
+  const a = state.anatomy;
+  if (!a) return [];
+  const columns = $("anatomy-runs").children;
+  return a.parts.map((part, k) => {
+    const geometry = drawPositionInset(columns[k].querySelector("canvas.position"), part.law, part.draw);
+    drawPhaseInset(columns[k].querySelector("canvas.phase"), part.law, [part.draw[0], part.drawY[0]]);
+    const zoom = geometry.scale / (state.frame.width / (state.frame.x1 - state.frame.x0));
+    columns[k].querySelector(".zoom").textContent = `magnified ×${formatCount(Math.round(zoom))}`;
+    return { ...geometry, zoom };
+  });
+}
+
+/** Hides the panel once the run has moved on or restarted. */
+function syncAnatomy() {
+  const a = state.anatomy;
+  const current = a && state.runs.length > 0 && state.runs[0].iteration === a.iteration;
+  if (!current && !$("anatomy").hidden) {
+    $("anatomy").hidden = true;
+    state.anatomy = null;
+  }
+}
+
+/** Picks the chain nearest a click on the picture for the next step laid bare. */
+function pickChain(event) {
+  const run = state.runs[0];
+  if (!run) return;
+  const box = $("particles").getBoundingClientRect();
+  const px = event.clientX - box.left;
+  const py = event.clientY - box.top;
+  let best = -1;
+  let bestD = Infinity;
+  for (let c = 0; c < run.n; c++) {
+    if (run.isLost(c)) continue;
+    const d = Math.hypot(state.frame.px(run.x[2 * c]) - px, state.frame.py(run.x[2 * c + 1]) - py);
+    if (d < bestD) {
+      bestD = d;
+      best = c;
+    }
+  }
+  if (best >= 0 && bestD < 24) {
+    state.anatomyChain = best;
+    render();
+  }
+}
+
 // ---- Drawing. ----
 
 /** The background and the exact marginals, at the current a (recomputed when a moved by over 1%). */
@@ -250,14 +559,23 @@ function refreshBackground(force) {
   state.shownA = a;
   const w = Math.min(MAX_PIXELS, Math.round(frame.width * state.dpr));
   const h = Math.min(MAX_PIXELS, Math.round(frame.height * state.dpr));
+  const land = state.land;
   if (!state.grid || state.grid.w !== w || state.grid.h !== h) {
-    state.grid = { w, h, u: sim.potentialGrid(state.potential, frame.x0, frame.x1, frame.y0, frame.y1, w, h) };
-    state.marginalGrid = sim.potentialGrid(state.potential, frame.x0, frame.x1, frame.y0, frame.y1, MARGINAL_GRID, MARGINAL_GRID);
+    try {
+      state.grid = { w, h, u: sim.potentialGrid(land.arg, frame.x0, frame.x1, frame.y0, frame.y1, w, h) };
+      state.marginalGrid = sim.potentialGrid(land.arg, frame.x0, frame.x1, frame.y0, frame.y1, MARGINAL_GRID, MARGINAL_GRID);
+    } catch {
+      // A formula refused on its box: nothing to draw (restart() says why).
+      state.grid = null;
+      state.marginals = null;
+      for (const id of ["landscape", "colorbar"]) $(id).getContext("2d").clearRect(0, 0, $(id).width, $(id).height);
+      return;
+    }
   }
-  const minimum = sim.globalMinimum(state.potential);
+  const minimum = land.name === "formula" ? state.grid.u.reduce((m, u) => Math.min(m, u), Infinity) : sim.globalMinimum(land.arg);
   if (force || mode === "density") {
     state.scale = colourScale(state.grid.u, mode, a, minimum);
-    drawLandscape($("landscape"), frame, state.dpr, state.scale, w, h, LANDSCAPES[state.potential].minimisers);
+    drawLandscape($("landscape"), frame, state.dpr, state.scale, w, h, land.minimisers);
     drawColourBar($("colorbar"), state.scale);
   }
   state.marginals = exactMarginals(state.marginalGrid, MARGINAL_GRID, MARGINAL_GRID, a, frame.x1 - frame.x0, frame.y1 - frame.y0);
@@ -267,6 +585,8 @@ function render() {
   const frame = state.frame;
   if (!frame) return;
   refreshBackground(false);
+  syncAnatomy();
+  syncTransport();
   const runs = state.runs;
   // The grids are allocated in wasm memory: it may have grown.
   for (const r of runs) r.rebind();
@@ -276,18 +596,23 @@ function render() {
       const c = $(id);
       c.getContext("2d").clearRect(0, 0, c.width, c.height);
     }
-    for (const id of ["out-iteration", "out-best", "out-best-x", "out-best-at", "out-a", "out-diverged", "out-outside", "out-prob", "out-frame-steps"]) setOutput(id, "–");
+    for (const id of ["out-iteration", "out-best", "out-best-x", "out-best-at", "out-a", "out-lost", "out-outside", "out-prob", "out-frame-steps"]) setOutput(id, "–");
     $("status").replaceChildren();
+    delete $("status").dataset.key;
     return;
   }
-  const colours = runs.length > 1 ? RUN_COLOURS : ["#ffffff"];
+  const colours = coloursOf(runs);
+  const lead = runs[0];
+  const c = state.anatomyChain;
+  const mark = state.anatomy && !lead.isLost(c) ? [lead.x[2 * c], lead.x[2 * c + 1]] : null;
   drawChains(
     $("particles"),
     frame,
     state.dpr,
-    runs.map((r, k) => ({ trails: r.trails, x: r.x, n: r.n, best: [r.s[S.BestX0], r.s[S.BestX1]], colour: colours[k] })),
+    runs.map((r, k) => ({ trails: r.trails, x: r.x, n: r.n, best: [r.s[S.BestX0], r.s[S.BestX1]], colour: colours[k], square: r.descent })),
+    mark,
   );
-  const lineColours = runs.length > 1 ? RUN_COLOURS : ["#ff5a36"];
+  const lineColours = runs.length > 1 ? colours : ["#ff5a36"];
   drawLinePlot(
     $("plot-best"),
     runs.map((r, k) => {
@@ -298,7 +623,7 @@ function render() {
     { log: true },
   );
   const eps = parseNumber(text("eps"));
-  const probColours = runs.length > 1 ? RUN_COLOURS : ["#35b779"];
+  const probColours = runs.length > 1 ? colours : ["#35b779"];
   drawLinePlot(
     $("plot-prob"),
     runs.map((r, k) => {
@@ -310,10 +635,26 @@ function render() {
   );
   drawMarginals(runs, colours);
   readouts(runs, eps);
+  drawScheduleIfAnnealing(runs[0]);
 }
 
-function drawMarginals(runs, colours) {
+/** Under annealing, a(t) of the schedule with the run's place on it. */
+function drawScheduleIfAnnealing(run) {
+  const figure = $("schedule-figure");
+  const linear = radio("schedule") === "linear";
+  figure.hidden = !linear;
+  state.schedulePlot = null;
+  if (!linear || !run) return;
+  const [aLow, aHigh, K] = ["aLow", "aHigh", "K"].map((id) => parseNumber(text(id)));
+  state.schedulePlot = drawSchedule($("plot-a"), aLow, aHigh, K, run.iteration, run.s[sim.Summary.A]);
+}
+
+function drawMarginals(allRuns, allColours) {
   const f = state.frame;
+  if (!state.marginals) return;
+  // Descent samples no law: its histogram against exp(-aU) would mislead.
+  const runs = allRuns.filter((r) => !r.descent);
+  const colours = allColours.filter((_, k) => !allRuns[k].descent);
   const inside = (r) => (c) => {
     const x = r.x[2 * c];
     const y = r.x[2 * c + 1];
@@ -345,7 +686,11 @@ function readouts(runs, eps) {
   setOutput("out-best-x", `(${coordinate(s[S.BestX0])}, ${coordinate(s[S.BestX1])})`);
   setOutput("out-best-at", String(s[S.BestIteration]), s[S.BestIteration]);
   setOutput("out-a", s[S.A].toPrecision(4), s[S.A]);
-  setOutput("out-diverged", `${s[S.Diverged]} of ${r.n}`, s[S.Diverged]);
+  const lost = r.lost();
+  setOutput("out-lost", `${lost.diverged + lost.ranAway} of ${r.n}`, lost.diverged + lost.ranAway);
+  $("lost-box").title =
+    `Chains lost: ${lost.diverged} diverged (their position overflowed: frozen), ${lost.ranAway} ran away beyond |x| = ${formatRadius(r.escape)} ` +
+    `(${ESCAPE_HALF_WIDTHS} times the view's half-width); they no longer count`;
   const outside = r.outside(f.x0, f.x1, f.y0, f.y1);
   setOutput("out-outside", `${outside} of ${r.n}`, outside);
   const p = r.fractionWithin(eps);
@@ -354,14 +699,22 @@ function readouts(runs, eps) {
     Number.isFinite(p) ? `${p.toFixed(2)}: ${r.groupsWithin(eps)} of ${r.groups} groups of ${r.groupSize}` : "–",
     p,
   );
-  const { asked, done } = state.lastFrame;
-  setOutput("out-frame-steps", asked ? (done < asked ? `${formatCount(done)} of ${formatCount(asked)} (time budget)` : `${formatCount(done)}`) : "–", done);
-  // What went wrong or ended, in words, beside the picture.
+  const { asked, done, ended } = state.lastFrame;
+  const why = ended ? "the run ended" : "time budget";
+  setOutput("out-frame-steps", asked ? (done < asked ? `${formatCount(done)} of ${formatCount(asked)} (${why})` : `${formatCount(done)}`) : "–", done);
+  // What went wrong or ended, in words, beside the picture; a failed run's
+  // failure is said once, in the alert above.
   const lines = [];
   for (const run of runs) {
-    const who = runs.length > 1 ? `${run.sampler.toUpperCase()}: ` : "";
-    const d = run.s[S.Diverged];
-    if (d > 0) lines.push(["warn", `${who}${d} of ${run.n} chains diverged (their position overflowed): they are frozen and no longer count. A smaller step h avoids this.`]);
+    if (run.failure) continue;
+    const who = runs.length > 1 ? `${LABEL[run.sampler]}: ` : "";
+    const l = run.lost();
+    if (l.diverged + l.ranAway > 0) {
+      const parts = [];
+      if (l.diverged) parts.push(`${l.diverged} diverged (their position overflowed)`);
+      if (l.ranAway) parts.push(`${l.ranAway} ran away beyond |x| = ${formatRadius(run.escape)}`);
+      lines.push(["warn", `${who}${parts.join(" and ")}, of ${run.n} chains: they no longer count. A smaller step h avoids this.`]);
+    }
     const out = run.outside(f.x0, f.x1, f.y0, f.y1);
     if (out > 0) lines.push(["warn", `${who}${out} of ${run.n} chains are outside the picture (the farthest at |x| = ${run.reach().toPrecision(3)}).`]);
     if (run.termination) lines.push(["info", `${who}stopped: ${run.termination} at iteration ${run.iteration}.`]);
@@ -382,13 +735,17 @@ function readouts(runs, eps) {
   const table = $("compare-table");
   table.hidden = runs.length < 2;
   $("readouts-for").hidden = runs.length < 2;
+  $("readouts-for").textContent = `The readouts below are ${LABEL[runs[0].sampler]}'s; the table under them compares the ${runs.length} runs.`;
   if (runs.length > 1) {
     const body = table.tBodies[0];
-    if (body.rows.length !== runs.length) {
+    const key = runs.map((r) => r.sampler).join();
+    if (body.dataset.key !== key) {
+      body.dataset.key = key;
+      const colours = coloursOf(runs);
       body.replaceChildren(
         ...runs.map((run, k) => {
           const tr = document.createElement("tr");
-          tr.innerHTML = `<th scope="row"><span class="swatch" style="background:${RUN_COLOURS[k]}"></span>${run.sampler.toUpperCase()}</th><td><output id="cmp-best-${run.sampler}"></output></td><td><output id="cmp-at-${run.sampler}"></output></td><td><output id="cmp-prob-${run.sampler}"></output></td><td><output id="cmp-diverged-${run.sampler}"></output></td>`;
+          tr.innerHTML = `<th scope="row"><span class="swatch" style="background:${colours[k]}"></span>${LABEL[run.sampler]}</th><td><output id="cmp-best-${run.sampler}"></output></td><td><output id="cmp-at-${run.sampler}"></output></td><td><output id="cmp-prob-${run.sampler}"></output></td><td><output id="cmp-lost-${run.sampler}"></output></td>`;
           return tr;
         }),
       );
@@ -399,9 +756,15 @@ function readouts(runs, eps) {
       setOutput(`cmp-at-${run.sampler}`, String(q[S.BestIteration]), q[S.BestIteration]);
       const pr = run.fractionWithin(eps);
       setOutput(`cmp-prob-${run.sampler}`, Number.isFinite(pr) ? pr.toFixed(2) : "–", pr);
-      setOutput(`cmp-diverged-${run.sampler}`, String(q[S.Diverged]), q[S.Diverged]);
+      const l = run.lost();
+      setOutput(`cmp-lost-${run.sampler}`, String(l.diverged + l.ranAway), l.diverged + l.ranAway);
     }
   }
+}
+
+/** An escape radius in a few characters. */
+function formatRadius(r) {
+  return Number.isFinite(r) ? String(+r.toPrecision(3)) : "∞";
 }
 
 /** A coordinate in at most 9 characters, without rounding a small one to 0. */
@@ -422,31 +785,65 @@ function layout(force = false) {
   }
   refreshBackground(true);
   render();
+  drawAnatomy();
 }
 
 function describeLandscape() {
-  const l = LANDSCAPES[$("potential").value];
+  const l = state.land;
   $("potential-about").textContent = l.about;
-  $("formula").textContent = l.formula;
+  $("formula-shown").textContent = l.formula;
+  $("compare-landscape").textContent = l.compare;
+  $("compare-headline").textContent = l.headline;
+  $("compare-measured").hidden = !l.measured;
+  if (!l.measured) return;
+  $("compare-measured-caption").textContent =
+    `Success rate P on ${l.label} at its defaults (a = ${l.a}, h = ${l.h}, ε = ${l.eps}), mean over seeds 1 to ${MEASURED.seeds}, ` +
+    `${MEASURED.chains} chains in groups of ${MEASURED.group}, measured on this page's kernel`;
+  const head = $("compare-measured").tHead.rows[0];
+  head.replaceChildren(...["method", ...MEASURED.steps.map((k) => `after ${k} steps`)].map((t) => Object.assign(document.createElement("th"), { scope: "col", textContent: t })));
+  $("compare-measured").tBodies[0].replaceChildren(
+    ...SAMPLERS.map((s, k) => {
+      const tr = document.createElement("tr");
+      tr.innerHTML = `<th scope="row"><span class="swatch" style="background:${RUN_COLOURS[k]}"></span>${s.toUpperCase()}</th>${l.measured[s].map((v) => `<td>${v.toFixed(2)}</td>`).join("")}`;
+      return tr;
+    }),
+  );
+  $("compare-paper").innerHTML = PAPER_AND_MEASUREMENT.replace("docs/REPRODUCTION.md", "<code>docs/REPRODUCTION.md</code>");
 }
 
 function syncControls() {
   const linear = radio("schedule") === "linear";
   $("a").disabled = linear;
   for (const id of ["aLow", "aHigh", "K"]) $(id).disabled = !linear;
+  const compare = $("compare").checked;
+  $("hint-sampler").textContent = compare ? COMPARE_HINT : SAMPLER_HINTS[$("sampler").value];
+  $("compare-about").hidden = state.runs.filter((r) => !r.descent).length < 2;
+  $("compare-lead").hidden = $("compare-about").hidden;
+  $("descent-about").hidden = !state.runs.some((r) => r.descent);
   const legend = $("legend");
   legend.hidden = state.runs.length < 2;
   if (state.runs.length > 1) {
-    legend.innerHTML = state.runs
-      .map((r, k) => `<span class="swatch" style="background:${RUN_COLOURS[k]}"></span>${r.sampler.toUpperCase()}`)
-      .join(" ");
+    const colours = coloursOf(state.runs);
+    legend.innerHTML = state.runs.map((r, k) => `<span class="swatch" style="background:${colours[k]}"></span>${LABEL[r.sampler]}`).join(" ");
   }
+  syncTransport();
+}
+
+/** Play and Step only when there is a live run; Play's label says what a press does. */
+function syncTransport() {
+  const live = anyLive();
+  const playing = state.playing && live;
+  const play = $("play");
+  const label = playing ? "Pause" : "Play";
+  if (play.textContent !== label) play.textContent = label;
+  play.setAttribute("aria-pressed", String(playing));
+  play.disabled = !live;
+  $("step").disabled = !live;
 }
 
 function setPlaying(on) {
   state.playing = on;
-  $("play").textContent = on ? "Pause" : "Play";
-  $("play").setAttribute("aria-pressed", String(on));
+  syncTransport();
   resetMeter();
   writeUrl();
 }
@@ -456,12 +853,13 @@ function setPlaying(on) {
 function writeUrl() {
   const q = new URLSearchParams();
   for (const f of FIELDS) {
-    if (f.id === "play") continue;
+    if (f.id === "play" || f.id === "view") continue;
     if (f.kind === "choice") q.set(f.id, radio(f.id));
     else if (f.kind === "flag") q.set(f.id, $(f.id).checked ? "1" : "0");
     else q.set(f.id, $(f.id).value);
   }
   if (!state.playing) q.set("play", "0");
+  if (!sameView(state.view, state.land.view)) q.set("view", formatView(state.view));
   history.replaceState(null, "", `?${q}`);
 }
 
@@ -470,32 +868,138 @@ function readUrl() {
   state.addressProblems = problems;
   // A landscape brings its own start, temperature and step first; the
   // address's other values then override them.
-  if (values.potential) applyLandscape(values.potential);
+  if (values.potential) applyLandscape(values.potential, false);
   for (const [id, value] of Object.entries(values)) {
     const f = FIELDS.find((g) => g.id === id);
     if (f.kind === "choice") {
       if (id !== "play") $(`${id}-${value}`).checked = true;
     } else if (f.kind === "flag") $(id).checked = value === "1";
+    else if (f.kind === "view") state.pendingView = parseView(value);
     else if (id !== "potential") $(id).value = value;
   }
-  if (values.play === "0") setPlaying(false);
+  if (values.play === "0") state.playing = false;
 }
 
-/** Sets the landscape and its recommended start, a, h and ε. */
-function applyLandscape(name) {
-  const l = LANDSCAPES[name];
-  $("potential").value = name;
-  for (const [id, v] of [
-    ["cx", l.start.cx],
-    ["cy", l.start.cy],
-    ["spread", l.start.spread],
-    ["a", l.a],
-    ["aHigh", l.a],
-    ["h", l.h],
-    ["eps", l.eps],
-  ]) {
-    $(id).value = String(v);
+// ---- Zoom and pan: the view only; the run goes on. ----
+
+/** Shows the landscape over `view` (within the zoom range of its own). */
+function setView(view) {
+  state.view = zoomAbout(view, [view.cx, view.cy], 1, state.land.view);
+  state.grid = null;
+  layout(true);
+  writeUrl();
+}
+
+/** The landscape's point under a client position. */
+function pointAt(clientX, clientY) {
+  const box = $("particles").getBoundingClientRect();
+  const f = state.frame;
+  const px = clientX - box.left;
+  const py = clientY - box.top;
+  return [f.x0 + ((px - f.left) / f.width) * (f.x1 - f.x0), f.y1 - ((py - f.top) / f.height) * (f.y1 - f.y0)];
+}
+
+function wireView() {
+  const canvas = $("particles");
+  canvas.addEventListener(
+    "wheel",
+    (e) => {
+      e.preventDefault();
+      setView(zoomAbout(state.view, pointAt(e.clientX, e.clientY), 1.2 ** (-e.deltaY / 100), state.land.view));
+    },
+    { passive: false },
+  );
+  canvas.addEventListener("pointerdown", (e) => {
+    // A touch that moves scrolls the page: only a mouse or pen pans.
+    state.drag = { x: e.clientX, y: e.clientY, view: state.view, moved: false, pans: e.pointerType !== "touch" };
+    if (state.drag.pans) canvas.setPointerCapture?.(e.pointerId);
+  });
+  canvas.addEventListener("pointermove", (e) => {
+    const d = state.drag;
+    if (!d) return;
+    const dx = e.clientX - d.x;
+    const dy = e.clientY - d.y;
+    // A few pixels of jitter are still a click (which picks a chain).
+    if (!d.moved && Math.hypot(dx, dy) < 4) return;
+    d.moved = true;
+    if (!d.pans) return;
+    const perPixel = (2 * d.view.half) / state.frame.width;
+    setView(pan(d.view, [dx * perPixel, -dy * perPixel]));
+  });
+  const end = (e) => {
+    const d = state.drag;
+    state.drag = null;
+    if (d && !d.moved && e.type === "pointerup") pickChain(e);
+  };
+  canvas.addEventListener("pointerup", end);
+  canvas.addEventListener("pointercancel", end);
+  $("zoom-in").addEventListener("click", () => setView(zoomAbout(state.view, [state.view.cx, state.view.cy], 1.5, state.land.view)));
+  $("zoom-out").addEventListener("click", () => setView(zoomAbout(state.view, [state.view.cx, state.view.cy], 1 / 1.5, state.land.view)));
+  $("zoom-home").addEventListener("click", () => setView(state.land.view));
+}
+
+// ---- The link: the address holds every setting. ----
+
+async function copyLink() {
+  writeUrl();
+  const link = location.href;
+  const note = $("copy-note");
+  try {
+    await navigator.clipboard.writeText(link);
+    note.textContent = "Link copied: it replays this run, every setting included.";
+    $("link-field").hidden = true;
+  } catch {
+    // No clipboard (permission refused, or not a secure context): the
+    // link, selected, to copy by hand.
+    const field = $("link-field");
+    field.value = link;
+    field.hidden = false;
+    field.select();
+    note.textContent = "Copy the link below (Ctrl+C or ⌘C): it replays this run.";
   }
+}
+
+/** The settings landscape `name` suggests, by control. */
+function suggestions(name) {
+  const l = landscapeOf(name);
+  return { cx: l.start.cx, cy: l.start.cy, spread: l.start.spread, a: l.a, aHigh: l.a, h: l.h, eps: l.eps };
+}
+
+/**
+ * Sets the landscape and the start, a, h and ε it suggests. With `keep`,
+ * a setting the visitor changed from the previous landscape's suggestion
+ * is kept, and the note beside the landscape says which, with a button
+ * that takes the landscape's own.
+ */
+function applyLandscape(name, keep) {
+  const want = suggestions(name);
+  const kept = [];
+  for (const id of Object.keys(SUGGESTED)) {
+    const mine = text(id);
+    if (keep && state.suggested[id] !== undefined && mine !== String(state.suggested[id])) kept.push({ id, mine });
+    else $(id).value = String(want[id]);
+  }
+  $("potential").value = name;
+  state.suggested = want;
+  const note = $("landscape-note");
+  if (kept.length === 0) {
+    note.replaceChildren();
+    return;
+  }
+  const label = landscapeOf(name).label;
+  note.textContent = `${label}'s suggested settings are in place, except yours: ${kept
+    .map(({ id, mine }) => `kept your ${SUGGESTED[id]} = ${mine} (${label}'s: ${want[id]})`)
+    .join("; ")}.`;
+  const use = document.createElement("button");
+  use.type = "button";
+  use.id = "use-suggested";
+  use.textContent = `use ${label}'s`;
+  use.addEventListener("click", () => {
+    for (const { id } of kept) forgetAddressProblem(id);
+    applyLandscape(name, false);
+    restart();
+  });
+  note.append(" ", use);
 }
 
 function forgetAddressProblem(id) {
@@ -506,7 +1010,8 @@ function wire() {
   for (const id of RUN_INPUTS) {
     $(id).addEventListener("change", () => {
       forgetAddressProblem(id);
-      if (id === "potential") applyLandscape($("potential").value);
+      // A formula's box moves its suggested start and view as a landscape does.
+      if (id === "potential" || ["formula", "fcx", "fcy", "fhalf"].includes(id)) applyLandscape($("potential").value, true);
       restart();
     });
   }
@@ -538,8 +1043,10 @@ function wire() {
   }
   $("controls").addEventListener("submit", (e) => e.preventDefault());
   $("play").addEventListener("click", () => setPlaying(!state.playing));
-  $("step").addEventListener("click", step);
+  $("step").addEventListener("click", stepOnce);
   $("reset").addEventListener("click", restart);
+  wireView();
+  $("copy-link").addEventListener("click", copyLink);
   $("random-seed").addEventListener("click", () => {
     $("seed").value = sim.randomSeed().toString();
     forgetAddressProblem("seed");
@@ -556,9 +1063,11 @@ function wire() {
       // shortcut, not a second press of that button.
       if (onButton && !transport.has(onButton.id)) return;
       e.preventDefault();
-      setPlaying(!state.playing);
+      if (anyLive()) setPlaying(!state.playing);
     } else if (e.key === ".") {
-      step();
+      frameOfSteps();
+    } else if (e.key === "s") {
+      stepOnce();
     } else if (e.key === "r") {
       restart();
     }
@@ -569,13 +1078,13 @@ function wire() {
     if (e.key === " " && transport.has(e.target.id)) e.preventDefault();
   });
   new ResizeObserver(() => layout()).observe($("canvas-wrap"));
-  for (const id of ["plot-best", "plot-prob", "plot-mx", "plot-my"]) new ResizeObserver(() => render()).observe($(id));
+  for (const id of ["plot-best", "plot-prob", "plot-mx", "plot-my", "plot-a"]) new ResizeObserver(() => render()).observe($(id));
 }
 
 /** One frame of steps, paused: as much as the budget allows now, the rest on the next frames. */
-function step() {
+function frameOfSteps() {
   setPlaying(false);
-  if (state.runs.length === 0) return;
+  if (!anyLive()) return;
   state.pending += stepsPerFrame();
   state.pending -= stepFrame(state.pending);
   render();
@@ -603,12 +1112,13 @@ async function main() {
   for (const name of sim.potentialNames()) {
     select.add(new Option(LANDSCAPES[name]?.label ?? name, name));
   }
-  applyLandscape("rastrigin");
+  select.add(new Option("Your own U(x, y)…", "formula"));
+  applyLandscape("rastrigin", false);
   readUrl();
   wire();
   restart();
-  // For the browser tests: the runs, and a way to replace the budget's clock.
-  window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now) };
+  // For the browser tests: the runs, the budget's clock, the anatomy's geometry.
+  window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now), anatomySpans: drawAnatomy };
   document.body.dataset.ready = "true";
   requestAnimationFrame(tick);
 }

@@ -219,6 +219,56 @@ export function exactMarginals(grid, nx, ny, a, width, height) {
   return { x: mx, y: my };
 }
 
+/**
+ * The annealing schedule a_k = aLow + (aHigh - aLow) k / K, then aHigh,
+ * over [0, max(1.25 K, iteration)], with a dot at the run's (iteration, a).
+ * Returns what it drew: { points: [[k, a]], marker: [k, a] }.
+ */
+export function drawSchedule(canvas, aLow, aHigh, K, iteration, aNow) {
+  const [w, h] = fitCanvas(canvas);
+  const ctx = canvas.getContext("2d");
+  const style = getComputedStyle(canvas);
+  ctx.clearRect(0, 0, w, h);
+  const left = PAD.left;
+  const top = PAD.top;
+  const pw = w - PAD.left - PAD.right;
+  const ph = h - PAD.top - PAD.bottom;
+  const kMax = Math.max(1.25 * K, iteration, 1);
+  const lo = Math.min(aLow, aHigh, aNow);
+  const hi = Math.max(aLow, aHigh, aNow);
+  const span = hi - lo || 1;
+  const mapX = (k) => left + (pw * k) / kMax;
+  const mapY = (a) => top + ph * (1 - (a - lo) / span);
+  const points = [
+    [0, aLow],
+    [K, aHigh],
+    [kMax, aHigh],
+  ];
+  ctx.strokeStyle = style.color;
+  ctx.lineWidth = 1;
+  ctx.strokeRect(left - 0.5, top - 0.5, pw + 1, ph + 1);
+  ctx.fillStyle = style.color;
+  ctx.font = "11px system-ui, sans-serif";
+  ctx.textAlign = "right";
+  ctx.textBaseline = "middle";
+  ctx.fillText(String(+hi.toPrecision(3)), left - 5, mapY(hi));
+  ctx.fillText(String(+lo.toPrecision(3)), left - 5, mapY(lo));
+  ctx.textAlign = "center";
+  ctx.textBaseline = "top";
+  ctx.fillText("0", left, top + ph + 5);
+  ctx.fillText(`K = ${formatCount(K)}`, mapX(K), top + ph + 5);
+  ctx.strokeStyle = "#35b779";
+  ctx.lineWidth = 1.5;
+  ctx.beginPath();
+  points.forEach(([k, a], i) => (i === 0 ? ctx.moveTo(mapX(k), mapY(a)) : ctx.lineTo(mapX(k), mapY(a))));
+  ctx.stroke();
+  ctx.fillStyle = "#ff5a36";
+  ctx.beginPath();
+  ctx.arc(mapX(iteration), mapY(aNow), 4, 0, 2 * Math.PI);
+  ctx.fill();
+  return { points, marker: [iteration, aNow], px: [mapX(iteration), mapY(aNow)] };
+}
+
 function niceStep(raw) {
   const p = 10 ** Math.floor(Math.log10(Math.max(raw, 1)));
   for (const m of [1, 2, 5, 10]) if (m * p >= raw) return m * p;

@@ -4,8 +4,10 @@
 // web/pkg/ is reported on the page rather than leaving it blank.
 
 import init, {
+  Descent,
   Optimizer,
   Summary,
+  global_minimiser,
   global_minimum,
   max_chains,
   potential_grid,
@@ -24,10 +26,16 @@ export const maxChains = () => max_chains();
 export const randomSeed = () => random_seed();
 /** The landscapes' names, in the kernel's order. */
 export const potentialNames = () => potential_names();
-/** The landscape's U* (the kernel's). */
-export const globalMinimum = (name) => global_minimum(name);
+/** The landscape's U* (the kernel's; a formula's estimate). */
+export const globalMinimum = (potential) => global_minimum(potential);
+/** A landscape's x* (for a formula, where its estimated U* was found). */
+export const globalMinimiser = (potential) => global_minimiser(potential);
 /** The kernel's U on a grid (see the wrapper's potential_grid). */
 export const potentialGrid = (name, x0, x1, y0, y1, nx, ny) => potential_grid(name, x0, x1, y0, y1, nx, ny);
+/** Throws the wrapper's Error when it refuses `settings`; creates and frees a run otherwise. */
+export function probe(settings) {
+  new Optimizer(settings).free();
+}
 
 /** Points kept per plotted series; the history is halved when full. */
 const HISTORY = 1024;
@@ -44,11 +52,19 @@ export const TRAIL_POINTS = 40;
  * group size above N is taken as N (one group).
  */
 export class Run {
-  constructor(settings, groupSize) {
+  /**
+   * A sampler's run of `settings`; with `descentBox` ([x0, x1, y0, y1]),
+   * gradient descent with random restarts in that box from the same
+   * initial points instead (its values are each chain's best so far).
+   */
+  constructor(settings, groupSize, descentBox = null) {
     // Throws an Error with the kernel's message (and `field`) when a
     // setting is refused.
-    this.opt = new Optimizer(settings);
-    this.sampler = settings.sampler;
+    this.opt = descentBox ? new Descent(settings, descentBox) : new Optimizer(settings);
+    this.descent = descentBox !== null;
+    this.sampler = this.descent ? "gd" : settings.sampler;
+    /** Beyond this |x| a chain has run away (the wrapper's `escape`); descent restarts instead. */
+    this.escape = this.descent ? Infinity : (settings.escape ?? Infinity);
     this.n = this.opt.chains();
     this.seed = this.opt.seed();
     this.groupSize = Math.min(groupSize, this.n);
@@ -161,22 +177,46 @@ export class Run {
     return out;
   }
 
-  /** Chains with a finite position outside the box [x0, x1] x [y0, y1]. */
+  /** Whether chain c diverged (its value is not finite) or ran away beyond the escape radius. */
+  isLost(c) {
+    return !Number.isFinite(this.u[c]) || Math.hypot(this.x[2 * c], this.x[2 * c + 1]) > this.escape;
+  }
+
+  /** Chains lost: { diverged, ranAway }. */
+  lost() {
+    let diverged = 0;
+    let ranAway = 0;
+    for (let c = 0; c < this.n; c++) {
+      if (!Number.isFinite(this.u[c])) diverged++;
+      else if (this.isLost(c)) ranAway++;
+    }
+    return { diverged, ranAway };
+  }
+
+  /** Chains not lost whose position is outside the box [x0, x1] x [y0, y1]. */
   outside(x0, x1, y0, y1) {
     let n = 0;
     for (let c = 0; c < this.n; c++) {
       const x = this.x[2 * c];
       const y = this.x[2 * c + 1];
-      if (Number.isFinite(x) && Number.isFinite(y) && !(x >= x0 && x <= x1 && y >= y0 && y <= y1)) n++;
+      if (!this.isLost(c) && !(x >= x0 && x <= x1 && y >= y0 && y <= y1)) n++;
     }
     return n;
   }
 
-  /** The largest |x_i| of a live chain. */
+  /** The largest |x_i| of a chain not lost. */
   reach() {
     let r = 0;
-    for (const v of this.x) if (Number.isFinite(v)) r = Math.max(r, Math.abs(v));
+    for (let c = 0; c < this.n; c++) {
+      if (this.isLost(c)) continue;
+      r = Math.max(r, Math.abs(this.x[2 * c]), Math.abs(this.x[2 * c + 1]));
+    }
     return r;
+  }
+
+  /** The law of chain c's next step (the wrapper's nextStep); null for descent, whose step draws nothing. */
+  nextStep(c) {
+    return this.descent ? null : Float64Array.from(this.opt.nextStep(c));
   }
 
   record() {

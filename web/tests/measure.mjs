@@ -1,8 +1,8 @@
 // Measures the demo page's speed in headless Chromium: frames per second
 // and steps per second, as the page's own meters show them, at the
 // defaults, at 1024 chains (also with 100 000 steps asked per frame, which
-// the frame's time budget cuts), and in compare mode. A measurement for the
-// README, not a test.
+// the frame's time budget cuts), in compare mode (also with descent beside)
+// and on a typed formula. A measurement for the README, not a test.
 //
 //   node web/tests/measure.mjs        (after scripts/serve.sh or test-web.sh built web/pkg)
 import { join } from "node:path";
@@ -23,6 +23,8 @@ const CASES = [
   ["1024 chains, 100000 steps/frame (time budget)", "?chains=1024&spf=100000"],
   ["compare mode, 256 chains x 3, 100 steps/frame", "?compare=1&spf=100"],
   ["density shown, annealing 0.1 -> 4 over 10000", "?show=density&schedule=linear&spf=100"],
+  ["compare mode and gradient descent, 256 chains x 4, 100 steps/frame", "?compare=1&descent=1&spf=100"],
+  ["a typed formula (Himmelblau's), 256 chains, 100 steps/frame", "?potential=formula&spf=100"],
 ];
 console.log("case | frames/s | steps/s | chain-steps/s");
 for (const [name, query] of CASES) {
