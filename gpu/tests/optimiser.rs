@@ -100,6 +100,86 @@ fn probability_is_the_count_over_the_cpu_chains() {
     assert!(device.iter().any(|p| p.current > 0.0 && p.current < 1.0));
 }
 
+/// Runs with their own seeds: run `r` of an ensemble of three runs is the
+/// CPU optimiser of that run's seed, chain for chain (so batching runs
+/// changes none of them); each run's summary is the CPU chains'.
+#[test]
+fn runs_with_their_own_seeds_are_the_cpu_optimisers_of_those_seeds() {
+    let (g, steps, stride) = (7, 60, 4);
+    let seeds = [11u64, 2, 30];
+    let cpu_of = |seed: u64| {
+        let mut cpu: Vec<Chain<f32, D, Xoshiro128PlusPlus>> =
+            (0..g).map(|_| Chain::default()).collect();
+        let mut opt = Builder::new(
+            Rastrigin,
+            Hrla::paper(0.01f32).unwrap(),
+            4.0f32,
+            Gaussian::new([3.0; D], 10f32.sqrt()).unwrap(),
+        )
+        .seed(seed)
+        .stride(stride)
+        .stop(Stop::new().steps(steps))
+        .build(&mut cpu)
+        .unwrap();
+        opt.run().unwrap();
+        cpu
+    };
+    for start_in_best in [true, false] {
+        let mut e = EnsembleBuilder::new(
+            DevicePotential::Rastrigin,
+            Hrla::paper(0.01f32).unwrap(),
+            4.0f32,
+            Start::gaussian(vec![3.0; D], f64::from(10f32.sqrt())).unwrap(),
+        )
+        .chains(g * seeds.len())
+        .run_seeds(seeds.to_vec())
+        .stride(stride)
+        .start_in_best(start_in_best)
+        .build(common::gpu())
+        .unwrap();
+        let before = e.group_bests(g).unwrap();
+        for b in &before {
+            assert!(b.current.is_finite());
+            assert_eq!(b.running.is_finite(), start_in_best);
+        }
+        e.run(steps).unwrap();
+        let device = e.snapshot().unwrap();
+        let groups = e.group_bests(g).unwrap();
+        assert_eq!(groups.len(), seeds.len());
+        for (r, &seed) in seeds.iter().enumerate() {
+            let cpu = cpu_of(seed);
+            let mine = &device[r * g..(r + 1) * g];
+            for (d, c) in mine.iter().zip(&cpu) {
+                assert_eq!(d.x, c.x().map(f64::from).to_vec());
+                // Without the start, a chain's running best is the CPU's
+                // wherever the CPU's is not the start itself.
+                if start_in_best || c.best().iteration > 0 {
+                    assert_eq!(d.best_value, f64::from(c.best().value));
+                } else {
+                    assert!(d.best_value > f64::from(c.best().value));
+                }
+            }
+            let now = cpu.iter().map(|c| c.value()).fold(f32::INFINITY, f32::min);
+            assert_eq!(groups[r].current, f64::from(now));
+            let running = mine.iter().map(|c| c.best_value).fold(f64::INFINITY, f64::min);
+            assert_eq!(groups[r].running, running);
+            assert_eq!(groups[r].diverged, 0);
+            assert_eq!(groups[r].evaluations, g as u64 * (steps + 1));
+        }
+    }
+    let bad = EnsembleBuilder::new(
+        DevicePotential::Rastrigin,
+        Hrla::paper(0.01f32).unwrap(),
+        4.0f32,
+        Start::paper(D),
+    )
+    .chains(10)
+    .run_seeds(vec![1, 2, 3])
+    .build(common::gpu())
+    .unwrap_err();
+    assert!(matches!(bad, GpuError::Kernel(hrla::Error::Count { value: 3, .. })), "{bad}");
+}
+
 /// A user's potential that is unbounded below: the same error, chain and
 /// value as the CPU optimiser's.
 #[test]

@@ -98,7 +98,7 @@ fn init(@builtin(global_invocation_id) gid: vec3<u32>) {
         best_xs[i * n + c] = x[i];
     }
     rngs[c] = rng;
-    status[c] = Status(value, value, 0u, flags, 0u);
+    status[c] = Status(value, select(none(), value, START_IN_BEST), 0u, flags, 0u);
 }
 
 @compute @workgroup_size(WORKGROUP)
