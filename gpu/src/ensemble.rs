@@ -22,16 +22,16 @@ pub const MAX_DIM: usize = 1024;
 
 /// Status flags, as in `chains.wgsl`.
 const DIVERGED: u32 = 1;
+const UNBOUNDED: u32 = 2;
 const BAD_START_POSITION: u32 = 4;
 const BAD_START_VALUE: u32 = 8;
 const BAD_START_GRADIENT: u32 = 16;
 
-/// Words of one chain's status (value, best, best iterate, flags, stopped;
-/// in f64, the two values take two words each and the struct is padded to
-/// a multiple of 8 bytes).
+/// Words of one chain's status (value, best, best iterate, flags, stopped,
+/// starts; in f64, the two values take two words each).
 fn status_words(precision: Precision) -> usize {
     match precision {
-        Precision::F32 => 5,
+        Precision::F32 => 6,
         Precision::F64 => 8,
     }
 }
@@ -185,10 +185,10 @@ where
     /// ([`hrla::Error::Zero`]), more chains or a larger dimension than the
     /// backend takes ([`hrla::Error::Count`]), the sampler's error at
     /// `a_0`, a start whose position, value or gradient is not finite
-    /// ([`hrla::Error::NonFiniteStart`], the first such chain, with
-    /// `tries = 1`: unlike the CPU's builder, which redraws an infeasible
-    /// start up to [`hrla::START_TRIES`] times, the device draws each start
-    /// once);
+    /// after [`hrla::START_TRIES`] points drawn from the chain's generator,
+    /// as the CPU's builder redraws them ([`hrla::Error::NonFiniteStart`],
+    /// the first such chain); a start below `-sqrt(MAX)`
+    /// ([`hrla::Error::UnboundedBelow`], the first such chain);
     /// [`GpuError::Dimension`] when the potential's dimension is not the
     /// start's; [`GpuError::TooLarge`] when a buffer exceeds the device's
     /// limit.
@@ -437,7 +437,8 @@ pub struct GroupBest {
     pub running: f64,
     /// Its chains that diverged.
     pub diverged: usize,
-    /// Its evaluations of the potential and gradient: one at each start,
+    /// Its evaluations of the potential and gradient: one per point its
+    /// starts drew (one, unless a start was infeasible and drawn again),
     /// one per step taken.
     pub evaluations: u64,
 }
@@ -616,10 +617,17 @@ impl<'g> Ensemble<'g> {
         self.seed_generators(seeds)?;
         self.dispatch(&self.pipelines.init, self.chains, Params::default())?;
         self.gpu.wait()?;
-        // The first chain whose start is not finite, as the CPU's builder
+        // The first chain whose start is refused, as the CPU's builder
         // finds it.
         let status = self.read_status()?;
         for (c, s) in status.iter().enumerate() {
+            if s.flags & UNBOUNDED != 0 {
+                return Err(hrla::Error::UnboundedBelow {
+                    chain: c,
+                    value: s.value,
+                }
+                .into());
+            }
             let what = if s.flags & BAD_START_POSITION != 0 {
                 "position"
             } else if s.flags & BAD_START_VALUE != 0 {
@@ -632,7 +640,7 @@ impl<'g> Ensemble<'g> {
             return Err(hrla::Error::NonFiniteStart {
                 chain: c,
                 what,
-                tries: 1,
+                tries: s.starts,
             }
             .into());
         }
@@ -969,14 +977,14 @@ impl<'g> Ensemble<'g> {
                     }
                     g.running = g.running.min(s.best);
                     g.diverged += usize::from(diverged);
-                    // The start's evaluation, then one per step taken (a
-                    // diverged chain's last at the step that stopped it).
+                    // The start's points, then one evaluation per step taken
+                    // (a diverged chain's last at the step that stopped it).
                     let steps = if diverged {
                         u64::from(s.stopped)
                     } else {
                         self.iteration
                     };
-                    g.evaluations += 1 + steps;
+                    g.evaluations += u64::from(s.starts) + steps;
                 }
                 g
             })
@@ -1108,6 +1116,7 @@ struct Status {
     best_iter: u32,
     flags: u32,
     stopped: u32,
+    starts: u32,
 }
 
 impl Status {
@@ -1119,6 +1128,7 @@ impl Status {
                 best_iter: w[2],
                 flags: w[3],
                 stopped: w[4],
+                starts: w[5],
             },
             Precision::F64 => {
                 let wide = |lo: u32, hi: u32| f64::from_bits(u64::from(lo) | u64::from(hi) << 32);
@@ -1128,6 +1138,7 @@ impl Status {
                     best_iter: w[4],
                     flags: w[5],
                     stopped: w[6],
+                    starts: w[7],
                 }
             }
         }

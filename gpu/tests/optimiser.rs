@@ -4,12 +4,9 @@
 
 mod common;
 
-use hrla::{
-    Builder, Chain, FnPotential, FnSchedule, Gaussian, Hrla, Rastrigin, StandardNormal, Stop,
-};
+use hrla::{Builder, Chain, FnPotential, FnSchedule, Gaussian, Hrla, Rastrigin, Stop};
 use hrla_gpu::{DevicePotential, EnsembleBuilder, GpuError, Start};
 use rand_xoshiro::Xoshiro128PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
 
 const D: usize = 10;
 const SEED: u64 = 5;
@@ -161,7 +158,10 @@ fn runs_with_their_own_seeds_are_the_cpu_optimisers_of_those_seeds() {
             }
             let now = cpu.iter().map(|c| c.value()).fold(f32::INFINITY, f32::min);
             assert_eq!(groups[r].current, f64::from(now));
-            let running = mine.iter().map(|c| c.best_value).fold(f64::INFINITY, f64::min);
+            let running = mine
+                .iter()
+                .map(|c| c.best_value)
+                .fold(f64::INFINITY, f64::min);
             assert_eq!(groups[r].running, running);
             assert_eq!(groups[r].diverged, 0);
             assert_eq!(groups[r].evaluations, g as u64 * (steps + 1));
@@ -177,7 +177,10 @@ fn runs_with_their_own_seeds_are_the_cpu_optimisers_of_those_seeds() {
     .run_seeds(vec![1, 2, 3])
     .build(common::gpu())
     .unwrap_err();
-    assert!(matches!(bad, GpuError::Kernel(hrla::Error::Count { value: 3, .. })), "{bad}");
+    assert!(
+        matches!(bad, GpuError::Kernel(hrla::Error::Count { value: 3, .. })),
+        "{bad}"
+    );
 }
 
 /// A user's potential that is unbounded below: the same error, chain and
@@ -392,35 +395,75 @@ fn bad_input_is_a_typed_error() {
         Start::point(vec![f64::INFINITY]),
         Err(GpuError::Kernel(hrla::Error::NotFinite { .. }))
     ));
-    // A start where the potential is not finite: the first such chain
-    // (the device draws each start once, where the CPU's builder redraws).
-    let wall = DevicePotential::wgsl(
+    // A start where the potential is not finite is drawn again from the
+    // chain's generator, as the CPU's builder draws it: the same points
+    // and evaluations; where every point is refused, the first chain after
+    // START_TRIES points, as on the CPU.
+    let wall_wgsl =
         "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
             (*grad)[0] = 1.0;
-            return select((*x)[0], bitcast<f32>(0x7f800000u), (*x)[0] < 0.0);
-        }",
-    );
-    let first_negative = (0..64u64)
-        .find(|&c| {
-            let mut rng = Xoshiro128PlusPlus::seed_from_u64(hrla::chain_seed(0, c));
-            1.0 + f32::standard_normal(&mut rng) < 0.0
-        })
-        .unwrap() as usize;
-    assert_eq!(
-        EnsembleBuilder::new(
-            wall,
-            Hrla::paper(0.01).unwrap(),
-            1.0,
-            Start::gaussian(vec![1.0], 1.0).unwrap()
+            return select((*x)[0], bitcast<f32>(0x7f800000u), (*x)[0] < WALL);
+        }";
+    let cpu_with_wall = |wall: f32, chains: usize| {
+        let mut cpu: Vec<Chain<f32, 1, Xoshiro128PlusPlus>> =
+            (0..chains).map(|_| Chain::default()).collect();
+        let potential = FnPotential::new(move |x: &[f32; 1], g: &mut [f32; 1]| {
+            g[0] = 1.0;
+            if x[0] < wall { f32::INFINITY } else { x[0] }
+        });
+        Builder::new(
+            potential,
+            Hrla::paper(0.01f32).unwrap(),
+            1.0f32,
+            Gaussian::new([1.0], 1.0).unwrap(),
         )
-        .chains(64)
+        .build(&mut cpu)
+        .map(|opt| opt.evaluations())
+        .map(|evaluations| {
+            (
+                evaluations,
+                cpu.iter().map(|c| c.x()[0]).collect::<Vec<_>>(),
+            )
+        })
+    };
+    let device_with_wall = |wall: f32, chains: usize| {
+        let source = format!("const WALL: Real = {wall:?};\n{wall_wgsl}");
+        EnsembleBuilder::new(
+            DevicePotential::wgsl(&source),
+            Hrla::paper(0.01f32).unwrap(),
+            1.0f32,
+            Start::gaussian(vec![1.0], 1.0).unwrap(),
+        )
+        .chains(chains)
         .build(gpu)
-        .map(drop),
-        Err(GpuError::Kernel(hrla::Error::NonFiniteStart {
-            chain: first_negative,
+        .and_then(|e| {
+            let g = e.group_bests(chains)?;
+            let x = e
+                .snapshot()?
+                .iter()
+                .map(|c| c.x[0] as f32)
+                .collect::<Vec<_>>();
+            Ok((g[0].evaluations, x))
+        })
+    };
+    // About half of the first points are refused: redraws happen.
+    let (evaluations, x) = cpu_with_wall(1.0, 64).unwrap();
+    assert!(evaluations > 64 + 10, "{evaluations}");
+    assert!(x.iter().all(|&v| v >= 1.0));
+    assert_eq!(device_with_wall(1.0, 64).unwrap(), (evaluations, x));
+    // No point is accepted (a standard normal beyond 1e6 never comes).
+    let none = cpu_with_wall(1e6, 8).map(drop).unwrap_err();
+    assert_eq!(
+        none,
+        hrla::Error::NonFiniteStart {
+            chain: 0,
             what: "value",
-            tries: 1,
-        }))
+            tries: hrla::START_TRIES,
+        }
+    );
+    assert_eq!(
+        device_with_wall(1e6, 8).map(drop),
+        Err(GpuError::Kernel(none))
     );
     // The sampler's own checks, at a_0 and along the schedule.
     assert!(matches!(
