@@ -16,8 +16,10 @@
 //! (without iterate 0), and a run's running best at a checkpoint is the
 //! least of its chains'; the probability curves count, on the device, the
 //! runs whose best live chain lies within each tolerance of `U*` at each
-//! grid iterate. The device computes in `f64` where the adapter has
-//! `SHADER_F64`, in `f32` elsewhere ([`GpuBackend::precision`]).
+//! grid iterate. The device computes in `f64`, as the CPU backend does
+//! (an adapter without `SHADER_F64` is refused). Shard files of the GPU
+//! backend name its generator in their plan, so that a merge never mixes
+//! them with the CPU backend's.
 
 use std::time::Instant;
 
@@ -43,6 +45,9 @@ pub enum Backend {
     Gpu,
 }
 
+/// The device's generator, as shard files name it.
+pub const GENERATOR: &str = "xoshiro128++";
+
 /// The most chains one ensemble holds: a configuration's runs beyond it go
 /// in further batches (whole runs each), so that the device's buffers stay
 /// far below its limits.
@@ -54,10 +59,9 @@ const PROGRESS_STEPS: u64 = 2000;
 /// Steps each chain takes in registers per dispatch.
 const STEPS_PER_DISPATCH: u32 = 200;
 
-/// The device and the float type the plans run in.
+/// The device the plans run on.
 pub struct GpuBackend {
     gpu: Gpu,
-    precision: Precision,
 }
 
 impl std::fmt::Debug for GpuBackend {
@@ -68,34 +72,29 @@ impl std::fmt::Debug for GpuBackend {
 
 impl GpuBackend {
     /// The first adapter wgpu offers (`WGPU_BACKEND` and
-    /// `WGPU_ADAPTER_NAME` steer the choice), in `f64` where it has it.
+    /// `WGPU_ADAPTER_NAME` steer the choice), computing in `f64` as the
+    /// CPU backend does.
     ///
     /// Errors: [`ReproError::Gpu`] with [`GpuError::NoAdapter`] when there
-    /// is no adapter at all (no GPU and no software Vulkan), or
-    /// [`GpuError::Device`] when it refuses to open.
+    /// is no adapter at all (no GPU and no software Vulkan),
+    /// [`GpuError::Device`] when it refuses to open, or
+    /// [`GpuError::Unsupported`] when it has no `SHADER_F64` (Apple's GPUs,
+    /// for one).
     pub fn open() -> Result<Self, ReproError> {
         let gpu = Gpu::new()?;
-        let precision = if gpu.supports_f64() {
-            Precision::F64
-        } else {
-            Precision::F32
-        };
-        Ok(Self { gpu, precision })
+        if !gpu.supports_f64() {
+            return Err(ReproError::Gpu(GpuError::Unsupported(format!(
+                "f64: the adapter {} has no SHADER_F64, and the protocols are computed in f64",
+                gpu.describe()
+            ))));
+        }
+        Ok(Self { gpu })
     }
 
-    /// The float type the device computes in.
-    pub fn precision(&self) -> Precision {
-        self.precision
-    }
-
-    /// The adapter and the float type, for the run's metadata.
+    /// The adapter, the float type and the generator, for the run's
+    /// metadata.
     pub fn describe(&self) -> String {
-        let float = if self.precision == Precision::F64 {
-            "f64"
-        } else {
-            "f32 (the adapter has no SHADER_F64)"
-        };
-        format!("gpu: {}, {float}", self.gpu.describe())
+        format!("gpu: {}, f64, {GENERATOR}", self.gpu.describe())
     }
 
     /// Every run of `plan`, as [`exec::execute`](crate::exec::execute)
@@ -209,7 +208,7 @@ impl GpuBackend {
                 .run_seeds(runs.iter().map(|&i| run_seed(seed, i as u64)).collect())
                 .stride(spec.stride)
                 .start_in_best(false)
-                .precision(self.precision)
+                .precision(Precision::F64)
                 .steps_per_dispatch(STEPS_PER_DISPATCH)
                 .build(&self.gpu)?;
         let points = grid_points(spec.steps, spec.curve_every);

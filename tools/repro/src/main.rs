@@ -61,11 +61,11 @@ struct Cli {
     /// checksum, plan, names, numbers and ranges are checked.
     #[arg(long, global = true)]
     merge: bool,
-    /// Where the chains run: cpu, or gpu (any wgpu adapter: Vulkan, Metal,
-    /// DX12, or a software Vulkan such as lavapipe; f64 where the adapter
-    /// has it). The GPU's chains draw from xoshiro128++ with the same run
-    /// and chain seeds: the same statistics, other draws. Not for T3's
-    /// peers.
+    /// Where the chains run: cpu, or gpu (any wgpu adapter with f64:
+    /// Vulkan, Metal, DX12, or a software Vulkan such as lavapipe). The
+    /// GPU's chains draw from xoshiro128++ with the same run and chain
+    /// seeds: the same statistics, other draws. Not for T3's peers. A
+    /// merge takes the backend its shards ran on.
     #[arg(long, global = true, value_enum, default_value_t = Backend::Cpu)]
     backend: Backend,
 }
@@ -165,7 +165,8 @@ fn main() -> Result<()> {
         }
         let load_before = load_average();
         let (result, mut notes) = if cli.merge {
-            let (part, threads) = shard::merge(&cli.out, p, cli.seed).with_context(context)?;
+            let (part, threads) =
+                shard::merge(&cli.out, p, cli.seed, cli.backend).with_context(context)?;
             let result = finish(p, cli.seed, part, threads);
             let note = ("wall time", "the sum of the shards'".to_string());
             (result, vec![note])
@@ -223,7 +224,7 @@ fn run_one_shard(
         Some(_) => 1,
         None => rayon::current_num_threads(),
     };
-    let file = shard::write(&cli.out, p, cli.seed, part, &result, threads)?;
+    let file = shard::write(&cli.out, p, cli.seed, cli.backend, part, &result, threads)?;
     if !cli.quiet {
         println!(
             "{} shard {part}: {} runs, {} chain-steps in {:.2} s; wrote {}",

@@ -15,7 +15,6 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use hrla::{Builder, Chain, Gaussian, Rastrigin, Stop};
-use hrla_gpu::Precision;
 use hrla_repro::config::RunSpec;
 use hrla_repro::exec::{Part, Shard, execute, finish};
 use hrla_repro::gpu::GpuBackend;
@@ -85,12 +84,6 @@ fn cpu_run_with_device_streams(spec: &RunSpec, i: usize) -> (Vec<f64>, Vec<u32>)
 #[test]
 fn device_runs_are_the_cpu_kernels_with_the_devices_generator() {
     let gpu = device();
-    if gpu.precision() != Precision::F64 {
-        panic!(
-            "the adapter has no f64 ({}): this test compares f64 bits",
-            gpu.describe()
-        );
-    }
     let t1 = Overrides {
         m: Some(5),
         k: Some(vec![300]),
@@ -216,7 +209,9 @@ fn repro(args: &[&str], out: &Path, env: &[(&str, &str)]) -> Output {
 }
 
 /// The command line: `--backend gpu` writes the tables and names the
-/// device in meta.txt; T3's peers are refused naming the option; with no
+/// device in meta.txt; T3's peers are refused naming the option; its
+/// shards merge into the single run's tables with `--backend gpu` and are
+/// refused by a CPU merge; with no
 /// adapter (wgpu told to look for Metal only, which Linux lacks) the
 /// error says there is none, before anything runs.
 #[test]
@@ -235,6 +230,40 @@ fn the_command_line_runs_on_the_device_and_refuses_what_it_cannot() {
         err.contains("--backend") && err.contains("CPU only"),
         "{err}"
     );
+
+    // Shards on the device merge with --backend gpu, never into a CPU
+    // merge (other draws).
+    let sharded = tmp.path().join("sharded");
+    for i in 0..2 {
+        let o = repro(
+            &[
+                "t1",
+                "--quick",
+                "--backend",
+                "gpu",
+                "--shard",
+                &format!("{i}/2"),
+            ],
+            &sharded,
+            &[],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let o = repro(&["t1", "--quick", "--merge"], &sharded, &[]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("plan backend gpu"), "{err}");
+    let o = repro(
+        &["t1", "--quick", "--merge", "--backend", "gpu"],
+        &sharded,
+        &[],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let single = tmp.path().join("single");
+    let o = repro(&["t1", "--quick", "--backend", "gpu"], &single, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = |dir: &Path| std::fs::read(dir.join("t1/summary.csv")).unwrap();
+    assert_eq!(table(&sharded), table(&single));
 
     if cfg!(target_os = "linux") {
         let o = repro(
