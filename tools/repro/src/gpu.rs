@@ -53,6 +53,9 @@ pub const GENERATOR: &str = "xoshiro128++";
 /// far below its limits.
 pub const MAX_BATCH_CHAINS: usize = 1 << 22;
 
+/// One more than the most steps a run on the device takes.
+const MAX_STEPS: u64 = u32::MAX as u64;
+
 /// Steps between two progress reports (each waits for the device).
 const PROGRESS_STEPS: u64 = 2000;
 
@@ -116,7 +119,8 @@ impl GpuBackend {
     /// advances by chain-steps.
     ///
     /// Errors besides the device's: [`ReproError::Flag`] for a plan with
-    /// T3's peers (they run on the CPU only).
+    /// T3's peers (they run on the CPU only) or a `K` of 2^32 - 1 or more
+    /// (the device's iterates are 32-bit), before anything runs.
     pub fn run_shard(
         &self,
         plan: &Plan,
@@ -136,6 +140,19 @@ impl GpuBackend {
                      run {} without --backend gpu",
                     spec.method.label(),
                     plan.id.name()
+                ),
+            });
+        }
+        // The device counts iterates in 32 bits: a K beyond is refused
+        // before anything runs, not after 2^32 steps.
+        if let Some(spec) = plan.configs.iter().find(|s| s.steps >= MAX_STEPS) {
+            return Err(ReproError::Flag {
+                flag: "--k",
+                reason: format!(
+                    "K = {} is beyond the GPU backend's {} steps (iterates are 32-bit on the \
+                     device); run it with --backend cpu",
+                    spec.steps,
+                    MAX_STEPS - 1
                 ),
             });
         }

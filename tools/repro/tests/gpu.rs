@@ -231,6 +231,28 @@ fn the_command_line_runs_on_the_device_and_refuses_what_it_cannot() {
         "{err}"
     );
 
+    // A K beyond the device's 32-bit iterates: refused before any step.
+    let o = repro(
+        &[
+            "e3",
+            "--backend",
+            "gpu",
+            "--m",
+            "1",
+            "--n",
+            "1",
+            "--k",
+            "5000000000",
+            "--a",
+            "4",
+        ],
+        tmp.path(),
+        &[],
+    );
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--k") && err.contains("32-bit"), "{err}");
+
     // Shards on the device merge with --backend gpu, never into a CPU
     // merge (other draws).
     let sharded = tmp.path().join("sharded");
