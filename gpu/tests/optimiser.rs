@@ -465,6 +465,42 @@ fn bad_input_is_a_typed_error() {
         device_with_wall(1e6, 8).map(drop),
         Err(GpuError::Kernel(none))
     );
+    // A start below the floor ends the build at once, naming the first
+    // such chain and its value, as on the CPU.
+    let mut cpu: Vec<Chain<f32, 1, Xoshiro128PlusPlus>> =
+        (0..4).map(|_| Chain::default()).collect();
+    let abyss = FnPotential::new(|_: &[f32; 1], g: &mut [f32; 1]| {
+        g[0] = 0.0;
+        -1e30
+    });
+    let cpu_err = Builder::new(
+        abyss,
+        Hrla::paper(0.01f32).unwrap(),
+        1.0f32,
+        Gaussian::new([1.0], 1.0).unwrap(),
+    )
+    .build(&mut cpu)
+    .map(drop)
+    .unwrap_err();
+    assert!(
+        matches!(cpu_err, hrla::Error::UnboundedBelow { chain: 0, .. }),
+        "{cpu_err}"
+    );
+    let device_err = EnsembleBuilder::new(
+        DevicePotential::wgsl(
+            "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
+                (*grad)[0] = 0.0;
+                return -1e30;
+            }",
+        ),
+        Hrla::paper(0.01f32).unwrap(),
+        1.0f32,
+        Start::gaussian(vec![1.0], 1.0).unwrap(),
+    )
+    .chains(4)
+    .build(gpu)
+    .map(drop);
+    assert_eq!(device_err, Err(GpuError::Kernel(cpu_err)));
     // The sampler's own checks, at a_0 and along the schedule.
     assert!(matches!(
         EnsembleBuilder::new(
