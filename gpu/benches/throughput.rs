@@ -4,7 +4,10 @@
 //! device's memory allows), in both arithmetics, in f32 and, where the
 //! adapter has it, f64.
 //!
-//! `cargo bench -p hrla-gpu --bench throughput [-- --chains N,N,.. --steps K]`
+//! `cargo bench -p hrla-gpu --bench throughput [-- --chains N,N,.. --steps K
+//! --precision f32|f64 --arithmetic ieee|fused]` (the last two pick one
+//! row each; `bench/peers/gpu.sh` runs one configuration per call, between
+//! JAX's repeats).
 //!
 //! Prints, per N: the wall time of K steps (after a warm-up run that
 //! compiles and loads the pipeline), nanoseconds per coordinate-step
@@ -32,7 +35,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|s| s.parse::<f64>().map(|v| v as usize))
         .collect::<Result<_, _>>()?;
     let steps: u64 = value("--steps").map_or(Ok(200), |s| s.parse())?;
+    let only_precision = match value("--precision").as_deref() {
+        None => None,
+        Some("f32") => Some(Precision::F32),
+        Some("f64") => Some(Precision::F64),
+        Some(other) => return Err(format!("--precision {other}: f32 or f64").into()),
+    };
+    let only_arithmetic = match value("--arithmetic").as_deref() {
+        None => None,
+        Some("ieee") => Some(Arithmetic::Ieee),
+        Some("fused") => Some(Arithmetic::Fused),
+        Some(other) => return Err(format!("--arithmetic {other}: ieee or fused").into()),
+    };
     let gpu = Gpu::new()?;
+    if only_precision == Some(Precision::F64) && !gpu.supports_f64() {
+        return Err(format!("f64: the adapter {} has no SHADER_F64", gpu.describe()).into());
+    }
     println!("adapter: {}", gpu.describe());
     println!("HRLA, {D}-D Rastrigin, a = 4, {steps} steps, 100 steps per dispatch");
     println!(
@@ -47,6 +65,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for (precision, arithmetic) in precisions
             .iter()
             .flat_map(|&p| [Arithmetic::Ieee, Arithmetic::Fused].map(move |a| (p, a)))
+            .filter(|&(p, a)| {
+                only_precision.is_none_or(|o| o == p) && only_arithmetic.is_none_or(|o| o == a)
+            })
         {
             let mut ensemble = EnsembleBuilder::new(
                 DevicePotential::Rastrigin,

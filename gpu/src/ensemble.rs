@@ -22,16 +22,16 @@ pub const MAX_DIM: usize = 1024;
 
 /// Status flags, as in `chains.wgsl`.
 const DIVERGED: u32 = 1;
+const UNBOUNDED: u32 = 2;
 const BAD_START_POSITION: u32 = 4;
 const BAD_START_VALUE: u32 = 8;
 const BAD_START_GRADIENT: u32 = 16;
 
-/// Words of one chain's status (value, best, best iterate, flags, stopped;
-/// in f64, the two values take two words each and the struct is padded to
-/// a multiple of 8 bytes).
+/// Words of one chain's status (value, best, best iterate, flags, stopped,
+/// starts; in f64, the two values take two words each).
 fn status_words(precision: Precision) -> usize {
     match precision {
-        Precision::F32 => 5,
+        Precision::F32 => 6,
         Precision::F64 => 8,
     }
 }
@@ -75,6 +75,8 @@ pub struct EnsembleBuilder<F, S, C> {
     steps_per_dispatch: u32,
     arithmetic: Arithmetic,
     precision: Precision,
+    run_seeds: Option<Vec<u64>>,
+    start_in_best: bool,
     float: core::marker::PhantomData<F>,
 }
 
@@ -99,6 +101,8 @@ where
             steps_per_dispatch: 100,
             arithmetic: Arithmetic::Ieee,
             precision: Precision::F32,
+            run_seeds: None,
+            start_in_best: true,
             float: core::marker::PhantomData,
         }
     }
@@ -107,6 +111,29 @@ where
     /// `Xoshiro128PlusPlus::seed_from_u64(chain_seed(seed, c))`.
     pub fn seed(mut self, seed: u64) -> Self {
         self.seed = seed;
+        self
+    }
+
+    /// The chains as runs of Algorithm 1, each with its own seed: with
+    /// `m = seeds.len()` runs of `g = chains / m` chains, chain `j` of run
+    /// `r` (chain `r g + j` of the ensemble) draws from
+    /// `Xoshiro128PlusPlus::seed_from_u64(chain_seed(seeds[r], j))`, the
+    /// words of chain `j` of a CPU optimiser of that run seeded with
+    /// `seeds[r]`. So a run's chains do not depend on which other runs
+    /// share the ensemble (a study's runs may be batched or sharded
+    /// freely). Replaces [`seed`](Self::seed); `m` must divide the chains
+    /// ([`build`](Self::build) says so otherwise).
+    pub fn run_seeds(mut self, seeds: Vec<u64>) -> Self {
+        self.run_seeds = Some(seeds);
+        self
+    }
+
+    /// Whether iterate 0 (the start) takes part in each chain's running
+    /// best: `true` by default, as in [`hrla::Optimizer::best`]; `false`
+    /// starts every running best at `+inf`, for a running best over
+    /// `k = s, 2s, ...` only (the paper's tables).
+    pub fn start_in_best(mut self, include: bool) -> Self {
+        self.start_in_best = include;
         self
     }
 
@@ -158,10 +185,10 @@ where
     /// ([`hrla::Error::Zero`]), more chains or a larger dimension than the
     /// backend takes ([`hrla::Error::Count`]), the sampler's error at
     /// `a_0`, a start whose position, value or gradient is not finite
-    /// ([`hrla::Error::NonFiniteStart`], the first such chain, with
-    /// `tries = 1`: unlike the CPU's builder, which redraws an infeasible
-    /// start up to [`hrla::START_TRIES`] times, the device draws each start
-    /// once);
+    /// after [`hrla::START_TRIES`] points drawn from the chain's generator,
+    /// as the CPU's builder redraws them ([`hrla::Error::NonFiniteStart`],
+    /// the first such chain); a start below `-sqrt(MAX)`
+    /// ([`hrla::Error::UnboundedBelow`], the first such chain);
     /// [`GpuError::Dimension`] when the potential's dimension is not the
     /// start's; [`GpuError::TooLarge`] when a buffer exceeds the device's
     /// limit.
@@ -193,6 +220,16 @@ where
                 name: "chains",
                 value: n,
                 max: max_chains,
+            }
+            .into());
+        }
+        if let Some(seeds) = &self.run_seeds
+            && (seeds.is_empty() || !n.is_multiple_of(seeds.len()))
+        {
+            return Err(hrla::Error::Count {
+                name: "run seeds (a divisor of the chains)",
+                value: seeds.len(),
+                max: n,
             }
             .into());
         }
@@ -231,6 +268,7 @@ where
             first.kind(),
             self.arithmetic,
             self.precision,
+            self.start_in_best,
         );
         let mut ensemble = Ensemble::allocate(
             gpu,
@@ -243,7 +281,11 @@ where
             self.precision,
             coefficients,
         )?;
-        ensemble.initialise(self.seed, &self.start)?;
+        let seeds = match &self.run_seeds {
+            Some(seeds) => Seeds::Runs(seeds),
+            None => Seeds::One(self.seed),
+        };
+        ensemble.initialise(seeds, &self.start)?;
         Ok(ensemble)
     }
 }
@@ -383,6 +425,22 @@ pub struct ChainSnapshot {
     pub diverged: bool,
     /// The chain's generator, in its current state.
     pub rng: Xoshiro128PlusPlus,
+}
+
+/// One run's summary, from [`Ensemble::group_bests`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GroupBest {
+    /// The best current value of its live chains (`+inf` when none is).
+    pub current: f64,
+    /// The best of its chains' running bests (`+inf` before any iterate
+    /// on the stride when the start is not in the running best).
+    pub running: f64,
+    /// Its chains that diverged.
+    pub diverged: usize,
+    /// Its evaluations of the potential and gradient: one per point its
+    /// starts drew (one, unless a start was infeasible and drawn again),
+    /// one per step taken.
+    pub evaluations: u64,
 }
 
 /// The paper's empirical probability at one eps: the share of groups of
@@ -546,7 +604,7 @@ impl<'g> Ensemble<'g> {
     /// Seeds the generators on the host (the kernel's `chain_seed` and
     /// rand_xoshiro's seeding, so the words are the CPU's), uploads the
     /// constants, and runs `init`.
-    fn initialise(&mut self, seed: u64, start: &Start) -> Result<(), GpuError> {
+    fn initialise(&mut self, seeds: Seeds<'_>, start: &Start) -> Result<(), GpuError> {
         let z = Ziggurat::from_kernel();
         let mut constants: Vec<f64> = match self.precision {
             Precision::F32 => z.x.iter().chain(&z.f).map(|&v| f64::from(v)).collect(),
@@ -556,13 +614,20 @@ impl<'g> Ensemble<'g> {
         self.gpu
             .queue
             .write_buffer(&self.tables, 0, &self.bytes(&constants));
-        self.seed_generators(seed)?;
+        self.seed_generators(seeds)?;
         self.dispatch(&self.pipelines.init, self.chains, Params::default())?;
         self.gpu.wait()?;
-        // The first chain whose start is not finite, as the CPU's builder
+        // The first chain whose start is refused, as the CPU's builder
         // finds it.
         let status = self.read_status()?;
         for (c, s) in status.iter().enumerate() {
+            if s.flags & UNBOUNDED != 0 {
+                return Err(hrla::Error::UnboundedBelow {
+                    chain: c,
+                    value: s.value,
+                }
+                .into());
+            }
             let what = if s.flags & BAD_START_POSITION != 0 {
                 "position"
             } else if s.flags & BAD_START_VALUE != 0 {
@@ -575,20 +640,27 @@ impl<'g> Ensemble<'g> {
             return Err(hrla::Error::NonFiniteStart {
                 chain: c,
                 what,
-                tries: 1,
+                tries: s.starts,
             }
             .into());
         }
         Ok(())
     }
 
-    fn seed_generators(&self, seed: u64) -> Result<(), GpuError> {
+    fn seed_generators(&self, seeds: Seeds<'_>) -> Result<(), GpuError> {
+        let seed_of = |c: usize| match seeds {
+            Seeds::One(seed) => chain_seed(seed, c as u64),
+            Seeds::Runs(runs) => {
+                let g = self.chains / runs.len();
+                chain_seed(runs[c / g], (c % g) as u64)
+            }
+        };
         // In slices, so that 10^7 chains do not need 160 MB on the host.
         const SLICE: usize = 1 << 16;
         for first in (0..self.chains).step_by(SLICE) {
             let last = (first + SLICE).min(self.chains);
             let bytes: Vec<u8> = (first..last)
-                .flat_map(|c| Xoshiro128PlusPlus::seed_from_u64(chain_seed(seed, c as u64)).state())
+                .flat_map(|c| Xoshiro128PlusPlus::seed_from_u64(seed_of(c)).state())
                 .collect();
             self.gpu
                 .queue
@@ -867,6 +939,58 @@ impl<'g> Ensemble<'g> {
             .collect())
     }
 
+    /// Per group of `group_size` consecutive chains (one run of Algorithm
+    /// 1, as in [`probability`](Self::probability)), in order: its best
+    /// current value, its best running best, its diverged chains and its
+    /// evaluations. Reduced on the host from the chains' scalars (4 to 8
+    /// words a chain are read back), and readable after a failed run too
+    /// (the chains keep what they reached).
+    ///
+    /// Errors: [`hrla::Error::Zero`] or [`hrla::Error::Count`] when
+    /// `group_size` does not divide the chains into whole runs.
+    pub fn group_bests(&self, group_size: usize) -> Result<Vec<GroupBest>, GpuError> {
+        if group_size == 0 {
+            return Err(hrla::Error::Zero { name: "group size" }.into());
+        }
+        if !self.chains.is_multiple_of(group_size) {
+            return Err(hrla::Error::Count {
+                name: "group size (a divisor of the chains)",
+                value: group_size,
+                max: self.chains,
+            }
+            .into());
+        }
+        let status = self.read_status()?;
+        Ok(status
+            .chunks_exact(group_size)
+            .map(|run| {
+                let mut g = GroupBest {
+                    current: f64::INFINITY,
+                    running: f64::INFINITY,
+                    diverged: 0,
+                    evaluations: 0,
+                };
+                for s in run {
+                    let diverged = s.flags & DIVERGED != 0;
+                    if !diverged {
+                        g.current = g.current.min(s.value);
+                    }
+                    g.running = g.running.min(s.best);
+                    g.diverged += usize::from(diverged);
+                    // The start's points, then one evaluation per step taken
+                    // (a diverged chain's last at the step that stopped it).
+                    let steps = if diverged {
+                        u64::from(s.stopped)
+                    } else {
+                        self.iteration
+                    };
+                    g.evaluations += u64::from(s.starts) + steps;
+                }
+                g
+            })
+            .collect())
+    }
+
     /// Every chain's state, read back (for checks and small runs: this
     /// copies the whole ensemble to the host).
     pub fn snapshot(&self) -> Result<Vec<ChainSnapshot>, GpuError> {
@@ -976,12 +1100,23 @@ impl<'g> Ensemble<'g> {
     }
 }
 
+/// Whose seeds the chains' generators take.
+#[derive(Clone, Copy)]
+enum Seeds<'a> {
+    /// Chain `c` from `chain_seed(seed, c)`.
+    One(u64),
+    /// Chain `j` of run `r` from `chain_seed(runs[r], j)`.
+    Runs(&'a [u64]),
+}
+
 /// A chain's scalars, as `Status` in `chains.wgsl`.
 struct Status {
     value: f64,
     best: f64,
     best_iter: u32,
     flags: u32,
+    stopped: u32,
+    starts: u32,
 }
 
 impl Status {
@@ -992,6 +1127,8 @@ impl Status {
                 best: f64::from(f32::from_bits(w[1])),
                 best_iter: w[2],
                 flags: w[3],
+                stopped: w[4],
+                starts: w[5],
             },
             Precision::F64 => {
                 let wide = |lo: u32, hi: u32| f64::from_bits(u64::from(lo) | u64::from(hi) << 32);
@@ -1000,6 +1137,8 @@ impl Status {
                     best: wide(w[2], w[3]),
                     best_iter: w[4],
                     flags: w[5],
+                    stopped: w[6],
+                    starts: w[7],
                 }
             }
         }

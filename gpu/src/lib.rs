@@ -97,7 +97,7 @@ mod step;
 
 pub use device::Gpu;
 pub use ensemble::{
-    BestPoint, ChainSnapshot, Ensemble, EnsembleBuilder, MAX_DIM, MAX_EPS, Probability,
+    BestPoint, ChainSnapshot, Ensemble, EnsembleBuilder, GroupBest, MAX_DIM, MAX_EPS, Probability,
 };
 pub use error::GpuError;
 pub use potential::DevicePotential;

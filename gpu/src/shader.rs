@@ -284,6 +284,7 @@ pub(crate) fn program(
     step: StepKind,
     arithmetic: Arithmetic,
     precision: Precision,
+    start_in_best: bool,
 ) -> String {
     let z = Ziggurat::from_kernel();
     let layout = Layout::new(dim);
@@ -344,6 +345,11 @@ pub(crate) fn program(
     );
     src.push_str(&format!("const REAL_MAX: Real = {};\n", lit(max)));
     src.push_str(&format!("const D: u32 = {dim}u;\n"));
+    src.push_str(&format!("const START_IN_BEST: bool = {start_in_best};\n"));
+    src.push_str(&format!(
+        "const START_TRIES: u32 = {}u;\n",
+        hrla::START_TRIES
+    ));
     src.push_str("alias Point = array<Real, D>;\n");
     src.push_str(&format!("const WORKGROUP: u32 = {WORKGROUP}u;\n"));
     src.push_str(&format!("const U_STAR_AT: u32 = {}u;\n", layout.u_star));

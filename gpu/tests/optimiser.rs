@@ -4,12 +4,9 @@
 
 mod common;
 
-use hrla::{
-    Builder, Chain, FnPotential, FnSchedule, Gaussian, Hrla, Rastrigin, StandardNormal, Stop,
-};
+use hrla::{Builder, Chain, FnPotential, FnSchedule, Gaussian, Hrla, Rastrigin, Stop};
 use hrla_gpu::{DevicePotential, EnsembleBuilder, GpuError, Start};
 use rand_xoshiro::Xoshiro128PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
 
 const D: usize = 10;
 const SEED: u64 = 5;
@@ -98,6 +95,92 @@ fn probability_is_the_count_over_the_cpu_chains() {
     }
     // Not all 0 or 1: the eps straddle the values.
     assert!(device.iter().any(|p| p.current > 0.0 && p.current < 1.0));
+}
+
+/// Runs with their own seeds: run `r` of an ensemble of three runs is the
+/// CPU optimiser of that run's seed, chain for chain (so batching runs
+/// changes none of them); each run's summary is the CPU chains'.
+#[test]
+fn runs_with_their_own_seeds_are_the_cpu_optimisers_of_those_seeds() {
+    let (g, steps, stride) = (7, 60, 4);
+    let seeds = [11u64, 2, 30];
+    let cpu_of = |seed: u64| {
+        let mut cpu: Vec<Chain<f32, D, Xoshiro128PlusPlus>> =
+            (0..g).map(|_| Chain::default()).collect();
+        let mut opt = Builder::new(
+            Rastrigin,
+            Hrla::paper(0.01f32).unwrap(),
+            4.0f32,
+            Gaussian::new([3.0; D], 10f32.sqrt()).unwrap(),
+        )
+        .seed(seed)
+        .stride(stride)
+        .stop(Stop::new().steps(steps))
+        .build(&mut cpu)
+        .unwrap();
+        opt.run().unwrap();
+        cpu
+    };
+    for start_in_best in [true, false] {
+        let mut e = EnsembleBuilder::new(
+            DevicePotential::Rastrigin,
+            Hrla::paper(0.01f32).unwrap(),
+            4.0f32,
+            Start::gaussian(vec![3.0; D], f64::from(10f32.sqrt())).unwrap(),
+        )
+        .chains(g * seeds.len())
+        .run_seeds(seeds.to_vec())
+        .stride(stride)
+        .start_in_best(start_in_best)
+        .build(common::gpu())
+        .unwrap();
+        let before = e.group_bests(g).unwrap();
+        for b in &before {
+            assert!(b.current.is_finite());
+            assert_eq!(b.running.is_finite(), start_in_best);
+        }
+        e.run(steps).unwrap();
+        let device = e.snapshot().unwrap();
+        let groups = e.group_bests(g).unwrap();
+        assert_eq!(groups.len(), seeds.len());
+        for (r, &seed) in seeds.iter().enumerate() {
+            let cpu = cpu_of(seed);
+            let mine = &device[r * g..(r + 1) * g];
+            for (d, c) in mine.iter().zip(&cpu) {
+                assert_eq!(d.x, c.x().map(f64::from).to_vec());
+                // Without the start, a chain's running best is the CPU's
+                // wherever the CPU's is not the start itself.
+                if start_in_best || c.best().iteration > 0 {
+                    assert_eq!(d.best_value, f64::from(c.best().value));
+                } else {
+                    assert!(d.best_value > f64::from(c.best().value));
+                }
+            }
+            let now = cpu.iter().map(|c| c.value()).fold(f32::INFINITY, f32::min);
+            assert_eq!(groups[r].current, f64::from(now));
+            let running = mine
+                .iter()
+                .map(|c| c.best_value)
+                .fold(f64::INFINITY, f64::min);
+            assert_eq!(groups[r].running, running);
+            assert_eq!(groups[r].diverged, 0);
+            assert_eq!(groups[r].evaluations, g as u64 * (steps + 1));
+        }
+    }
+    let bad = EnsembleBuilder::new(
+        DevicePotential::Rastrigin,
+        Hrla::paper(0.01f32).unwrap(),
+        4.0f32,
+        Start::paper(D),
+    )
+    .chains(10)
+    .run_seeds(vec![1, 2, 3])
+    .build(common::gpu())
+    .unwrap_err();
+    assert!(
+        matches!(bad, GpuError::Kernel(hrla::Error::Count { value: 3, .. })),
+        "{bad}"
+    );
 }
 
 /// A user's potential that is unbounded below: the same error, chain and
@@ -312,36 +395,112 @@ fn bad_input_is_a_typed_error() {
         Start::point(vec![f64::INFINITY]),
         Err(GpuError::Kernel(hrla::Error::NotFinite { .. }))
     ));
-    // A start where the potential is not finite: the first such chain
-    // (the device draws each start once, where the CPU's builder redraws).
-    let wall = DevicePotential::wgsl(
+    // A start where the potential is not finite is drawn again from the
+    // chain's generator, as the CPU's builder draws it: the same points
+    // and evaluations; where every point is refused, the first chain after
+    // START_TRIES points, as on the CPU.
+    let wall_wgsl =
         "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
             (*grad)[0] = 1.0;
-            return select((*x)[0], bitcast<f32>(0x7f800000u), (*x)[0] < 0.0);
-        }",
-    );
-    let first_negative = (0..64u64)
-        .find(|&c| {
-            let mut rng = Xoshiro128PlusPlus::seed_from_u64(hrla::chain_seed(0, c));
-            1.0 + f32::standard_normal(&mut rng) < 0.0
-        })
-        .unwrap() as usize;
-    assert_eq!(
-        EnsembleBuilder::new(
-            wall,
-            Hrla::paper(0.01).unwrap(),
-            1.0,
-            Start::gaussian(vec![1.0], 1.0).unwrap()
+            return select((*x)[0], bitcast<f32>(0x7f800000u), (*x)[0] < WALL);
+        }";
+    let cpu_with_wall = |wall: f32, chains: usize| {
+        let mut cpu: Vec<Chain<f32, 1, Xoshiro128PlusPlus>> =
+            (0..chains).map(|_| Chain::default()).collect();
+        let potential = FnPotential::new(move |x: &[f32; 1], g: &mut [f32; 1]| {
+            g[0] = 1.0;
+            if x[0] < wall { f32::INFINITY } else { x[0] }
+        });
+        Builder::new(
+            potential,
+            Hrla::paper(0.01f32).unwrap(),
+            1.0f32,
+            Gaussian::new([1.0], 1.0).unwrap(),
         )
-        .chains(64)
+        .build(&mut cpu)
+        .map(|opt| opt.evaluations())
+        .map(|evaluations| {
+            (
+                evaluations,
+                cpu.iter().map(|c| c.x()[0]).collect::<Vec<_>>(),
+            )
+        })
+    };
+    let device_with_wall = |wall: f32, chains: usize| {
+        let source = format!("const WALL: Real = {wall:?};\n{wall_wgsl}");
+        EnsembleBuilder::new(
+            DevicePotential::wgsl(&source),
+            Hrla::paper(0.01f32).unwrap(),
+            1.0f32,
+            Start::gaussian(vec![1.0], 1.0).unwrap(),
+        )
+        .chains(chains)
         .build(gpu)
-        .map(drop),
-        Err(GpuError::Kernel(hrla::Error::NonFiniteStart {
-            chain: first_negative,
+        .and_then(|e| {
+            let g = e.group_bests(chains)?;
+            let x = e
+                .snapshot()?
+                .iter()
+                .map(|c| c.x[0] as f32)
+                .collect::<Vec<_>>();
+            Ok((g[0].evaluations, x))
+        })
+    };
+    // About half of the first points are refused: redraws happen.
+    let (evaluations, x) = cpu_with_wall(1.0, 64).unwrap();
+    assert!(evaluations > 64 + 10, "{evaluations}");
+    assert!(x.iter().all(|&v| v >= 1.0));
+    assert_eq!(device_with_wall(1.0, 64).unwrap(), (evaluations, x));
+    // No point is accepted (a standard normal beyond 1e6 never comes).
+    let none = cpu_with_wall(1e6, 8).map(drop).unwrap_err();
+    assert_eq!(
+        none,
+        hrla::Error::NonFiniteStart {
+            chain: 0,
             what: "value",
-            tries: 1,
-        }))
+            tries: hrla::START_TRIES,
+        }
     );
+    assert_eq!(
+        device_with_wall(1e6, 8).map(drop),
+        Err(GpuError::Kernel(none))
+    );
+    // A start below the floor ends the build at once, naming the first
+    // such chain and its value, as on the CPU.
+    let mut cpu: Vec<Chain<f32, 1, Xoshiro128PlusPlus>> =
+        (0..4).map(|_| Chain::default()).collect();
+    let abyss = FnPotential::new(|_: &[f32; 1], g: &mut [f32; 1]| {
+        g[0] = 0.0;
+        -1e30
+    });
+    let cpu_err = Builder::new(
+        abyss,
+        Hrla::paper(0.01f32).unwrap(),
+        1.0f32,
+        Gaussian::new([1.0], 1.0).unwrap(),
+    )
+    .build(&mut cpu)
+    .map(drop)
+    .unwrap_err();
+    assert!(
+        matches!(cpu_err, hrla::Error::UnboundedBelow { chain: 0, .. }),
+        "{cpu_err}"
+    );
+    let device_err = EnsembleBuilder::new(
+        DevicePotential::wgsl(
+            "fn value_and_gradient(x: ptr<function, Point>, grad: ptr<function, Point>) -> Real {
+                (*grad)[0] = 0.0;
+                return -1e30;
+            }",
+        ),
+        Hrla::paper(0.01f32).unwrap(),
+        1.0f32,
+        Start::gaussian(vec![1.0], 1.0).unwrap(),
+    )
+    .chains(4)
+    .build(gpu)
+    .map(drop);
+    assert_eq!(device_err, Err(GpuError::Kernel(cpu_err)));
     // The sampler's own checks, at a_0 and along the schedule.
     assert!(matches!(
         EnsembleBuilder::new(

@@ -28,13 +28,15 @@ struct Params {
     one: f32,
 }
 
-// A chain's scalars. `stopped`: the iterate at which it diverged.
+// A chain's scalars. `stopped`: the iterate at which it diverged;
+// `starts`: the points its start drew.
 struct Status {
     value: Real,
     best: Real,
     best_iter: u32,
     flags: u32,
     stopped: u32,
+    starts: u32,
 }
 
 const DIVERGED: u32 = 1u;
@@ -79,18 +81,33 @@ fn init(@builtin(global_invocation_id) gid: vec3<u32>) {
     var x: Point;
     var y: Point;
     var g: Point;
-    for (var i = 0u; i < D; i++) {
-        START_COORDINATE
-        y[i] = 0.0;
-    }
-    let value = value_and_gradient(&x, &g);
+    var value: Real;
     var flags = 0u;
-    if !all_finite(&x) {
-        flags = BAD_START_POSITION;
-    } else if !finite(value) {
-        flags = BAD_START_VALUE;
-    } else if !all_finite(&g) {
-        flags = BAD_START_GRADIENT;
+    // The CPU builder's rule: an infeasible start is drawn again from the
+    // chain's generator, up to START_TRIES points; a start below the floor
+    // ends the build at once.
+    var tries = 0u;
+    loop {
+        for (var i = 0u; i < D; i++) {
+            START_COORDINATE
+            y[i] = 0.0;
+        }
+        value = value_and_gradient(&x, &g);
+        tries += 1u;
+        if value < FLOOR && all_finite(&x) {
+            flags = UNBOUNDED;
+        } else if finite(value) && all_finite(&g) && all_finite(&x) {
+            flags = 0u;
+        } else if !all_finite(&x) {
+            flags = BAD_START_POSITION;
+        } else if !finite(value) {
+            flags = BAD_START_VALUE;
+        } else {
+            flags = BAD_START_GRADIENT;
+        }
+        if flags == 0u || flags == UNBOUNDED || tries >= START_TRIES {
+            break;
+        }
     }
     for (var i = 0u; i < D; i++) {
         xs[i * n + c] = x[i];
@@ -98,7 +115,7 @@ fn init(@builtin(global_invocation_id) gid: vec3<u32>) {
         best_xs[i * n + c] = x[i];
     }
     rngs[c] = rng;
-    status[c] = Status(value, value, 0u, flags, 0u);
+    status[c] = Status(value, select(none(), value, START_IN_BEST), 0u, flags, 0u, tries);
 }
 
 @compute @workgroup_size(WORKGROUP)

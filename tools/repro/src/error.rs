@@ -57,6 +57,11 @@ pub enum ReproError {
         /// What is wrong with it.
         problem: crate::shard::ShardProblem,
     },
+    /// The GPU backend (`--backend gpu`) could not run: no adapter, a
+    /// device failure, a buffer beyond the device's limits (see
+    /// [`hrla_gpu::GpuError`]).
+    #[error("the GPU backend: {0}")]
+    Gpu(hrla_gpu::GpuError),
     /// Drawing a figure failed.
     #[error("cannot draw {path}: {message}")]
     Plot {

@@ -22,6 +22,7 @@
 //!   what the machine's memory holds).
 //! - [`exec`]: every run of a plan (or of one shard of it) in parallel
 //!   (rayon).
+//! - [`gpu`]: the same runs and statistics on a GPU (`--backend gpu`).
 //! - [`shard`]: a shard's runs on disk, and the merge of all shards into
 //!   the result of one process.
 //! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures;
@@ -35,6 +36,7 @@ pub mod config;
 pub mod engine;
 pub mod error;
 pub mod exec;
+pub mod gpu;
 pub mod limits;
 pub mod output;
 pub mod peers;

@@ -13,7 +13,8 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use hrla_repro::compare::{comparison_markdown, cost_markdown, has_peers};
-use hrla_repro::exec::{ProtocolResult, Shard, execute, finish, run_shard};
+use hrla_repro::exec::{Part, ProtocolResult, Shard, execute, finish, run_shard};
+use hrla_repro::gpu::{Backend, GpuBackend};
 use hrla_repro::output::{summary_markdown, write_all};
 use hrla_repro::protocol::{Overrides, Plan, ProtocolId, plan};
 use hrla_repro::{limits, shard};
@@ -60,6 +61,13 @@ struct Cli {
     /// checksum, plan, names, numbers and ranges are checked.
     #[arg(long, global = true)]
     merge: bool,
+    /// Where the chains run: cpu, or gpu (any wgpu adapter with f64:
+    /// Vulkan, Metal, DX12, or a software Vulkan such as lavapipe). The
+    /// GPU's chains draw from xoshiro128++ with the same run and chain
+    /// seeds: the same statistics, other draws. Not for T3's peers. A
+    /// merge takes the backend its shards ran on.
+    #[arg(long, global = true, value_enum, default_value_t = Backend::Cpu)]
+    backend: Backend,
 }
 
 #[derive(Debug, Subcommand)]
@@ -127,9 +135,18 @@ fn main() -> Result<()> {
         .iter()
         .map(|(id, o)| plan(*id, o, cli.quick).with_context(|| format!("protocol {}", id.name())))
         .collect::<Result<Vec<_>>>()?;
-    // And every plan within the machine's memory, before any of them runs.
+    // The device, once, before anything runs: no adapter is an error here.
+    let device = match cli.backend {
+        Backend::Gpu if !cli.merge => Some(GpuBackend::open()?),
+        _ => None,
+    };
+    // And every plan within the machine's memory, before any of them runs
+    // (on a GPU, one batch of runs at a time reads back).
     let memory = limits::machine_memory();
-    let workers = (!cli.merge).then(rayon::current_num_threads);
+    let workers = match &device {
+        Some(_) => Some(1),
+        None => (!cli.merge).then(rayon::current_num_threads),
+    };
     for p in &plans {
         limits::check_memory(p, workers, memory)
             .with_context(|| format!("protocol {}", p.id.name()))?;
@@ -143,20 +160,29 @@ fn main() -> Result<()> {
     for p in &plans {
         let context = || format!("protocol {}", p.id.name());
         if let Some(part) = cli.shard {
-            total += run_one_shard(&cli, p, part).with_context(context)?;
+            total += run_one_shard(&cli, device.as_ref(), p, part).with_context(context)?;
             continue;
         }
         let load_before = load_average();
         let (result, mut notes) = if cli.merge {
-            let (part, threads) = shard::merge(&cli.out, p, cli.seed).with_context(context)?;
+            let (part, threads) =
+                shard::merge(&cli.out, p, cli.seed, cli.backend).with_context(context)?;
             let result = finish(p, cli.seed, part, threads);
             let note = ("wall time", "the sum of the shards'".to_string());
             (result, vec![note])
         } else {
             let bar = progress_bar(cli.quiet, p.chain_steps(), p.id.name());
-            let result = execute(p, cli.seed, &bar).with_context(context)?;
+            let result = match &device {
+                Some(gpu) => gpu.execute(p, cli.seed, &bar),
+                None => execute(p, cli.seed, &bar),
+            }
+            .with_context(context)?;
             bar.finish_and_clear();
-            (result, Vec::new())
+            let notes = device
+                .iter()
+                .map(|gpu| ("backend", gpu.describe()))
+                .collect();
+            (result, notes)
         };
         notes.extend([
             ("command", command.clone()),
@@ -175,18 +201,30 @@ fn main() -> Result<()> {
     Ok(())
 }
 
-/// Runs one shard of a plan and writes its file; returns the wall time.
-fn run_one_shard(cli: &Cli, p: &Plan, part: Shard) -> Result<Duration> {
+/// Runs one shard of a plan (on the device, if any) and writes its file;
+/// returns the wall time.
+fn run_one_shard(
+    cli: &Cli,
+    device: Option<&GpuBackend>,
+    p: &Plan,
+    part: Shard,
+) -> Result<Duration> {
     let steps = part
         .tasks(p)
         .iter()
         .map(|&(c, _)| p.configs[c].chain_steps())
         .sum();
     let bar = progress_bar(cli.quiet, steps, p.id.name());
-    let result = run_shard(p, cli.seed, part, &bar)?;
+    let result: Part = match device {
+        Some(gpu) => gpu.run_shard(p, cli.seed, part, &bar)?,
+        None => run_shard(p, cli.seed, part, &bar)?,
+    };
     bar.finish_and_clear();
-    let threads = rayon::current_num_threads();
-    let file = shard::write(&cli.out, p, cli.seed, part, &result, threads)?;
+    let threads = match device {
+        Some(_) => 1,
+        None => rayon::current_num_threads(),
+    };
+    let file = shard::write(&cli.out, p, cli.seed, cli.backend, part, &result, threads)?;
     if !cli.quiet {
         println!(
             "{} shard {part}: {} runs, {} chain-steps in {:.2} s; wrote {}",

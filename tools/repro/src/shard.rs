@@ -54,6 +54,7 @@ use std::time::Duration;
 use crate::engine::U_STAR;
 use crate::error::ReproError;
 use crate::exec::{Part, Shard};
+use crate::gpu::Backend;
 use crate::protocol::Plan;
 use crate::stats::{BadRunningBest, check_running_best};
 
@@ -80,7 +81,7 @@ pub fn checksum(bytes: &[u8]) -> u64 {
 /// grid), the kernel's schedule and sampler settings (`alpha`, `beta`,
 /// `b`, ...) or the peer's, and the figure's panels. Floats are written
 /// as Rust's `Debug` does, which reads back to the same bits.
-pub fn plan_lines(plan: &Plan, seed: u64) -> Vec<String> {
+pub fn plan_lines(plan: &Plan, seed: u64, backend: Backend) -> Vec<String> {
     // Destructured, so that a field added to the plan is not forgotten here.
     let Plan {
         id,
@@ -93,12 +94,19 @@ pub fn plan_lines(plan: &Plan, seed: u64) -> Vec<String> {
         format!("plan format {FORMAT}"),
         format!("plan tool hrla-repro {}", env!("CARGO_PKG_VERSION")),
         "plan dtype f64".to_string(),
+    ];
+    // A GPU's shards draw from another generator: never merged with the
+    // CPU's (whose files carry no such line).
+    if backend == Backend::Gpu {
+        lines.push(format!("plan backend gpu {}", crate::gpu::GENERATOR));
+    }
+    lines.extend([
         format!("plan potential Rastrigin U* = {U_STAR:?}"),
         format!("plan protocol {}", id.name()),
         format!("plan seed {seed}"),
         format!("plan runs {runs}"),
         format!("plan configurations {}", configs.len()),
-    ];
+    ]);
     for (c, spec) in configs.iter().enumerate() {
         lines.push(format!("plan config {c} {spec:?}"));
         let settings = match spec.method.peer() {
@@ -121,10 +129,17 @@ pub fn path(out: &Path, plan: &Plan, shard: Shard) -> PathBuf {
 }
 
 /// The text of a shard file (see the module's documentation).
-pub fn text(plan: &Plan, seed: u64, shard: Shard, part: &Part, threads: usize) -> String {
+pub fn text(
+    plan: &Plan,
+    seed: u64,
+    backend: Backend,
+    shard: Shard,
+    part: &Part,
+    threads: usize,
+) -> String {
     let mut text = String::new();
     let _ = writeln!(text, "{MAGIC}");
-    for line in plan_lines(plan, seed) {
+    for line in plan_lines(plan, seed, backend) {
         let _ = writeln!(text, "{line}");
     }
     let _ = writeln!(text, "shard {shard}");
@@ -157,6 +172,7 @@ pub fn write(
     out: &Path,
     plan: &Plan,
     seed: u64,
+    backend: Backend,
     shard: Shard,
     part: &Part,
     threads: usize,
@@ -168,9 +184,11 @@ pub fn write(
             source,
         })?;
     }
-    fs::write(&file, text(plan, seed, shard, part, threads)).map_err(|source| ReproError::Io {
-        path: file.clone(),
-        source,
+    fs::write(&file, text(plan, seed, backend, shard, part, threads)).map_err(|source| {
+        ReproError::Io {
+            path: file.clone(),
+            source,
+        }
     })?;
     Ok(file)
 }
@@ -304,9 +322,9 @@ fn clip(s: &str) -> String {
 
 /// The most bytes a shard of `plan` can take: every number at the most
 /// digits of its type. A bound only, saturating.
-fn most_bytes(plan: &Plan, seed: u64) -> u64 {
+fn most_bytes(plan: &Plan, seed: u64, backend: Backend) -> u64 {
     const NUMBER: u64 = 21; // a space and up to 20 digits
-    let lines: u64 = plan_lines(plan, seed)
+    let lines: u64 = plan_lines(plan, seed, backend)
         .iter()
         .map(|l| l.len() as u64 + 1)
         .sum();
@@ -408,12 +426,12 @@ fn bits(s: &str) -> Option<f64> {
 
 /// The checked content of a shard file: its bytes have the right size,
 /// end with a checksum line that matches, and are text.
-fn content(file: &Path, plan: &Plan, seed: u64) -> Result<String, ReproError> {
+fn content(file: &Path, plan: &Plan, seed: u64, backend: Backend) -> Result<String, ReproError> {
     let io = |source| ReproError::Io {
         path: file.to_path_buf(),
         source,
     };
-    let most = most_bytes(plan, seed);
+    let most = most_bytes(plan, seed, backend);
     let handle = fs::File::open(file).map_err(io)?;
     let size = handle.metadata().map_err(io)?.len();
     let too_large = |bytes| shard_error(file, ShardProblem::TooLarge { bytes, most });
@@ -455,21 +473,28 @@ fn read_one(
     file: &Path,
     plan: &Plan,
     seed: u64,
+    backend: Backend,
     named: Shard,
 ) -> Result<(Part, usize), ReproError> {
-    let text = content(file, plan, seed)?;
-    parse(&text, plan, seed, named).map_err(|problem| shard_error(file, problem))
+    let text = content(file, plan, seed, backend)?;
+    parse(&text, plan, seed, backend, named).map_err(|problem| shard_error(file, problem))
 }
 
 /// The content of shard `named` of `plan` (its checksum line removed),
 /// checked line by line.
-fn parse(text: &str, plan: &Plan, seed: u64, named: Shard) -> Result<(Part, usize), ShardProblem> {
+fn parse(
+    text: &str,
+    plan: &Plan,
+    seed: u64,
+    backend: Backend,
+    named: Shard,
+) -> Result<(Part, usize), ShardProblem> {
     let mut lines = Lines {
         lines: text.lines().enumerate(),
         last: 0,
     };
     lines.keyed("hrla-repro", None)?;
-    for merge in plan_lines(plan, seed) {
+    for merge in plan_lines(plan, seed, backend) {
         match lines.lines.next() {
             Some((i, shard)) if shard == merge => lines.last = i + 1,
             Some((_, shard)) if shard.starts_with("plan ") => {
@@ -615,7 +640,12 @@ fn shard_of_name(name: &str) -> Option<Shard> {
 /// shards `0..n` of one `n`, each a valid shard of this plan and seed
 /// (see the module's documentation), whose counters add up without
 /// overflow, and the merged plan fits in the machine's memory.
-pub fn merge(out: &Path, plan: &Plan, seed: u64) -> Result<(Part, usize), ReproError> {
+pub fn merge(
+    out: &Path,
+    plan: &Plan,
+    seed: u64,
+    backend: Backend,
+) -> Result<(Part, usize), ReproError> {
     crate::limits::check_memory(plan, None, crate::limits::machine_memory())?;
     let dir = out.join(plan.id.name().to_lowercase());
     let entries = fs::read_dir(&dir).map_err(|source| ReproError::Io {
@@ -656,7 +686,7 @@ pub fn merge(out: &Path, plan: &Plan, seed: u64) -> Result<(Part, usize), ReproE
     let mut whole = Part::empty(plan);
     let mut threads = 0;
     for (shard, file) in &files {
-        let (part, t) = read_one(file, plan, seed, *shard)?;
+        let (part, t) = read_one(file, plan, seed, backend, *shard)?;
         threads = threads.max(t);
         whole = whole.merge(part).map_err(|e| match e {
             ReproError::Overflow(what) => shard_error(file, ShardProblem::Overflow(what)),
@@ -690,26 +720,26 @@ mod tests {
         let p = e1();
         let shard = Shard { index: 1, count: 2 };
         let part = run_shard(&p, 9, shard, &ProgressBar::hidden()).unwrap();
-        let text = text(&p, 9, shard, &part, 3);
+        let text = text(&p, 9, Backend::Cpu, shard, &part, 3);
         let body = &text[..text.rfind("checksum").unwrap()];
-        let (back, threads) = parse(body, &p, 9, shard).unwrap();
+        let (back, threads) = parse(body, &p, 9, Backend::Cpu, shard).unwrap();
         assert_eq!(threads, 3);
         assert_eq!(back.counts, part.counts);
         assert_eq!(back.values, part.values);
         assert_eq!(back.chain_steps, part.chain_steps);
         assert_eq!(back.evaluations, part.evaluations);
         assert!(matches!(
-            parse(body, &p, 10, shard),
+            parse(body, &p, 10, Backend::Cpu, shard),
             Err(ShardProblem::PlanDiffers { .. })
         ));
         assert!(matches!(
-            parse(body, &p, 9, Shard { index: 0, count: 2 }),
+            parse(body, &p, 9, Backend::Cpu, Shard { index: 0, count: 2 }),
             Err(ShardProblem::Misnamed { .. })
         ));
         let mut other = p.clone();
         other.configs[1].h = 0.010000000000000002;
         assert!(matches!(
-            parse(body, &other, 9, shard),
+            parse(body, &other, 9, Backend::Cpu, shard),
             Err(ShardProblem::PlanDiffers { .. })
         ));
     }
