@@ -74,8 +74,19 @@ macro_rules! define_builtins {
             pub const ALL: [BuiltinKind; 1 $(+ { let _ = stringify!($variant); 1 })+] =
                 [$(BuiltinKind::$variant,)+ BuiltinKind::Quadratic];
 
+            /// Every name, in the order of [`BuiltinKind::ALL`].
+            pub const NAMES: [&'static str; BuiltinKind::ALL.len()] = {
+                let mut names = [""; BuiltinKind::ALL.len()];
+                let mut i = 0;
+                while i < names.len() {
+                    names[i] = BuiltinKind::ALL[i].name();
+                    i += 1;
+                }
+                names
+            };
+
             /// The name settings use: `"rastrigin"`, `"double-well"`, ...
-            pub fn name(self) -> &'static str {
+            pub const fn name(self) -> &'static str {
                 match self {
                     $( BuiltinKind::$variant => $name, )+
                     BuiltinKind::Quadratic => QUADRATIC,
@@ -83,7 +94,7 @@ macro_rules! define_builtins {
             }
 
             /// The kernel's type name: `"Rastrigin"`, `"DoubleWell"`, ...
-            pub fn title(self) -> &'static str {
+            pub const fn title(self) -> &'static str {
                 match self {
                     $( BuiltinKind::$variant => stringify!($variant), )+
                     BuiltinKind::Quadratic => "Quadratic",
@@ -165,14 +176,11 @@ pub struct UnknownPotential;
 
 impl fmt::Display for UnknownPotential {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "`potential` must be one of ")?;
-        for (i, k) in BuiltinKind::ALL.iter().enumerate() {
-            if i > 0 {
-                f.write_str(", ")?;
-            }
-            f.write_str(k.name())?;
-        }
-        Ok(())
+        write!(
+            f,
+            "`potential` must be one of {}",
+            BuiltinKind::NAMES.join(", ")
+        )
     }
 }
 

@@ -60,6 +60,7 @@ from typing import Any, Callable, Optional, Tuple, Union
 import numpy as np
 
 from ._hrla import (
+    BUILTINS,
     DIMENSIONS,
     Ackley,
     Auto,
@@ -93,7 +94,7 @@ from ._hrla import (
 )
 
 __all__ = [
-    "DIMENSIONS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
+    "BUILTINS", "DIMENSIONS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
     "DimensionError", "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla",
     "HrlaError", "InternalError", "Interval", "Levy", "Linear", "Ola", "OptimizeResult",
     "Optimizer", "Point", "Polished", "PolishSettings", "Potential", "Quadratic", "Rastrigin",

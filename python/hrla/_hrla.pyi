@@ -9,6 +9,8 @@ F64 = npt.NDArray[np.float64]
 BatchedFunction = Callable[[F64], Tuple[npt.ArrayLike, npt.ArrayLike]]
 
 DIMENSIONS: List[int]
+#: The built-in potentials' class names, in the run-time layer's order.
+BUILTINS: List[str]
 
 class HrlaError(ValueError):
     """The kernel refused its input or the run failed; the message is the kernel's."""

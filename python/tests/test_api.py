@@ -189,3 +189,17 @@ def test_the_stubs_match_the_module():
             assert own == members, name
         else:
             assert own == members - {"__init__", "__len__"}, (name, own ^ (members - {"__init__", "__len__"}))
+
+
+def test_the_builtins_are_the_layers_list():
+    # The classes come from the run-time layer's one list: each is
+    # exported, a Potential, and named as the kernel's type.
+    assert hrla.BUILTINS == ["Rastrigin", "Ackley", "Levy", "StyblinskiTang", "DoubleWell", "Quadratic"]
+    for name in hrla.BUILTINS:
+        cls = getattr(hrla, name)
+        assert name in hrla.__all__
+        assert issubclass(cls, hrla.Potential)
+        assert cls.__name__ == name and cls.__module__ == "hrla"
+        if name != "Quadratic":
+            assert repr(cls()) == f"{name}()"
+            assert cls.__doc__
