@@ -43,7 +43,7 @@ pub use engine::{Engine, Layout, storage_bytes};
 pub use error::Error;
 pub use potential::{Builtin, BuiltinKind, BuiltinSpec, UnknownPotential};
 pub use report::{Progress, TERMINATIONS, termination_code, termination_name};
-pub use settings::{BoxSpec, PotentialSpec, Settings, StartSpec, Temperature, dimension};
+pub use settings::{AnyStart, BoxSpec, PotentialSpec, Settings, StartSpec, Temperature, dimension};
 pub use user::{BatchFunction, UserError};
 
 /// The L-BFGS memory of the polish and quenches (the kernel's `M`).

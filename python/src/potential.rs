@@ -109,7 +109,9 @@ pub fn from_py(obj: &Bound<'_, PyAny>) -> PyResult<PotentialSpec> {
     if let Ok(b) = obj.extract::<PyRef<PyBuiltin>>() {
         Ok(PotentialSpec::Builtin(b.0.clone()))
     } else if obj.is_callable() {
-        Ok(PotentialSpec::User(Arc::new(PyFunction(obj.clone().unbind()))))
+        Ok(PotentialSpec::User(Arc::new(PyFunction(
+            obj.clone().unbind(),
+        ))))
     } else {
         Err(PyTypeError::new_err(format!(
             "the potential must be a built-in (hrla.Rastrigin(), ...) or a callable \

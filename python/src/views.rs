@@ -29,8 +29,7 @@ pub fn rows<'py>(owner: Bound<'py, PyAny>, l: &Layout, offset: usize) -> Bound<'
     // owns it and never resizes or replaces it), and `owner` is the
     // array's base, so it outlives the array.
     let array = unsafe {
-        let view =
-            ArrayView2::from_shape_ptr((l.n, l.d).strides((l.stride, 1)), at(l, offset));
+        let view = ArrayView2::from_shape_ptr((l.n, l.d).strides((l.stride, 1)), at(l, offset));
         PyArray2::borrow_from_array(&view, owner)
     };
     read_only(array)

@@ -111,17 +111,9 @@ pub enum Summary {
 }
 
 /// The code of a stopping reason in [`Summary::Termination`]: 1 step
-/// budget, 2 evaluation budget, 3 target, 4 stalled, 5 observer.
-pub fn termination_code(t: Option<Termination>) -> f64 {
-    match t {
-        None => 0.0,
-        Some(Termination::Steps) => 1.0,
-        Some(Termination::Evaluations) => 2.0,
-        Some(Termination::Target) => 3.0,
-        Some(Termination::Stalled) => 4.0,
-        Some(Termination::Observer) => 5.0,
-    }
-}
+/// budget, 2 evaluation budget, 3 target, 4 stalled, 5 observer (the
+/// run-time layer's one mapping).
+pub use hrla_dyn::termination_code;
 
 /// One run of Algorithm 1 on a 2-D landscape, with its chains and the
 /// buffers that JavaScript views.
