@@ -8,7 +8,7 @@ use hrla_dyn::{Progress, termination_name};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
-use crate::config::PyInterval;
+use crate::config;
 use crate::engine::SIGNAL_WORK;
 use crate::errors::{guard, layer};
 use crate::potential;
@@ -108,7 +108,7 @@ impl PyAuto {
         &self,
         py: Python<'_>,
         potential: &Bound<'_, PyAny>,
-        domain: PyInterval,
+        domain: &Bound<'_, PyAny>,
         budget: u64,
         seed: u64,
         chains: Option<usize>,
@@ -124,7 +124,7 @@ impl PyAuto {
         &self,
         py: Python<'_>,
         potential: &Bound<'_, PyAny>,
-        domain: PyInterval,
+        domain: &Bound<'_, PyAny>,
         budget: u64,
         seed: u64,
         chains: Option<usize>,
@@ -132,7 +132,7 @@ impl PyAuto {
     ) -> PyResult<PySolution> {
         let problem = Problem {
             potential: potential::from_py(potential)?,
-            domain: domain.0.into(),
+            domain: config::domain(domain)?,
             budget,
             seed,
             chains,

@@ -7,7 +7,7 @@ use hrla::{
     AnySampler, AnySchedule, Constant, Geometric, Hrla, HrlaParams, Linear, Ola, OlaParams,
     PolishEnd, PolishSettings, Stop, Ula, UlaParams,
 };
-use hrla_dyn::{StartSpec, termination_name};
+use hrla_dyn::{BoxSpec, StartSpec, termination_name};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
@@ -241,7 +241,27 @@ impl PyPoint {
     }
 }
 
-/// A start argument: `Gaussian`, `Point` or `Interval`.
+/// A box argument: an `Interval` (the same `[lo, hi]` in every
+/// coordinate), or a sequence of `D` pairs `(lo_i, hi_i)`, one per
+/// coordinate (the layer checks them).
+pub fn domain(obj: &Bound<'_, PyAny>) -> PyResult<BoxSpec> {
+    if let Ok(i) = obj.extract::<PyRef<PyInterval>>() {
+        return Ok(i.0.into());
+    }
+    obj.extract::<Vec<(f64, f64)>>()
+        .map(BoxSpec::PerCoordinate)
+        .map_err(|_| {
+            PyTypeError::new_err(format!(
+                "a box must be hrla.Interval or a sequence of (lo, hi) pairs, got {}",
+                obj.get_type()
+                    .name()
+                    .map_or_else(|_| "?".into(), |s| s.to_string())
+            ))
+        })
+}
+
+/// A start argument: `Gaussian`, `Point`, `Interval` or a box of `(lo_i,
+/// hi_i)` pairs (uniform in it).
 pub fn start(obj: &Bound<'_, PyAny>) -> PyResult<StartSpec> {
     if let Ok(s) = obj.extract::<PyRef<PyGaussian>>() {
         Ok(StartSpec::Gaussian {
@@ -252,6 +272,8 @@ pub fn start(obj: &Bound<'_, PyAny>) -> PyResult<StartSpec> {
         Ok(StartSpec::Point(s.0.clone()))
     } else if let Ok(s) = obj.extract::<PyRef<PyInterval>>() {
         Ok(StartSpec::Box(s.0.into()))
+    } else if let Ok(pairs) = obj.extract::<Vec<(f64, f64)>>() {
+        Ok(StartSpec::Box(BoxSpec::PerCoordinate(pairs)))
     } else {
         Err(PyTypeError::new_err(format!(
             "start must be hrla.Gaussian, hrla.Point or hrla.Interval, got {}",

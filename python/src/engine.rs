@@ -11,7 +11,7 @@ use hrla_dyn::{Engine, Layout, Settings};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 
-use crate::config::{self, PyInterval, PyPolishSettings, PyPolished, PyReport, PyStop};
+use crate::config::{self, PyPolishSettings, PyPolished, PyReport, PyStop};
 use crate::errors::{busy, guard, internal, layer};
 use crate::potential;
 
@@ -169,7 +169,7 @@ impl PyOptimizer {
         seed: u64,
         stride: u64,
         stop: Option<PyStop>,
-        domain: Option<PyInterval>,
+        domain: Option<&Bound<'_, PyAny>>,
         dim: Option<usize>,
     ) -> PyResult<Self> {
         guard(|| {
@@ -178,7 +178,7 @@ impl PyOptimizer {
                 sampler: config::sampler(sampler)?,
                 schedule: config::schedule(schedule)?,
                 start: config::start(start)?,
-                domain: domain.map(|b| b.0.into()),
+                domain: domain.map(config::domain).transpose()?,
                 seed,
                 stride,
                 stop: stop.unwrap_or_default().0,
