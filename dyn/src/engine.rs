@@ -4,13 +4,14 @@
 use std::ops::ControlFlow;
 
 use hrla::{
-    AnySampler, AnySchedule, Builder, Chain, Domain, Kernel, Lbfgs, Optimizer, PolishSettings,
-    Polished, Report, Sampler, Schedule, Start, Termination, chain_seed,
+    AnyKernel, AnySampler, AnySchedule, Builder, Chain, Domain, Kernel, Lbfgs, Optimizer,
+    PolishSettings, Polished, Report, Sampler, Schedule, Start, Termination, chain_seed,
 };
 use rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::dims::with_dim;
+use crate::error::RanAway;
 use crate::settings::{Bounds, Pot};
 use crate::{Error, MEMORY, Progress, Settings};
 
@@ -133,6 +134,18 @@ pub trait Engine: Send + Sync {
     fn values(&self) -> Vec<f64>;
     /// The positions `x_k`, `n x d` row-major.
     fn positions(&self) -> Vec<f64>;
+    /// The velocities `y_k` (zero for OLA), `n x d` row-major.
+    fn velocities(&self) -> Vec<f64>;
+    /// The gradients `∇U(x_k)`, `n x d` row-major.
+    fn gradients(&self) -> Vec<f64>;
+    /// Each chain's generator where the run has left it, for a baseline
+    /// that goes on from the same draws.
+    fn generators(&self) -> Vec<Xoshiro256PlusPlus>;
+    /// The sampler's step at the inverse temperature the next step runs at
+    /// (`a_k` of the schedule at the current iteration `k`): the law of
+    /// every chain's next move ([`Kernel::moments`]); the sampler's
+    /// refusal of `a_k` when it refuses it.
+    fn next_kernel(&self) -> Result<AnyKernel<f64>, Error>;
     /// Whether each chain has diverged.
     fn diverged(&self) -> Vec<bool>;
     /// The global running best: `(x, value, iteration)`.
@@ -197,11 +210,30 @@ type Opt<const D: usize> = Optimizer<
 struct Run<const D: usize> {
     opt: Opt<D>,
     /// The error that ended the run, returned by every later call.
-    failed: Option<hrla::Error>,
+    failed: Option<Failure>,
+    /// The escape radius, squared ([`Settings::escape`]).
+    escape2: Option<f64>,
+}
+
+/// What ends a run for good.
+#[derive(Clone, Copy, Debug)]
+enum Failure {
+    Kernel(hrla::Error),
+    RanAway(RanAway),
+}
+
+impl From<Failure> for Error {
+    fn from(f: Failure) -> Self {
+        match f {
+            Failure::Kernel(e) => Error::Kernel(e),
+            Failure::RanAway(r) => Error::RanAway(r),
+        }
+    }
 }
 
 impl<const D: usize> Run<D> {
     fn build(s: &Settings) -> Result<Self, Error> {
+        let escape2 = s.escape2()?;
         let domain = s.bounds()?;
         let potential = s.potential.build::<D>()?;
         let mut start = s.start.build::<D>()?;
@@ -235,7 +267,11 @@ impl<const D: usize> Run<D> {
             .stride(s.stride)
             .stop(s.stop)
             .build(chains)?;
-        let run = Self { opt, failed: None };
+        let run = Self {
+            opt,
+            failed: None,
+            escape2,
+        };
         run.opt.potential().finish()?;
         Ok(run)
     }
@@ -283,7 +319,43 @@ impl<const D: usize> Run<D> {
         let stepped = self.opt.step();
         let stepped = self.keep(stepped);
         self.opt.potential().finish()?;
-        stepped
+        stepped?;
+        self.escaped()
+    }
+
+    /// [`Error::RanAway`] when every chain has diverged or lies beyond the
+    /// escape radius and at least one ran away (every chain diverged is
+    /// the kernel's own error); the run then keeps failing.
+    fn escaped(&mut self) -> Result<(), Error> {
+        let Some(r2) = self.escape2 else {
+            return Ok(());
+        };
+        let chains = self.opt.chains();
+        let mut farthest2 = 0.0_f64;
+        let mut diverged = 0;
+        for chain in chains {
+            if chain.is_diverged() {
+                diverged += 1;
+                continue;
+            }
+            let d2 = chain.x().iter().fold(0.0, |s, v| s + v * v);
+            // A NaN distance is not beyond the radius: such a chain is not away.
+            if d2.is_nan() || d2 <= r2 {
+                return Ok(());
+            }
+            farthest2 = farthest2.max(d2);
+        }
+        if diverged == chains.len() {
+            return Ok(());
+        }
+        let away = RanAway {
+            chains: chains.len(),
+            radius: r2.sqrt(),
+            farthest: farthest2.sqrt(),
+            diverged,
+        };
+        self.failed = Some(Failure::RanAway(away));
+        Err(Error::RanAway(away))
     }
 
     /// The error that ended the run, if it has.
@@ -299,7 +371,7 @@ impl<const D: usize> Run<D> {
             | hrla::Error::Poisoned),
         ) = result
         {
-            self.failed = Some(e);
+            self.failed = Some(Failure::Kernel(e));
         }
         result.map_err(Error::Kernel)
     }
@@ -331,7 +403,7 @@ impl<const D: usize> Run<D> {
 impl<const D: usize> Engine for Run<D> {
     fn step(&mut self, steps: u64) -> Result<(), Error> {
         self.check()?;
-        if self.is_user() {
+        if self.is_user() || self.escape2.is_some() {
             return (0..steps).try_for_each(|_| self.step_once());
         }
         let opt = &mut self.opt;
@@ -348,7 +420,7 @@ impl<const D: usize> Engine for Run<D> {
             return Err(hrla::Error::NoStoppingRule.into());
         }
         self.check()?;
-        if !self.is_user() {
+        if !self.is_user() && self.escape2.is_none() {
             let chains = self.opt.chains().len();
             let report = self.opt.run_with(every, |p| {
                 observer(&Progress {
@@ -361,7 +433,8 @@ impl<const D: usize> Engine for Run<D> {
             });
             return self.keep(report);
         }
-        // The kernel's `run`, with the batched call before each step.
+        // The kernel's `run`, with the batched call before each step and
+        // the escape radius checked after it.
         loop {
             if let Some(t) = self.opt.termination() {
                 return Ok(self.report(t));
@@ -391,6 +464,30 @@ impl<const D: usize> Engine for Run<D> {
 
     fn positions(&self) -> Vec<f64> {
         self.opt.chains().iter().flat_map(|c| *c.x()).collect()
+    }
+
+    fn velocities(&self) -> Vec<f64> {
+        self.opt.chains().iter().flat_map(|c| *c.y()).collect()
+    }
+
+    fn gradients(&self) -> Vec<f64> {
+        self.opt
+            .chains()
+            .iter()
+            .flat_map(|c| *c.gradient())
+            .collect()
+    }
+
+    fn generators(&self) -> Vec<Xoshiro256PlusPlus> {
+        self.opt.chains().iter().map(|c| c.rng().clone()).collect()
+    }
+
+    fn next_kernel(&self) -> Result<AnyKernel<f64>, Error> {
+        let a = self
+            .opt
+            .schedule()
+            .inverse_temperature(self.opt.iteration());
+        Ok(self.opt.sampler().at(a)?)
     }
 
     fn diverged(&self) -> Vec<bool> {

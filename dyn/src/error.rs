@@ -51,10 +51,43 @@ pub enum Error {
         /// Why: too many bytes for an address space, or the allocation failed.
         address_space: bool,
     },
+    /// Every chain has run away beyond the escape radius or diverged, one
+    /// at least having run away ([`crate::Settings::escape`]).
+    RanAway(RanAway),
     /// A user's function failed: its own error, as it returned it.
     User(UserError),
     /// A bug of the layer (say, a batch of answers not all read).
     Internal(String),
+}
+
+/// A run whose chains all ran away ([`Error::RanAway`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RanAway {
+    /// The chains of the run.
+    pub chains: usize,
+    /// The escape radius.
+    pub radius: f64,
+    /// The largest `|x|` of a chain that ran away.
+    pub farthest: f64,
+    /// The chains that diverged instead.
+    pub diverged: usize,
+}
+
+impl fmt::Display for RanAway {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "all {} chains ran away beyond |x| = {} (the farthest at {:.2e})",
+            self.chains, self.radius, self.farthest
+        )?;
+        if self.diverged > 0 {
+            write!(f, " or diverged ({} of them)", self.diverged)?;
+        }
+        f.write_str(
+            ": the step is too long for this landscape, or U does not hold the chains: \
+             try a smaller `h`",
+        )
+    }
 }
 
 impl From<hrla::Error> for Error {
@@ -106,6 +139,7 @@ impl fmt::Display for Error {
                     "cannot be allocated"
                 }
             ),
+            Self::RanAway(r) => write!(f, "{r}"),
             Self::User(e) => write!(f, "{e}"),
             Self::Internal(m) => f.write_str(m),
         }

@@ -40,10 +40,12 @@ mod settings;
 mod user;
 
 pub use engine::{Engine, Layout, storage_bytes};
-pub use error::Error;
+pub use error::{Error, RanAway};
 pub use potential::{Builtin, BuiltinKind, BuiltinSpec, UnknownPotential};
 pub use report::{Progress, TERMINATIONS, termination_code, termination_name};
-pub use settings::{AnyStart, BoxSpec, PotentialSpec, Settings, StartSpec, Temperature, dimension};
+pub use settings::{
+    AnyStart, BoxSpec, PointFunction, PotentialSpec, Settings, StartSpec, Temperature, dimension,
+};
 pub use user::{BatchFunction, UserError};
 
 /// The L-BFGS memory of the polish and quenches (the kernel's `M`).

@@ -18,6 +18,21 @@ pub enum PotentialSpec {
     Builtin(BuiltinSpec),
     /// A user's function, called on batches of points.
     User(Arc<dyn BatchFunction>),
+    /// A Rust function of one point, run like a built-in (no foreign
+    /// runtime to call back into): a formula a front end reads, say.
+    Native(Arc<dyn PointFunction>),
+}
+
+/// A potential given as a Rust function of one point.
+pub trait PointFunction: Send + Sync {
+    /// `U(x)`, with `∇U(x)` written to `grad`; `x.len() == grad.len()`,
+    /// the run's dimension.
+    fn value_and_gradient(&self, x: &[f64], grad: &mut [f64]) -> f64;
+
+    /// The dimension it fixes, if any.
+    fn dimension(&self) -> Option<usize> {
+        None
+    }
 }
 
 impl PotentialSpec {
@@ -26,6 +41,7 @@ impl PotentialSpec {
         match self {
             Self::Builtin(b) => b.dimension(),
             Self::User(_) => None,
+            Self::Native(f) => f.dimension(),
         }
     }
 
@@ -33,6 +49,7 @@ impl PotentialSpec {
         Ok(match self {
             Self::Builtin(b) => Pot::Builtin(b.build::<D>()?),
             Self::User(f) => Pot::User(UserPotential::new(f.clone())),
+            Self::Native(f) => Pot::Native(f.clone()),
         })
     }
 }
@@ -41,6 +58,7 @@ impl PotentialSpec {
 pub(crate) enum Pot<const D: usize> {
     Builtin(Builtin<D>),
     User(UserPotential<D>),
+    Native(Arc<dyn PointFunction>),
 }
 
 impl<const D: usize> Potential<f64, D> for Pot<D> {
@@ -49,6 +67,7 @@ impl<const D: usize> Potential<f64, D> for Pot<D> {
         match self {
             Self::Builtin(p) => p.value_and_gradient(x, grad),
             Self::User(p) => p.value_and_gradient(x, grad),
+            Self::Native(p) => p.value_and_gradient(x, grad),
         }
     }
 }
@@ -58,7 +77,7 @@ impl<const D: usize> Pot<D> {
     pub(crate) fn finish(&self) -> Result<(), Error> {
         match self {
             Self::User(p) => p.finish(),
-            Self::Builtin(_) => Ok(()),
+            Self::Builtin(_) | Self::Native(_) => Ok(()),
         }
     }
 
@@ -303,6 +322,11 @@ pub struct Settings {
     pub chains: usize,
     /// The dimension, when no other setting fixes it.
     pub dim: Option<usize>,
+    /// The escape radius `R`: a chain with `|x| > R` has run away, and the
+    /// run fails ([`Error::RanAway`]) after the first step at which every
+    /// chain has run away or diverged, one at least having run away (none:
+    /// chains may wander anywhere finite).
+    pub escape: Option<f64>,
 }
 
 impl Settings {
@@ -315,6 +339,23 @@ impl Settings {
             ("the start", self.start.dimension()),
             ("the box", self.domain.as_ref().and_then(BoxSpec::dimension)),
         ])
+    }
+
+    /// The escape radius, squared, checked: finite and `> 0`.
+    pub(crate) fn escape2(&self) -> Result<Option<f64>, Error> {
+        self.escape
+            .map(|r| {
+                if r.is_finite() && r > 0.0 {
+                    Ok(r * r)
+                } else {
+                    Err(hrla::Error::NotPositive {
+                        name: "escape",
+                        value: r,
+                    }
+                    .into())
+                }
+            })
+            .transpose()
     }
 
     pub(crate) fn bounds(&self) -> Result<Bounds, Error> {

@@ -31,6 +31,7 @@ fn settings(potential: PotentialSpec) -> Settings {
         stop: Stop::new().steps(200),
         chains: 6,
         dim: Some(10),
+        escape: None,
     }
 }
 
@@ -251,4 +252,70 @@ fn auto_is_the_kernels() {
         assert_eq!(s.evaluations, kernel.evaluations);
         assert_eq!(s.message, kernel.to_string());
     }
+}
+
+/// Rastrigin as a Rust function of one point.
+struct Native;
+
+impl hrla_dyn::PointFunction for Native {
+    fn value_and_gradient(&self, x: &[f64], grad: &mut [f64]) -> f64 {
+        let x: &[f64; 10] = x.try_into().unwrap();
+        let g: &mut [f64; 10] = grad.try_into().unwrap();
+        Rastrigin.value_and_gradient(x, g)
+    }
+}
+
+#[test]
+fn a_native_function_runs_as_a_builtin() {
+    let (report, x) = kernel_run();
+    let mut engine = settings(PotentialSpec::Native(Arc::new(Native)))
+        .build()
+        .unwrap();
+    assert!(!engine.is_user());
+    let ours = engine
+        .run(1000, &mut |_| ControlFlow::Continue(()))
+        .unwrap();
+    assert_eq!(ours, report);
+    assert_eq!(positions(&*engine), x);
+}
+
+/// A step far too long (h = 1): the chains grow geometrically with
+/// finite values, so the kernel sees no divergence; with an escape radius
+/// the run fails at the first step where every chain is beyond it, whether
+/// stepped or run, and keeps failing.
+#[test]
+fn every_chain_beyond_the_escape_radius_fails_the_run() {
+    let mut s = settings(rastrigin());
+    s.sampler = AnySampler::paper(SamplerKind::Hrla, 1.0).unwrap();
+    s.dim = Some(2);
+    s.chains = 16;
+    s.start = StartSpec::Gaussian {
+        mean: vec![3.0, 3.0],
+        std_dev: 0.5,
+    };
+    s.stop = Stop::new().steps(10_000);
+    s.escape = Some(5000.0);
+    let mut stepped = s.build().unwrap();
+    let Err(Error::RanAway(away)) = stepped.step(10_000) else {
+        panic!("the chains must run away");
+    };
+    let at = stepped.iteration();
+    assert!(at > 1 && at < 1000, "failed at {at}");
+    assert_eq!((away.chains, away.radius, away.diverged), (16, 5000.0, 0));
+    assert!(away.farthest > 5000.0 && away.farthest.is_finite());
+    for x in stepped.positions().chunks_exact(2) {
+        assert!(x[0].hypot(x[1]) > 5000.0);
+    }
+    assert!(matches!(stepped.step(1), Err(Error::RanAway(a)) if a == away));
+    let mut run = s.build().unwrap();
+    let Err(Error::RanAway(same)) = run.run(1, &mut |_| ControlFlow::Continue(())) else {
+        panic!("run must fail the same way");
+    };
+    assert_eq!((same, run.iteration()), (away, at));
+    assert!(run.report_now().is_none());
+    // Without a radius the same run goes on; a radius must be positive.
+    s.escape = None;
+    assert!(s.build().unwrap().step(at + 10).is_ok());
+    s.escape = Some(-1.0);
+    assert!(matches!(s.build().err(), Some(Error::Kernel(_))));
 }

@@ -184,6 +184,7 @@ impl PyOptimizer {
                 stop: stop.unwrap_or_default().0,
                 chains,
                 dim,
+                escape: None,
             };
             let engine = settings.build().map_err(layer)?;
             Ok(Self {

@@ -5,13 +5,13 @@
 
 use core::fmt;
 use core::str::FromStr;
-use std::rc::Rc;
+use std::sync::Arc;
 
 use crate::error::{Error, Num};
 use crate::formula::Formula;
 
 use hrla::{KnownMinimum, Potential};
-use hrla_dyn::{Builtin, BuiltinKind};
+use hrla_dyn::{Builtin, BuiltinKind, BuiltinSpec, PointFunction, PotentialSpec};
 
 pub use hrla_dyn::UnknownPotential as UnknownLandscape;
 
@@ -30,7 +30,7 @@ pub enum Landscape {
     /// centred at the origin, whose Gibbs law is the Gaussian `N(0, I / a)`).
     Builtin(Builtin<2>),
     /// A visitor's formula over its box ([`Custom`]).
-    Formula(Rc<Custom>),
+    Formula(Arc<Custom>),
 }
 
 /// A visitor's formula, with the box it is looked at over and its lowest
@@ -94,7 +94,7 @@ impl Landscape {
             }
         }
         let (minimum, minimiser) = descend(&formula, best, bounds);
-        Ok(Self::Formula(Rc::new(Custom {
+        Ok(Self::Formula(Arc::new(Custom {
             formula,
             bounds,
             minimum,
@@ -147,6 +147,14 @@ impl Landscape {
     /// The built-in `kind`.
     pub fn named(kind: BuiltinKind) -> Self {
         Self::Builtin(Builtin::named(kind))
+    }
+
+    /// The potential as the run-time layer's settings take it.
+    pub fn spec(&self) -> PotentialSpec {
+        match self {
+            Self::Builtin(b) => PotentialSpec::Builtin(BuiltinSpec::Named(b.kind())),
+            Self::Formula(f) => PotentialSpec::Native(f.clone()),
+        }
     }
 
     /// The name the page and the address use (`formula` for a visitor's).
@@ -286,6 +294,20 @@ impl FromStr for Landscape {
 
     fn from_str(name: &str) -> Result<Self, Self::Err> {
         name.parse().map(Self::named)
+    }
+}
+
+/// A formula is a function of the plane: the layer runs it in 2-D.
+impl PointFunction for Custom {
+    #[inline]
+    fn value_and_gradient(&self, x: &[f64], grad: &mut [f64]) -> f64 {
+        let (u, g) = self.formula.value_and_gradient(x[0], x[1]);
+        grad.copy_from_slice(&g);
+        u
+    }
+
+    fn dimension(&self) -> Option<usize> {
+        Some(2)
     }
 }
 
