@@ -6,9 +6,15 @@
 use crate::Error;
 
 /// Every `D` the layer supports, in order.
+#[cfg(feature = "all-dimensions")]
 pub const SUPPORTED: [usize; 20] = [
     1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 20, 32, 50, 100,
 ];
+
+/// Every `D` the layer supports: without the feature `all-dimensions`,
+/// the plane alone.
+#[cfg(not(feature = "all-dimensions"))]
+pub const SUPPORTED: [usize; 1] = [2];
 
 /// Whether `d` is compiled in.
 pub fn supported(d: usize) -> bool {
@@ -28,10 +34,14 @@ pub fn check(d: usize) -> Result<usize, Error> {
 /// `$d` in [`SUPPORTED`]; any other `$d` gives [`Error::Dimension`]. The
 /// list here and [`SUPPORTED`] must agree (a test checks every entry).
 macro_rules! with_dim {
-    ($d:expr, $D:ident => $body:expr) => {
-        with_dim!(@arms $d, $D, $body;
-            1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 20 32 50 100)
-    };
+    ($d:expr, $D:ident => $body:expr) => {{
+        #[cfg(feature = "all-dimensions")]
+        let done = with_dim!(@arms $d, $D, $body;
+            1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 20 32 50 100);
+        #[cfg(not(feature = "all-dimensions"))]
+        let done = with_dim!(@arms $d, $D, $body; 2);
+        done
+    }};
     (@arms $d:expr, $D:ident, $body:expr; $($n:literal)+) => {
         match $d {
             $( $n => {
