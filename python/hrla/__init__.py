@@ -55,11 +55,12 @@ views), :class:`Builder` (the Rust builder's chain of settings), and
 
 from __future__ import annotations
 
-from typing import Any, Callable, Optional, Tuple, Union
+from typing import Any, Callable, List, Optional, Tuple, Union
 
 import numpy as np
 
 from ._hrla import (
+    BUILTINS,
     DIMENSIONS,
     Ackley,
     Auto,
@@ -93,7 +94,7 @@ from ._hrla import (
 )
 
 __all__ = [
-    "DIMENSIONS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
+    "BUILTINS", "DIMENSIONS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
     "DimensionError", "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla",
     "HrlaError", "InternalError", "Interval", "Levy", "Linear", "Ola", "OptimizeResult",
     "Optimizer", "Point", "Polished", "PolishSettings", "Potential", "Quadratic", "Rastrigin",
@@ -139,30 +140,22 @@ class OptimizeResult(dict):
         return "OptimizeResult(" + ", ".join(f"{k}={self[k]!r}" for k in keys if k in self) + ")"
 
 
-def _box(bounds: Any, dim: Optional[int]) -> Tuple[Optional[Interval], Optional[int]]:
-    """``bounds`` as the kernel's box (the same interval in every
-    coordinate) and the dimension it fixes: ``(lo, hi)`` or a sequence of
-    ``D`` equal pairs, as ``scipy.optimize.dual_annealing`` takes."""
+def _box(bounds: Any) -> Union[None, Interval, List[Tuple[float, float]]]:
+    """``bounds`` as a box: ``(lo, hi)`` in every coordinate, or a sequence
+    of ``D`` pairs ``(lo_i, hi_i)`` as ``scipy.optimize.dual_annealing``
+    takes (their number fixes ``D``; the run-time layer checks them)."""
     if bounds is None:
-        return None, dim
+        return None
     if isinstance(bounds, Interval):
-        return bounds, dim
+        return bounds
     b = np.asarray(bounds)
     if b.dtype.kind not in "fiu":
-        # numpy would parse "1" and turn True into 1 or drop an imaginary part.
         raise TypeError(f"bounds must be real numbers (floats or ints), got {bounds!r} (dtype {b.dtype})")
     b = b.astype(np.float64)
     if b.shape == (2,):
-        return Interval(float(b[0]), float(b[1])), dim
+        return Interval(float(b[0]), float(b[1]))
     if b.ndim == 2 and b.shape[1] == 2 and b.shape[0] >= 1:
-        if not (np.all(b[:, 0] == b[0, 0]) and np.all(b[:, 1] == b[0, 1])):
-            raise ValueError(
-                "the kernel's box is the same interval [lo, hi] in every coordinate; "
-                f"got different bounds {bounds!r}"
-            )
-        if dim is not None and dim != b.shape[0]:
-            raise ValueError(f"bounds have {b.shape[0]} pairs but dim={dim}")
-        return Interval(float(b[0, 0]), float(b[0, 1])), b.shape[0]
+        return [(float(lo), float(hi)) for lo, hi in b]
     raise ValueError(f"bounds must be (lo, hi) or a sequence of D (lo, hi) pairs, got {bounds!r}")
 
 
@@ -192,8 +185,9 @@ def minimize(
     function ``fun(X) -> (U, G)`` evaluating ``U`` and ``∇U`` on the rows of
     ``X`` (shape ``(N, D)``; ``U`` of shape ``(N,)``, ``G`` of shape
     ``(N, D)``). ``bounds`` is ``(lo, hi)`` (then give ``dim``) or ``D``
-    equal pairs ``[(lo, hi)] * D``; the chains stay in the box by
-    reflection.
+    pairs ``(lo_i, hi_i)``; the chains stay in the box by reflection. The
+    kernel's box is one interval for every coordinate: pairs that differ
+    raise ``ValueError``.
 
     ``method="auto"`` (the default; needs ``bounds``) is the kernel's
     :class:`Auto` solver: no setting to tune, ``budget`` evaluations in
@@ -215,7 +209,7 @@ def minimize(
     """
     if not isinstance(method, str):
         raise TypeError(f"method must be a str (auto hrla ula ola), got {type(method).__name__}")
-    box, dim = _box(bounds, dim)
+    box = _box(bounds)
     method = method.lower()
     if polish < 0:
         raise ValueError(f"polish must be >= 0 evaluations, got {polish}")
@@ -298,8 +292,9 @@ class Builder:
         b._kw = {**self._kw, **kw}
         return b
 
-    def domain(self, domain: Interval) -> "Builder":
-        """Confines the chains to a box by reflection."""
+    def domain(self, domain: Any) -> "Builder":
+        """Confines the chains to a box by reflection: an :class:`Interval`
+        or ``D`` pairs ``(lo_i, hi_i)``."""
         return self._with(domain=domain)
 
     def seed(self, seed: int) -> "Builder":

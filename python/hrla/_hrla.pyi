@@ -9,6 +9,8 @@ F64 = npt.NDArray[np.float64]
 BatchedFunction = Callable[[F64], Tuple[npt.ArrayLike, npt.ArrayLike]]
 
 DIMENSIONS: List[int]
+#: The built-in potentials' class names, in the run-time layer's order.
+BUILTINS: List[str]
 
 class HrlaError(ValueError):
     """The kernel refused its input or the run failed; the message is the kernel's."""
@@ -74,7 +76,9 @@ class Point:
     """Every chain starts at ``x``; ``D = len(x)``."""
     def __init__(self, x: Sequence[float]) -> None: ...
 
-StartLike = Union[Gaussian, Point, Interval]
+#: A box: the same interval in every coordinate, or one ``(lo_i, hi_i)`` per coordinate.
+BoxLike = Union[Interval, Sequence[Tuple[float, float]]]
+StartLike = Union[Gaussian, Point, Interval, Sequence[Tuple[float, float]]]
 
 class Stop:
     """Stopping rules, chained: ``Stop().evaluations(125_000).target(1e-6)``."""
@@ -150,7 +154,7 @@ class Optimizer:
     """Algorithm 1, step by step; chains readable as numpy views (no copy)."""
     def __init__(self, potential: PotentialLike, sampler: Sampler, schedule: ScheduleLike,
                  start: StartLike, *, chains: int = 10, seed: int = 0, stride: int = 1,
-                 stop: Optional[Stop] = None, domain: Optional[Interval] = None,
+                 stop: Optional[Stop] = None, domain: Optional[BoxLike] = None,
                  dim: Optional[int] = None) -> None: ...
     def step(self, steps: int = 1) -> None: ...
     def run(self) -> Report: ...
@@ -218,5 +222,5 @@ class Auto:
                  restarts: Optional[int] = None) -> None: ...
     @staticmethod
     def chains_for(budget: int) -> int: ...
-    def minimize(self, potential: PotentialLike, domain: Interval, budget: int, seed: int = 0, *,
+    def minimize(self, potential: PotentialLike, domain: BoxLike, budget: int, seed: int = 0, *,
                  chains: Optional[int] = None, dim: Optional[int] = None) -> Solution: ...

@@ -2,15 +2,16 @@
 
 use std::ops::ControlFlow;
 
-use hrla::{Auto, AutoProgress, Lbfgs};
+use hrla::Auto;
+use hrla_dyn::auto::{self, Problem};
+use hrla_dyn::{Progress, termination_name};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
-use crate::config::{PyInterval, termination_name};
-use crate::dims::with_dim;
-use crate::engine::{MEMORY, SIGNAL_WORK, dimension, storage};
-use crate::errors::{guard, kernel};
-use crate::potential::{Pot, PotentialSpec};
+use crate::config;
+use crate::engine::SIGNAL_WORK;
+use crate::errors::{guard, layer};
+use crate::potential;
 
 /// The default solver: rounds of HRLA steps, each followed by an L-BFGS
 /// quench of every chain and one-coordinate restarts from the best point,
@@ -107,7 +108,7 @@ impl PyAuto {
         &self,
         py: Python<'_>,
         potential: &Bound<'_, PyAny>,
-        domain: PyInterval,
+        domain: &Bound<'_, PyAny>,
         budget: u64,
         seed: u64,
         chains: Option<usize>,
@@ -123,15 +124,20 @@ impl PyAuto {
         &self,
         py: Python<'_>,
         potential: &Bound<'_, PyAny>,
-        domain: PyInterval,
+        domain: &Bound<'_, PyAny>,
         budget: u64,
         seed: u64,
         chains: Option<usize>,
         dim: Option<usize>,
     ) -> PyResult<PySolution> {
-        let spec = PotentialSpec::from_py(potential)?;
-        let d = dimension(&[("dim", dim), ("the potential", spec.dimension())])?;
-        let n = chains.unwrap_or_else(|| Auto::<f64>::chains_for(budget));
+        let problem = Problem {
+            potential: potential::from_py(potential)?,
+            domain: config::domain(domain)?,
+            budget,
+            seed,
+            chains,
+            dim,
+        };
         let auto = Auto {
             rounds: self.rounds,
             quench: self.quench,
@@ -141,59 +147,45 @@ impl PyAuto {
             step_scale: self.step_scale,
             restarts: self.restarts,
         };
-        with_dim!(d, D => {
-            let pot = spec.build::<D>(py)?;
-            let mut storage = storage::<D>(n)?;
-            let mut lbfgs: Box<Lbfgs<f64, D, MEMORY>> = Box::default();
-            // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated
-            // (counted, so where it looks is the same on every machine),
-            // and stops at once when a Python potential has failed.
-            let every = (SIGNAL_WORK / D as u64).max(1);
-            let mut checked = 0;
-            let mut stopped: Option<PyErr> = None;
-            let python = matches!(pot, Pot::Python(_));
-            let mut observe = |p: &AutoProgress<'_, f64, D>| {
-                if let Pot::Python(f) = &pot
-                    && f.failed()
-                {
-                    return ControlFlow::Break(());
-                }
-                if p.evaluations - checked < every {
-                    return ControlFlow::Continue(());
-                }
-                checked = p.evaluations;
-                match Python::attach(|py| py.check_signals()) {
-                    Ok(()) => ControlFlow::Continue(()),
-                    Err(e) => {
-                        stopped = Some(e);
-                        ControlFlow::Break(())
-                    }
-                }
-            };
-            let mut solve = || {
-                auto.minimize_with(&pot, domain.0, budget, seed, &mut storage, &mut lbfgs, &mut observe)
-            };
-            let found = if python { solve() } else { py.detach(solve) };
-            if let Some(e) = stopped {
-                return Err(e);
+        // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated
+        // (counted, so where it looks is the same on every machine).
+        let mut checked = 0;
+        let mut stopped: Option<PyErr> = None;
+        let mut observe = |p: &Progress| {
+            let every = (SIGNAL_WORK / p.dim as u64).max(1);
+            if p.evaluations - checked < every {
+                return ControlFlow::Continue(());
             }
-            if let Pot::Python(p) = &pot {
-                p.finish()?;
+            checked = p.evaluations;
+            match Python::attach(|py| py.check_signals()) {
+                Ok(()) => ControlFlow::Continue(()),
+                Err(e) => {
+                    stopped = Some(e);
+                    ControlFlow::Break(())
+                }
             }
-            let s = found.map_err(kernel)?;
-            Ok(PySolution {
-                x: PyArray1::from_slice(py, &s.x).unbind(),
-                value: s.value,
-                evaluations: s.evaluations,
-                rounds: s.rounds,
-                step: s.step,
-                inverse_temperature: s.inverse_temperature,
-                chains: s.chains,
-                termination: termination_name(s.termination),
-                diverged_chains: s.diverged_chains,
-                all_diverged: s.all_diverged(),
-                message: s.to_string(),
-            })
+        };
+        let found = if auto::is_user(&problem.potential) {
+            auto::solve(&auto, &problem, &mut observe)
+        } else {
+            py.detach(|| auto::solve(&auto, &problem, &mut observe))
+        };
+        if let Some(e) = stopped {
+            return Err(e);
+        }
+        let s = found.map_err(layer)?;
+        Ok(PySolution {
+            x: PyArray1::from_vec(py, s.x).unbind(),
+            value: s.value,
+            evaluations: s.evaluations,
+            rounds: s.rounds,
+            step: s.step,
+            inverse_temperature: s.inverse_temperature,
+            chains: s.chains,
+            termination: termination_name(s.termination),
+            diverged_chains: s.diverged_chains,
+            all_diverged: s.all_diverged,
+            message: s.message,
         })
     }
 }

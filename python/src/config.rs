@@ -5,11 +5,11 @@
 
 use hrla::{
     AnySampler, AnySchedule, Constant, Geometric, Hrla, HrlaParams, Linear, Ola, OlaParams,
-    PolishEnd, PolishSettings, Start, Stop, Termination, Ula, UlaParams,
+    PolishEnd, PolishSettings, Stop, Ula, UlaParams,
 };
+use hrla_dyn::{BoxSpec, StartSpec, termination_name};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use rand_core::Rng;
 
 use crate::errors::kernel;
 
@@ -241,75 +241,44 @@ impl PyPoint {
     }
 }
 
-/// A start whose dimension is not yet fixed.
-#[derive(Clone)]
-pub enum StartSpec {
-    Gaussian(Vec<f64>, f64),
-    Point(Vec<f64>),
-    Interval(hrla::Interval<f64>),
-}
-
-impl StartSpec {
-    /// The dimension it fixes, if any (a box fits every `D`).
-    pub fn dimension(&self) -> Option<usize> {
-        match self {
-            Self::Gaussian(m, _) => Some(m.len()),
-            Self::Point(x) => Some(x.len()),
-            Self::Interval(_) => None,
-        }
+/// A box argument: an `Interval` (the same `[lo, hi]` in every
+/// coordinate), or a sequence of `D` pairs `(lo_i, hi_i)`, one per
+/// coordinate (the layer checks them).
+pub fn domain(obj: &Bound<'_, PyAny>) -> PyResult<BoxSpec> {
+    if let Ok(i) = obj.extract::<PyRef<PyInterval>>() {
+        return Ok(i.0.into());
     }
-
-    /// The kernel's start in dimension `D` (checked by its constructor).
-    pub fn build<const D: usize>(&self) -> PyResult<AnyStart<D>> {
-        let array = |v: &[f64]| -> PyResult<[f64; D]> {
-            v.try_into().map_err(|_| {
-                pyo3::exceptions::PyValueError::new_err(format!(
-                    "the start has {} coordinates, the run {D}",
-                    v.len()
-                ))
-            })
-        };
-        Ok(match self {
-            Self::Gaussian(m, s) => {
-                AnyStart::Gaussian(hrla::Gaussian::new(array(m)?, *s).map_err(kernel)?)
-            }
-            Self::Point(x) => AnyStart::Point(hrla::Point::new(array(x)?).map_err(kernel)?),
-            Self::Interval(i) => AnyStart::Interval(*i),
+    obj.extract::<Vec<(f64, f64)>>()
+        .map(BoxSpec::PerCoordinate)
+        .map_err(|_| {
+            PyTypeError::new_err(format!(
+                "a box must be hrla.Interval or a sequence of (lo, hi) pairs, got {}",
+                obj.get_type()
+                    .name()
+                    .map_or_else(|_| "?".into(), |s| s.to_string())
+            ))
         })
-    }
 }
 
-/// A start argument: `Gaussian`, `Point` or `Interval`.
+/// A start argument: `Gaussian`, `Point`, `Interval` or a box of `(lo_i,
+/// hi_i)` pairs (uniform in it).
 pub fn start(obj: &Bound<'_, PyAny>) -> PyResult<StartSpec> {
     if let Ok(s) = obj.extract::<PyRef<PyGaussian>>() {
-        Ok(StartSpec::Gaussian(s.mean.clone(), s.std_dev))
+        Ok(StartSpec::Gaussian {
+            mean: s.mean.clone(),
+            std_dev: s.std_dev,
+        })
     } else if let Ok(s) = obj.extract::<PyRef<PyPoint>>() {
         Ok(StartSpec::Point(s.0.clone()))
     } else if let Ok(s) = obj.extract::<PyRef<PyInterval>>() {
-        Ok(StartSpec::Interval(s.0))
+        Ok(StartSpec::Box(s.0.into()))
+    } else if let Ok(pairs) = obj.extract::<Vec<(f64, f64)>>() {
+        Ok(StartSpec::Box(BoxSpec::PerCoordinate(pairs)))
     } else {
         Err(PyTypeError::new_err(format!(
             "start must be hrla.Gaussian, hrla.Point or hrla.Interval, got {}",
             obj.get_type().name()?
         )))
-    }
-}
-
-/// The kernel's built-in starts in dimension `D`, as one type.
-#[derive(Clone, Copy)]
-pub enum AnyStart<const D: usize> {
-    Gaussian(hrla::Gaussian<f64, D>),
-    Point(hrla::Point<f64, D>),
-    Interval(hrla::Interval<f64>),
-}
-
-impl<const D: usize> Start<f64, D> for AnyStart<D> {
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64; D]) {
-        match self {
-            Self::Gaussian(s) => s.initial_point(chain, rng, x),
-            Self::Point(s) => s.initial_point(chain, rng, x),
-            Self::Interval(s) => s.initial_point(chain, rng, x),
-        }
     }
 }
 
@@ -437,17 +406,6 @@ impl From<hrla::Report<f64>> for PyReport {
             termination: termination_name(r.termination),
             message: r.to_string(),
         }
-    }
-}
-
-/// The kernel's variant name of a termination.
-pub fn termination_name(t: Termination) -> &'static str {
-    match t {
-        Termination::Steps => "Steps",
-        Termination::Evaluations => "Evaluations",
-        Termination::Target => "Target",
-        Termination::Stalled => "Stalled",
-        Termination::Observer => "Observer",
     }
 }
 

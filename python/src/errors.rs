@@ -18,7 +18,7 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use pyo3::create_exception;
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyType};
@@ -73,12 +73,23 @@ pub fn kernel(e: hrla::Error) -> PyErr {
     }
 }
 
-/// The error for a `D` outside [`crate::dims::SUPPORTED`].
-pub fn unsupported_dimension(d: usize) -> PyErr {
-    DimensionError::new_err(format!(
-        "dimension {d} is not compiled in; supported: {:?} (the kernel's D is a const generic)",
-        crate::dims::SUPPORTED
-    ))
+/// The Python exception for an error of the run-time layer: the kernel's
+/// as [`kernel`], a user function's own exception as it was raised, and
+/// the layer's refusals as the kind of error each is.
+pub fn layer(e: hrla_dyn::Error) -> PyErr {
+    use hrla_dyn::Error;
+    let message = e.to_string();
+    match e {
+        Error::Kernel(e) => kernel(e),
+        Error::Dimension(_) => DimensionError::new_err(message),
+        Error::Memory { .. } => PyMemoryError::new_err(message),
+        Error::User(e) => match e.downcast::<PyErr>() {
+            Ok(e) => *e,
+            Err(e) => internal(&format!("hrla internal error: {e}")),
+        },
+        Error::Internal(m) => internal(&m),
+        _ => PyValueError::new_err(message),
+    }
 }
 
 /// `BusyError` with `message`.

@@ -1,11 +1,12 @@
 //! Python face of the `hrla` kernel, built by maturin as `hrla._hrla`.
 //!
-//! A thin PyO3 layer with no maths of its own: every number a run computes
-//! is the kernel's, with the same names ([`hrla::Builder`]'s pieces,
-//! [`hrla::Optimizer`], [`hrla::Auto`], [`hrla::Lbfgs`]'s polish) and, for
-//! the same seed, the same bits. Dimensions are const generics in the
-//! kernel: this module compiles the set in `dims.rs` and refuses others
-//! with `DimensionError`. Floats are `f64`.
+//! A thin PyO3 layer with no maths of its own: it translates its arguments
+//! into the run-time layer's settings ([`hrla_dyn`]) and presents its
+//! results, so every number a run computes is the kernel's, with the same
+//! names ([`hrla::Builder`]'s pieces, [`hrla::Optimizer`], [`hrla::Auto`],
+//! [`hrla::Lbfgs`]'s polish) and, for the same seed, the same bits. The
+//! dimensions are the layer's ([`hrla_dyn::dims::SUPPORTED`]); others raise
+//! `DimensionError`. Floats are `f64`.
 //!
 //! Potentials come in two kinds: the kernel's built-ins, which run with the
 //! GIL released and no Python in the loop, and a user's Python function,
@@ -16,7 +17,6 @@
 
 mod auto;
 mod config;
-mod dims;
 mod engine;
 mod errors;
 mod potential;
@@ -32,6 +32,6 @@ fn _hrla(m: &Bound<'_, PyModule>) -> PyResult<()> {
     potential::register(m)?;
     engine::register(m)?;
     auto::register(m)?;
-    m.add("DIMENSIONS", dims::SUPPORTED.to_vec())?;
+    m.add("DIMENSIONS", hrla_dyn::dims::SUPPORTED.to_vec())?;
     Ok(())
 }

@@ -177,7 +177,7 @@ def test_the_stubs_match_the_module():
                 n.target.id for n in node.body if isinstance(n, ast.AnnAssign)}
         elif isinstance(node, ast.AnnAssign):
             stubs[node.target.id] = None
-    aliases = {"F64", "BatchedFunction", "Sampler", "ScheduleLike", "StartLike", "PotentialLike"}
+    aliases = {"F64", "BatchedFunction", "Sampler", "ScheduleLike", "StartLike", "PotentialLike", "BoxLike"}
     public = {n for n in dir(_hrla) if not n.startswith("_")}
     assert public == set(stubs) - aliases
     for name, members in stubs.items():
@@ -189,3 +189,34 @@ def test_the_stubs_match_the_module():
             assert own == members, name
         else:
             assert own == members - {"__init__", "__len__"}, (name, own ^ (members - {"__init__", "__len__"}))
+
+
+def test_the_builtins_are_the_layers_list():
+    # The classes come from the run-time layer's one list: each is
+    # exported, a Potential, and named as the kernel's type.
+    assert hrla.BUILTINS == ["Rastrigin", "Ackley", "Levy", "StyblinskiTang", "DoubleWell", "Quadratic"]
+    for name in hrla.BUILTINS:
+        cls = getattr(hrla, name)
+        assert name in hrla.__all__
+        assert issubclass(cls, hrla.Potential)
+        assert cls.__name__ == name and cls.__module__ == "hrla"
+        if name != "Quadratic":
+            assert repr(cls()) == f"{name}()"
+            assert cls.__doc__
+
+
+def test_a_box_per_coordinate_is_the_layers_to_check():
+    # Equal pairs run as the interval they all are, bit for bit; pairs that
+    # differ are refused by the run-time layer, naming the kernel's limit;
+    # their number fixes D and must agree with dim=.
+    pairs = hrla.minimize(hrla.Rastrigin(), [(-5.12, 5.12)] * 3, method="hrla", budget=3_000, seed=4)
+    interval = hrla.minimize(hrla.Rastrigin(), (-5.12, 5.12), dim=3, method="hrla", budget=3_000, seed=4)
+    assert pairs.fun == interval.fun and np.array_equal(pairs.x, interval.x)
+    with pytest.raises(ValueError, match="same interval"):
+        hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, [(-1.0, 1.0), (0.0, 2.0)])
+    with pytest.raises(ValueError, match="same interval"):
+        hrla.Auto().minimize(hrla.Rastrigin(), [(-1.0, 1.0), (0.0, 2.0)], 10_000)
+    with pytest.raises(ValueError, match="dim has dimension 3 but the box has 2"):
+        hrla.minimize(hrla.Rastrigin(), [(-1.0, 1.0)] * 2, dim=3, budget=10_000)
+    with pytest.raises(TypeError, match="a box must be"):
+        hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.0]), domain="box")

@@ -214,3 +214,74 @@ fn the_cycle_finder_finds_a_cycle() {
     .collect();
     assert!(find_cycle(&graph).is_some());
 }
+
+/// The workspace's crates by package name, each with the workspace crates
+/// it depends on (its `[dependencies]`, dev-dependencies left out: a test
+/// may compare two crates).
+fn crate_graph() -> BTreeMap<String, BTreeSet<String>> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let manifest = fs::read_to_string(root.join("Cargo.toml")).expect("workspace manifest");
+    let members = manifest
+        .lines()
+        .find(|l| l.starts_with("members"))
+        .expect("a members list");
+    let dirs: Vec<&str> = members.split('"').skip(1).step_by(2).collect();
+    let mut names = BTreeMap::new();
+    let mut deps = BTreeMap::new();
+    for dir in &dirs {
+        let text = fs::read_to_string(root.join(dir).join("Cargo.toml")).expect("crate manifest");
+        let name = text
+            .lines()
+            .find_map(|l| l.strip_prefix("name = \""))
+            .and_then(|l| l.strip_suffix('"'))
+            .expect("a package name")
+            .to_string();
+        let mut section = "";
+        let mut uses = BTreeSet::new();
+        for line in text.lines() {
+            if line.starts_with('[') {
+                section = line;
+            } else if section == "[dependencies]"
+                && let Some((dep, _)) = line.split_once('=')
+            {
+                uses.insert(dep.trim().to_string());
+            }
+        }
+        names.insert(name.clone(), ());
+        deps.insert(name, uses);
+    }
+    deps.into_iter()
+        .map(|(k, v)| {
+            let v = v.into_iter().filter(|d| names.contains_key(d)).collect();
+            (k, v)
+        })
+        .collect()
+}
+
+/// The run-time layer sits between the kernel and the front ends: every
+/// front end depends on it, none on another front end, the layer on no
+/// front end, and the crates' graph has no cycle.
+#[test]
+fn front_ends_depend_on_the_layer_not_on_each_other() {
+    let graph = crate_graph();
+    let front_ends = ["hrla-python", "hrla-wasm", "hrla-repro"];
+    assert!(graph["hrla-dyn"].contains("hrla"));
+    for f in front_ends {
+        assert!(graph[f].contains("hrla-dyn"), "{f} does not use the layer");
+        for other in front_ends {
+            assert!(!graph[f].contains(other), "{f} depends on {other}");
+            assert!(
+                !graph["hrla-dyn"].contains(other),
+                "the layer depends on {other}"
+            );
+        }
+    }
+    assert!(
+        graph["hrla"].is_empty(),
+        "the kernel depends on {:?}",
+        graph["hrla"]
+    );
+    if let Some(cycle) = find_cycle(&graph) {
+        panic!("crate cycle: {}", cycle.join(" -> "));
+    }
+}

@@ -69,13 +69,15 @@ impl Descent {
         // chain's generator where the kernel left it.
         let start = Optimizer::from_settings(settings)?;
         let landscape = settings.landscape.clone();
-        let chains = start.kernel().chains();
-        let rngs = chains.iter().map(|c| c.rng().clone()).collect();
-        let x: Vec<[f64; 2]> = chains.iter().map(|c| *c.x()).collect();
-        let g = chains.iter().map(|c| *c.gradient()).collect();
-        let values = chains.iter().map(|c| c.value()).collect();
-        let b = start.kernel().best();
-        let best = (b.value, b.x, 0);
+        let run = start.engine();
+        let rngs = run.generators();
+        let pairs =
+            |v: Vec<f64>| -> Vec<[f64; 2]> { v.chunks_exact(2).map(|p| [p[0], p[1]]).collect() };
+        let x = pairs(run.positions());
+        let g = pairs(run.gradients());
+        let values = run.values();
+        let (bx, bv, _) = run.best();
+        let best = (bv, [bx[0], bx[1]], 0);
         let n = x.len();
         let half = 0.5 * (x1 - x0).max(y1 - y0);
         let mut this = Self {

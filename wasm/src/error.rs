@@ -94,6 +94,9 @@ pub enum Error {
         /// How many of the chains diverged rather than ran away.
         diverged: usize,
     },
+    /// The run-time layer refused the run for a reason the page's settings
+    /// cannot give (its message).
+    Layer(String),
 }
 
 impl fmt::Display for Error {
@@ -136,6 +139,7 @@ impl fmt::Display for Error {
                 crate::landscape::Landscape::NAMES.join(", ")
             ),
             Self::Kernel(e) => fmt::Display::fmt(e, f),
+            Self::Layer(message) => f.write_str(message),
             Self::Diverged { chain } => write!(
                 f,
                 "`chain` {chain} has diverged: it is frozen and has no next step"
@@ -188,6 +192,7 @@ impl Error {
             Self::Kernel(e) => kernel_field(e),
             Self::Diverged { .. } => Some("chain"),
             Self::RanAway { .. } => Some("h"),
+            Self::Layer(_) => None,
         }
     }
 
@@ -225,6 +230,21 @@ fn kernel_field(e: &hrla::Error) -> Option<&'static str> {
 impl From<hrla::Error> for Error {
     fn from(e: hrla::Error) -> Self {
         Self::Kernel(e)
+    }
+}
+
+impl From<hrla_dyn::Error> for Error {
+    fn from(e: hrla_dyn::Error) -> Self {
+        match e {
+            hrla_dyn::Error::Kernel(e) => Self::Kernel(e),
+            hrla_dyn::Error::RanAway(r) => Self::RanAway {
+                chains: r.chains,
+                radius: r.radius,
+                farthest: r.farthest,
+                diverged: r.diverged,
+            },
+            other => Self::Layer(other.to_string()),
+        }
     }
 }
 

@@ -5,38 +5,32 @@
 
 use core::fmt;
 use core::str::FromStr;
-use std::rc::Rc;
+use std::sync::Arc;
 
 use crate::error::{Error, Num};
 use crate::formula::Formula;
 
-use hrla::{
-    Ackley, DoubleWell, KnownMinimum, Levy, Potential, Quadratic, Rastrigin, StyblinskiTang,
-};
+use hrla::{KnownMinimum, Potential};
+use hrla_dyn::{Builtin, BuiltinKind, BuiltinSpec, PointFunction, PotentialSpec};
 
-/// A built-in potential of the kernel on `R^2`, chosen at run time.
+pub use hrla_dyn::UnknownPotential as UnknownLandscape;
+
+/// A potential on `R^2`, chosen at run time: one of the kernel's built-ins
+/// (the run-time layer's list, [`BuiltinKind`]), by name, or a visitor's
+/// formula.
 ///
 /// Dispatching by `match` keeps one optimiser type for every landscape; the
-/// arms call the kernel's own implementations, so a landscape's numbers are
-/// the kernel's, bit for bit. A visitor's formula is the one landscape that
-/// is not the kernel's: its own small interpreter, with an exact gradient.
+/// built-ins are the kernel's own implementations, so a landscape's numbers
+/// are the kernel's, bit for bit. A visitor's formula is the one landscape
+/// that is not the kernel's: its own small interpreter, with an exact
+/// gradient.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Landscape {
-    /// [`Rastrigin`], the paper's test function.
-    Rastrigin,
-    /// [`Ackley`].
-    Ackley,
-    /// [`Levy`].
-    Levy,
-    /// [`StyblinskiTang`].
-    StyblinskiTang,
-    /// [`DoubleWell`]: four global minima at `(±1, ±1)`.
-    DoubleWell,
-    /// [`Quadratic`] with stiffness 1 centred at the origin: its Gibbs law
-    /// is the Gaussian `N(0, I / a)`.
-    Quadratic(Quadratic<f64, 2>),
+    /// A built-in with its parameters by name (the quadratic: stiffness 1
+    /// centred at the origin, whose Gibbs law is the Gaussian `N(0, I / a)`).
+    Builtin(Builtin<2>),
     /// A visitor's formula over its box ([`Custom`]).
-    Formula(Rc<Custom>),
+    Formula(Arc<Custom>),
 }
 
 /// A visitor's formula, with the box it is looked at over and its lowest
@@ -100,7 +94,7 @@ impl Landscape {
             }
         }
         let (minimum, minimiser) = descend(&formula, best, bounds);
-        Ok(Self::Formula(Rc::new(Custom {
+        Ok(Self::Formula(Arc::new(Custom {
             formula,
             bounds,
             minimum,
@@ -147,26 +141,27 @@ fn descend(
 }
 
 impl Landscape {
-    /// Every landscape, in the order the page lists them.
-    pub const NAMES: [&'static str; 6] = [
-        "rastrigin",
-        "ackley",
-        "levy",
-        "styblinski-tang",
-        "double-well",
-        "quadratic",
-    ];
+    /// Every built-in landscape, in the order the page lists them.
+    pub const NAMES: [&'static str; BuiltinKind::ALL.len()] = BuiltinKind::NAMES;
+
+    /// The built-in `kind`.
+    pub fn named(kind: BuiltinKind) -> Self {
+        Self::Builtin(Builtin::named(kind))
+    }
+
+    /// The potential as the run-time layer's settings take it.
+    pub fn spec(&self) -> PotentialSpec {
+        match self {
+            Self::Builtin(b) => PotentialSpec::Builtin(BuiltinSpec::Named(b.kind())),
+            Self::Formula(f) => PotentialSpec::Native(f.clone()),
+        }
+    }
 
     /// The name the page and the address use (`formula` for a visitor's).
     pub fn name(&self) -> &'static str {
         match self {
             Self::Formula(_) => "formula",
-            Self::Rastrigin => "rastrigin",
-            Self::Ackley => "ackley",
-            Self::Levy => "levy",
-            Self::StyblinskiTang => "styblinski-tang",
-            Self::DoubleWell => "double-well",
-            Self::Quadratic(_) => "quadratic",
+            Self::Builtin(b) => b.kind().name(),
         }
     }
 
@@ -294,35 +289,25 @@ impl fmt::Display for GridError {
 
 impl core::error::Error for GridError {}
 
-/// Why a landscape's name was refused.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct UnknownLandscape;
-
-impl fmt::Display for UnknownLandscape {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "`potential` must be one of {}",
-            Landscape::NAMES.join(", ")
-        )
-    }
-}
-
 impl FromStr for Landscape {
     type Err = UnknownLandscape;
 
     fn from_str(name: &str) -> Result<Self, Self::Err> {
-        Ok(match name {
-            "rastrigin" => Self::Rastrigin,
-            "ackley" => Self::Ackley,
-            "levy" => Self::Levy,
-            "styblinski-tang" => Self::StyblinskiTang,
-            "double-well" => Self::DoubleWell,
-            "quadratic" => {
-                Self::Quadratic(Quadratic::new(1.0, [0.0, 0.0]).map_err(|_| UnknownLandscape)?)
-            }
-            _ => return Err(UnknownLandscape),
-        })
+        name.parse().map(Self::named)
+    }
+}
+
+/// A formula is a function of the plane: the layer runs it in 2-D.
+impl PointFunction for Custom {
+    #[inline]
+    fn value_and_gradient(&self, x: &[f64], grad: &mut [f64]) -> f64 {
+        let (u, g) = self.formula.value_and_gradient(x[0], x[1]);
+        grad.copy_from_slice(&g);
+        u
+    }
+
+    fn dimension(&self) -> Option<usize> {
+        Some(2)
     }
 }
 
@@ -330,12 +315,7 @@ impl Potential<f64, 2> for Landscape {
     #[inline]
     fn value_and_gradient(&self, x: &[f64; 2], grad: &mut [f64; 2]) -> f64 {
         match self {
-            Self::Rastrigin => Rastrigin.value_and_gradient(x, grad),
-            Self::Ackley => Ackley.value_and_gradient(x, grad),
-            Self::Levy => Levy.value_and_gradient(x, grad),
-            Self::StyblinskiTang => StyblinskiTang.value_and_gradient(x, grad),
-            Self::DoubleWell => DoubleWell.value_and_gradient(x, grad),
-            Self::Quadratic(q) => q.value_and_gradient(x, grad),
+            Self::Builtin(b) => b.value_and_gradient(x, grad),
             Self::Formula(f) => {
                 let (u, g) = f.formula.value_and_gradient(x[0], x[1]);
                 *grad = g;
@@ -348,24 +328,14 @@ impl Potential<f64, 2> for Landscape {
 impl KnownMinimum<f64, 2> for Landscape {
     fn global_minimum(&self) -> f64 {
         match self {
-            Self::Rastrigin => KnownMinimum::<f64, 2>::global_minimum(&Rastrigin),
-            Self::Ackley => KnownMinimum::<f64, 2>::global_minimum(&Ackley),
-            Self::Levy => KnownMinimum::<f64, 2>::global_minimum(&Levy),
-            Self::StyblinskiTang => KnownMinimum::<f64, 2>::global_minimum(&StyblinskiTang),
-            Self::DoubleWell => KnownMinimum::<f64, 2>::global_minimum(&DoubleWell),
-            Self::Quadratic(q) => q.global_minimum(),
+            Self::Builtin(b) => b.global_minimum(),
             Self::Formula(f) => f.minimum,
         }
     }
 
     fn global_minimiser(&self) -> [f64; 2] {
         match self {
-            Self::Rastrigin => Rastrigin.global_minimiser(),
-            Self::Ackley => Ackley.global_minimiser(),
-            Self::Levy => Levy.global_minimiser(),
-            Self::StyblinskiTang => StyblinskiTang.global_minimiser(),
-            Self::DoubleWell => DoubleWell.global_minimiser(),
-            Self::Quadratic(q) => q.global_minimiser(),
+            Self::Builtin(b) => b.global_minimiser(),
             Self::Formula(f) => f.minimiser,
         }
     }
@@ -385,7 +355,7 @@ mod tests {
             [-5.0, 5.0, -5.0, 5.0],
         )
         .unwrap();
-        let built = Landscape::Rastrigin;
+        let built = Landscape::named(BuiltinKind::Rastrigin);
         for &x in &[[0.3, -1.7], [2.9, 3.1], [-4.4, 0.05]] {
             let (mut g1, mut g2) = ([0.0; 2], [0.0; 2]);
             let (u1, u2) = (
@@ -459,7 +429,7 @@ mod tests {
 
     #[test]
     fn the_grid_is_laid_out_from_the_top_left() {
-        let g = Landscape::Quadratic(Quadratic::new(1.0, [0.0, 0.0]).unwrap())
+        let g = Landscape::named(BuiltinKind::Quadratic)
             .grid(0.0, 4.0, 0.0, 2.0, 4, 2)
             .unwrap();
         // Cell centres x = 0.5, 1.5, 2.5, 3.5; y = 1.5 (first row), 0.5.
@@ -471,7 +441,7 @@ mod tests {
     /// Every value returned is finite; what cannot be is refused.
     #[test]
     fn a_grid_that_cannot_be_finite_is_refused() {
-        let r = Landscape::Rastrigin;
+        let r = Landscape::named(BuiltinKind::Rastrigin);
         let m = f64::MAX;
         assert_eq!(
             r.grid(-1e308, 1e308, -1.0, 1.0, 4, 4),

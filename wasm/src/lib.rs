@@ -2,12 +2,13 @@
 //!
 //! A thin `wasm-bindgen` layer with no maths of its own but a visitor's
 //! formula ([`Formula`]: parsed, differentiated exactly in forward mode):
-//! one exported type, [`Optimizer`], owns the kernel's [`hrla::Optimizer`]
-//! on one of the kernel's built-in potentials in 2-D or a formula
-//! ([`Landscape`]), in f64, with its
-//! chain storage (a `Vec` of up to [`MAX_CHAINS`] chains, each
-//! with its own generator), and flat buffers that JavaScript reads through
-//! typed-array views into wasm memory:
+//! one exported type, [`Optimizer`], translates the page's settings into
+//! the run-time layer's ([`hrla_dyn::Settings`]) and owns the layer's run
+//! ([`hrla_dyn::Engine`], the kernel's optimiser) on one of the kernel's
+//! built-in potentials in 2-D or a formula ([`Landscape`]), in f64, with
+//! up to [`MAX_CHAINS`] chains, each with its own generator, and flat
+//! buffers that JavaScript reads through typed-array views into wasm
+//! memory:
 //!
 //! ```js
 //! import init, { Optimizer, Summary, wasm_memory } from "./pkg/hrla_wasm.js";
@@ -59,8 +60,9 @@ mod landscape;
 mod read;
 mod settings;
 
-use hrla::{AnySampler, AnySchedule, Builder, Chain, Gaussian, KnownMinimum, Termination};
-use hrla::{Kernel as _, Sampler as _, Schedule as _, StepMoments};
+use hrla::{AnySampler, Gaussian, KnownMinimum, Termination};
+use hrla::{Kernel as _, StepMoments};
+use hrla_dyn::{Engine, StartSpec};
 use wasm_bindgen::prelude::*;
 
 pub use descent::Descent;
@@ -72,12 +74,6 @@ pub use settings::{KEYS, Settings, Temperature, parse_sampler, potential};
 /// The most chains a run may have (the page offers up to 1024): more is
 /// refused with [`hrla::Error::Count`].
 pub const MAX_CHAINS: usize = 1024;
-
-/// The chain storage: on the heap, as many chains as the run has.
-pub type Chains = Vec<Chain<f64, 2>>;
-
-/// The kernel's optimiser as the page runs it, owning its chains.
-pub type Kernel = hrla::Optimizer<f64, Landscape, AnySampler<f64>, AnySchedule<f64>, Chains, 2>;
 
 /// The most steps one call of `advance` asks for, `2^32 - 1`: more is
 /// refused with [`Error::NotACount`] (the page asks for at most `1e9`).
@@ -111,32 +107,25 @@ pub enum Summary {
 }
 
 /// The code of a stopping reason in [`Summary::Termination`]: 1 step
-/// budget, 2 evaluation budget, 3 target, 4 stalled, 5 observer.
-pub fn termination_code(t: Option<Termination>) -> f64 {
-    match t {
-        None => 0.0,
-        Some(Termination::Steps) => 1.0,
-        Some(Termination::Evaluations) => 2.0,
-        Some(Termination::Target) => 3.0,
-        Some(Termination::Stalled) => 4.0,
-        Some(Termination::Observer) => 5.0,
-    }
-}
+/// budget, 2 evaluation budget, 3 target, 4 stalled, 5 observer (the
+/// run-time layer's one mapping).
+pub use hrla_dyn::termination_code;
 
 /// One run of Algorithm 1 on a 2-D landscape, with its chains and the
 /// buffers that JavaScript views.
 #[wasm_bindgen]
 pub struct Optimizer {
-    kernel: Kernel,
+    /// The run-time layer's run of the settings.
+    engine: Box<dyn Engine>,
+    /// The potential, for its name and minimum.
+    landscape: Landscape,
     seed: u64,
     /// Whether the run has stopping rules to consult before each step.
     stops: bool,
     /// Why the run stopped, once it has.
     termination: Option<Termination>,
-    /// The escape radius, squared (see [`Settings::escape`]).
-    escape2: Option<f64>,
-    /// The wrapper's own failure (every chain ran away), returned again by
-    /// every later call, as the kernel does with its own.
+    /// The run's failure when every chain ran away, returned again by
+    /// every later call before anything else.
     failed: Option<Error>,
     /// `x` of chain `c` at `2c`, `2c + 1`.
     positions: Vec<f64>,
@@ -155,7 +144,8 @@ impl Optimizer {
     pub fn from_settings(settings: &Settings) -> Result<Self, Error> {
         let schedule = settings.temperature.schedule()?;
         let sampler = AnySampler::paper(settings.sampler, settings.h)?;
-        let start = Gaussian::new(settings.centre, settings.spread)?;
+        // The kernel's check of the start, before the chains' count.
+        Gaussian::new(settings.centre, settings.spread)?;
         let n = settings.chains;
         if !(1..=MAX_CHAINS).contains(&n) {
             return Err(hrla::Error::Count {
@@ -165,23 +155,32 @@ impl Optimizer {
             }
             .into());
         }
-        let chains: Chains = (0..n).map(|_| Chain::new()).collect();
         // The page steps the run itself; without stopping rules, without
-        // end. Takes the sampler's kernel at a_0: a bad first temperature
-        // is caught here.
-        let builder =
-            Builder::new(settings.landscape.clone(), sampler, schedule, start).seed(settings.seed);
+        // end.
         let stop = settings.stop();
-        let kernel = match stop {
-            Some(stop) => builder.stop(stop).build(chains)?,
-            None => builder.build(chains)?,
-        };
+        let engine = hrla_dyn::Settings {
+            potential: settings.landscape.spec(),
+            sampler,
+            schedule,
+            start: StartSpec::Gaussian {
+                mean: settings.centre.to_vec(),
+                std_dev: settings.spread,
+            },
+            domain: None,
+            seed: settings.seed,
+            stride: 1,
+            stop: stop.unwrap_or_default(),
+            chains: n,
+            dim: Some(2),
+            escape: settings.escape,
+        }
+        .build()?;
         let mut this = Self {
-            kernel,
+            engine,
+            landscape: settings.landscape.clone(),
             seed: settings.seed,
             stops: stop.is_some(),
             termination: None,
-            escape2: settings.escape.map(|r| r * r),
             failed: None,
             positions: vec![0.0; 2 * n],
             velocities: vec![0.0; 2 * n],
@@ -210,19 +209,16 @@ impl Optimizer {
         let mut result = Ok(());
         while done < steps {
             if self.stops && self.termination.is_none() {
-                self.termination = self.kernel.termination();
+                self.termination = self.engine.termination();
             }
             // An ended run has nothing left to do: no spinning through the
             // rest of the count.
             if self.termination.is_some() {
                 break;
             }
-            result = self.kernel.step().map_err(Error::from);
-            if result.is_ok()
-                && let Some(e) = self.ran_away()
-            {
+            result = self.engine.step(1).map_err(Error::from);
+            if let Err(e @ Error::RanAway { .. }) = &result {
                 self.failed = Some(e.clone());
-                result = Err(e);
             }
             if result.is_err() {
                 break;
@@ -230,39 +226,10 @@ impl Optimizer {
             done += 1;
         }
         if self.stops && self.termination.is_none() {
-            self.termination = self.kernel.termination();
+            self.termination = self.engine.termination();
         }
         self.publish();
         result.map(|()| done)
-    }
-
-    /// [`Error::RanAway`] when every chain has diverged or lies beyond the
-    /// escape radius and at least one ran away (every chain diverged is
-    /// the kernel's own error).
-    fn ran_away(&self) -> Option<Error> {
-        let r2 = self.escape2?;
-        let chains = self.kernel.chains();
-        let mut farthest2 = 0.0_f64;
-        let mut diverged = 0;
-        for chain in chains {
-            if chain.is_diverged() {
-                diverged += 1;
-                continue;
-            }
-            let [x0, x1] = *chain.x();
-            let d2 = x0 * x0 + x1 * x1;
-            // A NaN distance is not beyond the radius: such a chain is not away.
-            if d2.is_nan() || d2 <= r2 {
-                return None;
-            }
-            farthest2 = farthest2.max(d2);
-        }
-        (diverged < chains.len()).then(|| Error::RanAway {
-            chains: chains.len(),
-            radius: r2.sqrt(),
-            farthest: farthest2.sqrt(),
-            diverged,
-        })
     }
 
     /// Why the run stopped, once a stopping rule held.
@@ -281,22 +248,26 @@ impl Optimizer {
     /// ([`Error::Diverged`]: it is frozen, it has no next step), or the
     /// sampler's refusal of `a_k`.
     pub fn next_step(&self, chain: usize) -> Result<NextStep, Error> {
-        let chains = self.kernel.chains();
-        let c = chains.get(chain).ok_or(Error::NotACount {
-            name: "chain",
-            value: chain as f64,
-            min: 0,
-            max: chains.len() as u64 - 1,
-        })?;
-        if c.is_diverged() {
+        let n = self.values.len();
+        if chain >= n {
+            return Err(Error::NotACount {
+                name: "chain",
+                value: chain as f64,
+                min: 0,
+                max: n as u64 - 1,
+            });
+        }
+        if self.engine.diverged()[chain] {
             return Err(Error::Diverged { chain });
         }
-        let a = self
-            .kernel
-            .schedule()
-            .inverse_temperature(self.kernel.iteration());
-        let step = self.kernel.sampler().at(a)?;
-        let (x, y, g) = (*c.x(), *c.y(), *c.gradient());
+        let step = self.engine.next_kernel()?;
+        let a = step.inverse_temperature();
+        let of = |v: Vec<f64>| [v[2 * chain], v[2 * chain + 1]];
+        let (x, y, g) = (
+            of(self.engine.positions()),
+            of(self.engine.velocities()),
+            of(self.engine.gradients()),
+        );
         // The mean is affine in (x, y, g): its parts come from the same
         // moments at a zero position with only the gradient, or only the
         // velocity.
@@ -311,9 +282,9 @@ impl Optimizer {
         })
     }
 
-    /// The kernel's optimiser.
-    pub fn kernel(&self) -> &Kernel {
-        &self.kernel
+    /// The run-time layer's run.
+    pub fn engine(&self) -> &dyn Engine {
+        &*self.engine
     }
 
     /// Positions, `[x0, x1]` per chain.
@@ -340,28 +311,32 @@ impl Optimizer {
     /// the kernel keeps each chain as one struct, JS wants one array per
     /// quantity.
     fn publish(&mut self) {
-        for (c, chain) in self.kernel.chains().iter().enumerate() {
-            self.positions[2 * c..2 * c + 2].copy_from_slice(chain.x());
-            self.velocities[2 * c..2 * c + 2].copy_from_slice(chain.y());
-            // The kernel keeps a diverged chain's last value, finite when
-            // only the position or gradient overflowed; the buffer promises
-            // a non-finite value, so that no reader takes the chain for live.
-            self.values[c] = if chain.is_diverged() {
-                f64::NAN
-            } else {
-                chain.value()
-            };
+        // Copied into the buffers JavaScript views (their addresses never
+        // change).
+        self.positions.copy_from_slice(&self.engine.positions());
+        self.velocities.copy_from_slice(&self.engine.velocities());
+        // The kernel keeps a diverged chain's last value, finite when only
+        // the position or gradient overflowed; the buffer promises a
+        // non-finite value, so that no reader takes the chain for live.
+        let diverged = self.engine.diverged();
+        for ((v, u), d) in self
+            .values
+            .iter_mut()
+            .zip(self.engine.values())
+            .zip(diverged)
+        {
+            *v = if d { f64::NAN } else { u };
         }
-        let best = self.kernel.best();
+        let (x, value, iteration) = self.engine.best();
         self.summary = [
-            self.kernel.iteration() as f64,
-            best.x[0],
-            best.x[1],
-            best.value,
-            best.iteration as f64,
-            self.kernel.kernel().inverse_temperature(),
-            self.kernel.diverged_chains() as f64,
-            self.kernel.potential().global_minimum(),
+            self.engine.iteration() as f64,
+            x[0],
+            x[1],
+            value,
+            iteration as f64,
+            self.engine.inverse_temperature(),
+            self.engine.diverged_chains() as f64,
+            self.landscape.global_minimum(),
             termination_code(self.termination),
         ];
     }
@@ -478,13 +453,13 @@ impl Optimizer {
     /// The landscape's name.
     #[wasm_bindgen(js_name = potential)]
     pub fn potential_name(&self) -> String {
-        self.kernel.potential().name().into()
+        self.landscape.name().into()
     }
 
     /// The landscape's global minimiser `x*`, `[x0, x1]` (one of them
     /// when there are several).
     pub fn minimiser(&self) -> Vec<f64> {
-        self.kernel.potential().global_minimiser().to_vec()
+        self.landscape.global_minimiser().to_vec()
     }
 
     /// Number of chains.
@@ -621,16 +596,14 @@ mod tests {
         };
         let mut opt = Optimizer::from_settings(&settings).unwrap();
         opt.step_n(50).unwrap();
-        let kernel = opt.kernel();
+        let run = opt.engine();
         assert_eq!(opt.summary()[Summary::Iteration as usize], 50.0);
-        assert_eq!(
-            opt.summary()[Summary::BestValue as usize],
-            kernel.best().value
-        );
-        for (c, chain) in kernel.chains().iter().enumerate() {
-            assert_eq!(&opt.positions()[2 * c..2 * c + 2], chain.x());
-            assert_eq!(&opt.velocities()[2 * c..2 * c + 2], chain.y());
-            assert_eq!(opt.values()[c].to_bits(), chain.value().to_bits());
+        assert_eq!(opt.summary()[Summary::BestValue as usize], run.best().1);
+        assert_eq!(opt.positions(), run.positions());
+        assert_eq!(opt.velocities(), run.velocities());
+        assert!(run.diverged().iter().all(|d| !d));
+        for (mine, theirs) in opt.values().iter().zip(run.values()) {
+            assert_eq!(mine.to_bits(), theirs.to_bits());
         }
     }
 
@@ -776,9 +749,8 @@ mod tests {
         };
         assert_eq!((chains, radius, diverged), (16, 5000.0, 0));
         assert!(farthest > 5000.0 && farthest.is_finite());
-        for chain in whole.kernel().chains() {
-            let [x0, x1] = *chain.x();
-            assert!(x0.hypot(x1) > 5000.0);
+        for x in whole.positions().chunks_exact(2) {
+            assert!(x[0].hypot(x[1]) > 5000.0);
         }
         assert!(
             err.to_string()
@@ -1017,13 +989,10 @@ mod tests {
         let mut seen = false;
         for _ in 0..100 {
             opt.step_n(1).unwrap();
-            for (c, chain) in opt.kernel().chains().iter().enumerate() {
-                seen |= chain.is_diverged() && chain.value().is_finite();
-                assert_eq!(
-                    opt.values()[c].is_finite(),
-                    !chain.is_diverged(),
-                    "chain {c}"
-                );
+            let (diverged, values) = (opt.engine().diverged(), opt.engine().values());
+            for c in 0..values.len() {
+                seen |= diverged[c] && values[c].is_finite();
+                assert_eq!(opt.values()[c].is_finite(), !diverged[c], "chain {c}");
             }
         }
         assert!(
@@ -1031,7 +1000,7 @@ mod tests {
             "no diverged chain with a finite value: the case tests nothing"
         );
         let live = opt.values().iter().filter(|u| u.is_finite()).count();
-        assert_eq!(live, 64 - opt.kernel().diverged_chains());
+        assert_eq!(live, 64 - opt.engine().diverged_chains());
     }
 
     #[test]

@@ -1,7 +1,9 @@
 //! The settings of a run, as plain Rust values, and how they are read from
 //! the JavaScript object the page passes in.
 
-use hrla::{AnySchedule, Constant, Linear, SamplerKind, Stop};
+use hrla::{SamplerKind, Stop};
+use hrla_dyn::BuiltinKind;
+pub use hrla_dyn::Temperature;
 use wasm_bindgen::JsValue;
 
 use crate::error::Error;
@@ -30,37 +32,6 @@ const ANNEALING_KEYS: [&str; 3] = ["aLow", "aHigh", "steps"];
 /// Parses a sampler's name, `"hrla"`, `"ula"` or `"ola"` (any case).
 pub fn parse_sampler(name: &str) -> Result<SamplerKind, Error> {
     name.parse().map_err(|_| Error::UnknownSampler)
-}
-
-/// The inverse temperature along the run.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Temperature {
-    /// A constant `a`.
-    Constant(f64),
-    /// The paper's linear annealing, `a_low -> a_high` over `steps` iterations,
-    /// then `a_high`.
-    Linear {
-        /// `a_0`.
-        a_low: f64,
-        /// `a_K` and beyond.
-        a_high: f64,
-        /// `K`.
-        steps: u64,
-    },
-}
-
-impl Temperature {
-    /// The kernel's schedule, its parameters validated by the kernel.
-    pub fn schedule(self) -> Result<AnySchedule<f64>, hrla::Error> {
-        Ok(match self {
-            Temperature::Constant(a) => AnySchedule::Constant(Constant::new(a)?),
-            Temperature::Linear {
-                a_low,
-                a_high,
-                steps,
-            } => AnySchedule::Linear(Linear::new(a_low, a_high, steps)?),
-        })
-    }
 }
 
 /// Everything that determines a run: the same settings give the same numbers
@@ -102,7 +73,7 @@ impl Default for Settings {
     /// from the paper's `N(3·1, 10 I)`, seed 1, no stopping rule.
     fn default() -> Self {
         Self {
-            landscape: Landscape::Rastrigin,
+            landscape: Landscape::named(BuiltinKind::Rastrigin),
             sampler: SamplerKind::Hrla,
             temperature: Temperature::Constant(4.0),
             h: 0.01,
@@ -182,7 +153,7 @@ impl Settings {
         }
         only_keys(value, &KEYS, "settings")?;
         let landscape = match get(value, "potential")? {
-            p if p.is_undefined() || p.is_null() => Landscape::Rastrigin,
+            p if p.is_undefined() || p.is_null() => Landscape::named(BuiltinKind::Rastrigin),
             p => potential(&p)?,
         };
         let sampler = match get(value, "sampler")?.as_string() {

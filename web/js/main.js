@@ -115,9 +115,32 @@ function estimate(arg) {
   return state.estimates.get(key);
 }
 
+/**
+ * A built-in of the kernel's list (which the menu shows, from the wasm
+ * module) that landscapes.js does not describe: plain settings around the
+ * origin, its minimiser from the kernel, nothing measured in advance.
+ */
+function undescribed(name) {
+  const minimiser = [...sim.globalMinimiser(name)];
+  return {
+    label: name,
+    formula: "",
+    about: `the kernel's built-in ${name}; U* = ${+sim.globalMinimum(name).toPrecision(6)}`,
+    view: { cx: 0, cy: 0, half: 5 },
+    start: { cx: 3, cy: 3, spread: 0.5 },
+    a: 1,
+    h: 0.01,
+    eps: 0.1,
+    minimisers: [minimiser],
+    headline: "Nothing was measured in advance for this landscape: compare the curves.",
+    compare: "Nothing was measured in advance for this landscape: the table above compares the three on this run only.",
+    measured: null,
+  };
+}
+
 /** The landscape the controls name: a built-in one, or the visitor's formula over its box. */
 function landscapeOf(name) {
-  if (name !== "formula") return { ...LANDSCAPES[name], name, arg: name };
+  if (name !== "formula") return { ...(LANDSCAPES[name] ?? undescribed(name)), name, arg: name };
   const [cx, cy, half] = ["fcx", "fcy", "fhalf"].map((id) => parseNumber(text(id)));
   const ok = [cx, cy, half].every(Number.isFinite) && half > 0;
   const view = ok ? { cx, cy, half } : { cx: FORMULA_DEFAULT.cx, cy: FORMULA_DEFAULT.cy, half: FORMULA_DEFAULT.half };

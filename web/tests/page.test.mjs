@@ -431,6 +431,27 @@ test("compare mode runs HRLA, ULA and OLA on the same seed and start", async () 
   await h.page.screenshot({ path: join(SHOTS, "compare-desktop.png") });
 });
 
+// The menu lists the kernel's built-ins (from the wasm module); one that
+// landscapes.js does not describe, as a newly added built-in, is shown
+// with plain settings and the kernel's minimiser, not an error.
+test("a built-in that landscapes.js does not describe is offered and runs", async () => {
+  await openPaused({ spf: 100 });
+  await h.page.evaluate(async () => {
+    const { LANDSCAPES } = await import("/js/landscapes.js");
+    delete LANDSCAPES.levy;
+  });
+  await h.page.selectOption("#potential", "levy");
+  assert.equal(await h.page.textContent("#error"), "");
+  const land = await h.page.evaluate(() => {
+    const l = window.hrlaDemo.state.land;
+    return { name: l.name, label: l.label, view: l.view, minimisers: l.minimisers, measured: l.measured };
+  });
+  assert.deepEqual(land, { name: "levy", label: "levy", view: { cx: 0, cy: 0, half: 5 }, minimisers: [[1, 1]], measured: null });
+  const start = await readout("out-best");
+  await advance(100);
+  assert.ok((await readout("out-best")) <= start);
+});
+
 for (const potential of ["rastrigin", "ackley", "levy", "styblinski-tang", "double-well", "quadratic"]) {
   test(`landscape ${potential}: drawn with its minimisers, searched without error`, async () => {
     await openPaused({ potential, spf: 100 });

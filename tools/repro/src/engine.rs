@@ -10,42 +10,24 @@
 //! reads [`Optimizer::current_best`] at exactly the iterates wanted, and
 //! the progress bar is a counter in the same loop.
 
-use hrla::rand_core::Rng;
-use hrla::{
-    AnySampler, AnySchedule, Builder, Chain, Gaussian, Optimizer, Point, Rastrigin, Start, Stop,
-};
+use hrla::{AnySampler, AnySchedule, Builder, Chain, Gaussian, Optimizer, Point, Rastrigin, Stop};
+use hrla_dyn::AnyStart;
 
 use crate::config::{RunSpec, StartSpec};
 use crate::error::ReproError;
 use crate::peers::{AnyPeer, Peer, Population};
 use crate::stats::Tracker;
 
-/// Gaussian or fixed-point start behind one type (the peers start from it
-/// too, so member `c` starts where the kernel's chain `c` does).
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum AnyStart<const D: usize> {
-    Gaussian(Gaussian<f64, D>),
-    Point(Point<f64, D>),
-}
-
-impl<const D: usize> AnyStart<D> {
-    pub(crate) fn new(spec: StartSpec) -> Result<Self, hrla::Error> {
-        Ok(match spec {
-            StartSpec::Gaussian { centre, variance } => {
-                AnyStart::Gaussian(Gaussian::new([centre; D], variance.sqrt())?)
-            }
-            StartSpec::Point(v) => AnyStart::Point(Point::new([v; D])?),
-        })
-    }
-}
-
-impl<const D: usize> Start<f64, D> for AnyStart<D> {
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64; D]) {
-        match self {
-            AnyStart::Gaussian(s) => s.initial_point(chain, rng, x),
-            AnyStart::Point(s) => s.initial_point(chain, rng, x),
+/// The start of a run in dimension `D`, as the layer's one type of
+/// start (the peers start from it too, so member `c` starts where the
+/// kernel's chain `c` does).
+fn start<const D: usize>(spec: StartSpec) -> Result<AnyStart<D>, hrla::Error> {
+    Ok(match spec {
+        StartSpec::Gaussian { centre, variance } => {
+            AnyStart::Gaussian(Gaussian::new([centre; D], variance.sqrt())?)
         }
-    }
+        StartSpec::Point(v) => AnyStart::Point(Point::new([v; D])?),
+    })
 }
 
 /// The kernel optimiser of one run: its `N` chains in one `Vec` it owns
@@ -65,16 +47,11 @@ pub fn optimizer<const D: usize>(
 ) -> Result<RunOptimizer<D>, hrla::Error> {
     let (schedule, sampler) = spec.kernel_setup()?;
     let chains = (0..spec.chains).map(|_| Chain::new()).collect::<Vec<_>>();
-    Builder::new(
-        Rastrigin,
-        sampler,
-        schedule,
-        AnyStart::<D>::new(spec.start)?,
-    )
-    .seed(seed)
-    .stride(spec.stride)
-    .stop(Stop::new().steps(spec.steps))
-    .build(chains)
+    Builder::new(Rastrigin, sampler, schedule, start::<D>(spec.start)?)
+        .seed(seed)
+        .stride(spec.stride)
+        .stop(Stop::new().steps(spec.steps))
+        .build(chains)
 }
 
 /// `min_c U(x_k^c)` over the live chains at the current iterate (`+inf`
@@ -152,16 +129,10 @@ fn run_d<const D: usize>(
 /// not compiled in): a run of `N` chains holds `N` of them. A peer's member
 /// (a point, its value and its generator) is smaller.
 pub fn chain_bytes(d: usize) -> Option<usize> {
-    Some(match d {
-        1 => size_of::<Chain<f64, 1>>(),
-        2 => size_of::<Chain<f64, 2>>(),
-        5 => size_of::<Chain<f64, 5>>(),
-        10 => size_of::<Chain<f64, 10>>(),
-        20 => size_of::<Chain<f64, 20>>(),
-        50 => size_of::<Chain<f64, 50>>(),
-        100 => size_of::<Chain<f64, 100>>(),
-        _ => return None,
-    })
+    if !crate::config::DIMENSIONS.contains(&d) {
+        return None;
+    }
+    hrla_dyn::storage_bytes(d).ok()
 }
 
 /// A run being driven: one iteration at a time, and its best sample now.
@@ -256,7 +227,7 @@ fn run_peer<const D: usize>(
     counts: &mut [u32],
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RunOutcome, ReproError> {
-    let mut start = AnyStart::<D>::new(spec.start)?;
+    let mut start = start::<D>(spec.start)?;
     let pop = Population::new(&Rastrigin, &mut start, spec.chains, seed);
     let mut run = PeerRun { pop, peer };
     let running_best = drive(spec, counts, progress, &mut run)?;

@@ -1,0 +1,52 @@
+//! The run-time layer of `hrla`: what every front end (Python, the wasm
+//! page, the `repro` tool) needs between its own inputs and the kernel.
+//!
+//! The kernel is `no_std`, allocation-free and typed at compile time (the
+//! dimension, the potential, the sampler). A front end reads names, numbers
+//! and user functions at run time. This crate is the one translation:
+//!
+//! - [`Settings`]: a run as plain values: the potential by name or a
+//!   user's batched function ([`PotentialSpec`]), the sampler, the
+//!   schedule ([`Temperature`] by parameters, or the kernel's
+//!   [`AnySchedule`](hrla::AnySchedule)), the start ([`StartSpec`]), the
+//!   box ([`BoxSpec`], one interval per coordinate), the stopping rules,
+//!   the seed, the chains and the dimension;
+//! - [`BuiltinKind`]: the kernel's built-in potentials, declared once (the
+//!   list in `potential.rs`); names parse and print from it, and every
+//!   front end lists them from it;
+//! - [`Engine`]: one run loop behind an object-safe trait, whatever the
+//!   dimension, with the chains readable as flat slices or a [`Layout`];
+//! - [`auto::solve`]: the kernel's default solver, [`hrla::Auto`], on the
+//!   same settings;
+//! - [`termination_name`], [`termination_code`]: the one mapping of why a
+//!   run ended.
+//!
+//! The dimension is a run-time `usize` everywhere in this API. Inside, the
+//! kernel's `D` is a const generic, and [`dims`] holds the one table of the
+//! dimensions compiled in ([`dims::SUPPORTED`]); any other is
+//! [`Error::Dimension`]. A user's function is called on batches
+//! ([`BatchFunction`]: points `n x d` in, values and gradients out).
+
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+pub mod auto;
+pub mod dims;
+mod engine;
+mod error;
+mod potential;
+mod report;
+mod settings;
+mod user;
+
+pub use engine::{Engine, Layout, storage_bytes};
+pub use error::{Error, RanAway};
+pub use potential::{Builtin, BuiltinKind, BuiltinSpec, UnknownPotential};
+pub use report::{Progress, TERMINATIONS, termination_code, termination_name};
+pub use settings::{
+    AnyStart, BoxSpec, PointFunction, PotentialSpec, Settings, StartSpec, Temperature, dimension,
+};
+pub use user::{BatchFunction, UserError};
+
+/// The L-BFGS memory of the polish and quenches (the kernel's `M`).
+pub const MEMORY: usize = 8;

@@ -1,0 +1,388 @@
+//! A run as plain values, before its dimension is fixed.
+
+use std::sync::Arc;
+
+use hrla::rand_core::Rng;
+use hrla::{
+    AnySampler, AnySchedule, Constant, Domain, Geometric, Interval, Linear, Potential, Start, Stop,
+};
+
+use crate::Error;
+use crate::potential::{Builtin, BuiltinSpec};
+use crate::user::{BatchFunction, UserPotential};
+
+/// The potential of a run: a built-in, or a user's function.
+#[derive(Clone)]
+pub enum PotentialSpec {
+    /// One of the kernel's built-ins, run with no foreign code in the loop.
+    Builtin(BuiltinSpec),
+    /// A user's function, called on batches of points.
+    User(Arc<dyn BatchFunction>),
+    /// A Rust function of one point, run like a built-in (no foreign
+    /// runtime to call back into): a formula a front end reads, say.
+    Native(Arc<dyn PointFunction>),
+}
+
+/// A potential given as a Rust function of one point.
+pub trait PointFunction: Send + Sync {
+    /// `U(x)`, with `∇U(x)` written to `grad`; `x.len() == grad.len()`,
+    /// the run's dimension.
+    fn value_and_gradient(&self, x: &[f64], grad: &mut [f64]) -> f64;
+
+    /// The dimension it fixes, if any.
+    fn dimension(&self) -> Option<usize> {
+        None
+    }
+}
+
+impl PotentialSpec {
+    /// The dimension it fixes, if any.
+    pub fn dimension(&self) -> Option<usize> {
+        match self {
+            Self::Builtin(b) => b.dimension(),
+            Self::User(_) => None,
+            Self::Native(f) => f.dimension(),
+        }
+    }
+
+    pub(crate) fn build<const D: usize>(&self) -> Result<Pot<D>, Error> {
+        Ok(match self {
+            Self::Builtin(b) => Pot::Builtin(b.build::<D>()?),
+            Self::User(f) => Pot::User(UserPotential::new(f.clone())),
+            Self::Native(f) => Pot::Native(f.clone()),
+        })
+    }
+}
+
+/// The potential of a run in dimension `D`.
+pub(crate) enum Pot<const D: usize> {
+    Builtin(Builtin<D>),
+    User(UserPotential<D>),
+    Native(Arc<dyn PointFunction>),
+}
+
+impl<const D: usize> Potential<f64, D> for Pot<D> {
+    #[inline]
+    fn value_and_gradient(&self, x: &[f64; D], grad: &mut [f64; D]) -> f64 {
+        match self {
+            Self::Builtin(p) => p.value_and_gradient(x, grad),
+            Self::User(p) => p.value_and_gradient(x, grad),
+            Self::Native(p) => p.value_and_gradient(x, grad),
+        }
+    }
+}
+
+impl<const D: usize> Pot<D> {
+    /// The user function's first error since the last call, if any.
+    pub(crate) fn finish(&self) -> Result<(), Error> {
+        match self {
+            Self::User(p) => p.finish(),
+            Self::Builtin(_) | Self::Native(_) => Ok(()),
+        }
+    }
+
+    /// Whether a user function failed since the last [`finish`](Self::finish).
+    pub(crate) fn failed(&self) -> bool {
+        matches!(self, Self::User(p) if p.failed())
+    }
+}
+
+/// A box `lo_i <= x_i <= hi_i`, one interval per coordinate, or the same
+/// interval in every coordinate (in any dimension).
+#[derive(Clone, Debug, PartialEq)]
+pub enum BoxSpec {
+    /// `[lo, hi]` in every coordinate.
+    Uniform {
+        /// The lower end.
+        lo: f64,
+        /// The upper end.
+        hi: f64,
+    },
+    /// `[lo_i, hi_i]` in coordinate `i`; their number fixes `D`.
+    PerCoordinate(Vec<(f64, f64)>),
+}
+
+impl BoxSpec {
+    /// The dimension it fixes, if any.
+    pub fn dimension(&self) -> Option<usize> {
+        match self {
+            Self::Uniform { .. } => None,
+            Self::PerCoordinate(b) => Some(b.len()),
+        }
+    }
+
+    /// The kernel's box: one [`Interval`] for every coordinate (checked by
+    /// its constructor), or [`Error::NonUniformBox`] when the coordinates'
+    /// intervals differ.
+    pub fn interval(&self) -> Result<Interval<f64>, Error> {
+        let (lo, hi) = match self {
+            Self::Uniform { lo, hi } => (*lo, *hi),
+            Self::PerCoordinate(b) => {
+                let Some(&(lo, hi)) = b.first() else {
+                    return Err(Error::Length {
+                        what: "the box",
+                        len: 0,
+                        dim: 1,
+                    });
+                };
+                if b.iter()
+                    .any(|&(l, h)| l.to_bits() != lo.to_bits() || h.to_bits() != hi.to_bits())
+                {
+                    return Err(Error::NonUniformBox);
+                }
+                (lo, hi)
+            }
+        };
+        Ok(Interval::new(lo, hi)?)
+    }
+}
+
+impl From<Interval<f64>> for BoxSpec {
+    fn from(i: Interval<f64>) -> Self {
+        Self::Uniform {
+            lo: i.lo(),
+            hi: i.hi(),
+        }
+    }
+}
+
+/// The initial points of a run, before its dimension is fixed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StartSpec {
+    /// Independent Gaussian starts `N(mean, std_dev^2 I)`; `mean` fixes `D`.
+    Gaussian {
+        /// The mean.
+        mean: Vec<f64>,
+        /// The standard deviation of each coordinate.
+        std_dev: f64,
+    },
+    /// The same centre in every coordinate: `N(centre · 1, std_dev^2 I)`.
+    Isotropic {
+        /// Every coordinate of the mean.
+        centre: f64,
+        /// The standard deviation of each coordinate.
+        std_dev: f64,
+    },
+    /// Every chain starts at this point; its length fixes `D`.
+    Point(Vec<f64>),
+    /// Uniform in the box.
+    Box(BoxSpec),
+}
+
+impl StartSpec {
+    /// The dimension it fixes, if any.
+    pub fn dimension(&self) -> Option<usize> {
+        match self {
+            Self::Gaussian { mean, .. } => Some(mean.len()),
+            Self::Point(x) => Some(x.len()),
+            Self::Isotropic { .. } => None,
+            Self::Box(b) => b.dimension(),
+        }
+    }
+
+    /// The kernel's start in dimension `D` (checked by its constructor).
+    pub fn build<const D: usize>(&self) -> Result<AnyStart<D>, Error> {
+        let array = |v: &[f64]| -> Result<[f64; D], Error> {
+            v.try_into().map_err(|_| Error::Length {
+                what: "the start",
+                len: v.len(),
+                dim: D,
+            })
+        };
+        Ok(match self {
+            Self::Gaussian { mean, std_dev } => {
+                AnyStart::Gaussian(hrla::Gaussian::new(array(mean)?, *std_dev)?)
+            }
+            Self::Isotropic { centre, std_dev } => {
+                AnyStart::Gaussian(hrla::Gaussian::new([*centre; D], *std_dev)?)
+            }
+            Self::Point(x) => AnyStart::Point(hrla::Point::new(array(x)?)?),
+            Self::Box(b) => AnyStart::Interval(b.interval()?),
+        })
+    }
+}
+
+/// The kernel's built-in starts in dimension `D`, as one type.
+#[derive(Clone, Copy, Debug)]
+pub enum AnyStart<const D: usize> {
+    /// [`hrla::Gaussian`].
+    Gaussian(hrla::Gaussian<f64, D>),
+    /// [`hrla::Point`].
+    Point(hrla::Point<f64, D>),
+    /// Uniform in an [`Interval`] box.
+    Interval(Interval<f64>),
+}
+
+impl<const D: usize> Start<f64, D> for AnyStart<D> {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64; D]) {
+        match self {
+            Self::Gaussian(s) => s.initial_point(chain, rng, x),
+            Self::Point(s) => s.initial_point(chain, rng, x),
+            Self::Interval(s) => s.initial_point(chain, rng, x),
+        }
+    }
+}
+
+/// Where the chains may go: all of `R^D`, or a box.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Bounds {
+    Unbounded,
+    Box(Interval<f64>),
+}
+
+impl<const D: usize> Domain<f64, D> for Bounds {
+    #[inline]
+    fn confine(&self, x: &mut [f64; D], y: &mut [f64; D]) {
+        if let Self::Box(b) = self {
+            b.confine(x, y);
+        }
+    }
+    #[inline]
+    fn project(&self, x: &mut [f64; D]) {
+        if let Self::Box(b) = self {
+            Domain::<f64, D>::project(b, x);
+        }
+    }
+    #[inline]
+    fn feasible_direction(&self, x: &[f64; D], d: &mut [f64; D]) {
+        if let Self::Box(b) = self {
+            b.feasible_direction(x, d);
+        }
+    }
+}
+
+/// The inverse temperature along a run, by its parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Temperature {
+    /// A constant `a`.
+    Constant(f64),
+    /// Linear annealing `a_low -> a_high` over `steps` iterations, then
+    /// `a_high`.
+    Linear {
+        /// `a_0`.
+        a_low: f64,
+        /// `a_K` and beyond.
+        a_high: f64,
+        /// `K`.
+        steps: u64,
+    },
+    /// Geometric annealing `a_low (a_high / a_low)^(k / K)`, then `a_high`.
+    Geometric {
+        /// `a_0`.
+        a_low: f64,
+        /// `a_K` and beyond.
+        a_high: f64,
+        /// `K`.
+        steps: u64,
+    },
+}
+
+impl Temperature {
+    /// The kernel's schedule, its parameters checked by the kernel.
+    pub fn schedule(self) -> Result<AnySchedule<f64>, hrla::Error> {
+        Ok(match self {
+            Self::Constant(a) => AnySchedule::Constant(Constant::new(a)?),
+            Self::Linear {
+                a_low,
+                a_high,
+                steps,
+            } => AnySchedule::Linear(Linear::new(a_low, a_high, steps)?),
+            Self::Geometric {
+                a_low,
+                a_high,
+                steps,
+            } => AnySchedule::Geometric(Geometric::new(a_low, a_high, steps)?),
+        })
+    }
+}
+
+/// Everything that determines a run: the same settings give the same bits
+/// on every target.
+#[derive(Clone)]
+pub struct Settings {
+    /// The potential.
+    pub potential: PotentialSpec,
+    /// The sampler and its parameters.
+    pub sampler: AnySampler<f64>,
+    /// The inverse temperature along the run.
+    pub schedule: AnySchedule<f64>,
+    /// The initial points.
+    pub start: StartSpec,
+    /// The box the chains are reflected into (and the polish projected
+    /// onto); none: all of `R^D`.
+    pub domain: Option<BoxSpec>,
+    /// The run's seed: chain `c` draws from
+    /// `Xoshiro256PlusPlus::seed_from_u64(hrla::chain_seed(seed, c))`.
+    pub seed: u64,
+    /// The kernel's stride of the running best.
+    pub stride: u64,
+    /// The stopping rules (none: the run goes on until stopped).
+    pub stop: Stop<f64>,
+    /// The number of chains.
+    pub chains: usize,
+    /// The dimension, when no other setting fixes it.
+    pub dim: Option<usize>,
+    /// The escape radius `R`: a chain with `|x| > R` has run away, and the
+    /// run fails ([`Error::RanAway`]) after the first step at which every
+    /// chain has run away or diverged, one at least having run away (none:
+    /// chains may wander anywhere finite).
+    pub escape: Option<f64>,
+}
+
+impl Settings {
+    /// The one dimension the settings fix: `dim`, the potential, the start
+    /// and the box must agree.
+    pub fn dimension(&self) -> Result<usize, Error> {
+        dimension(&[
+            ("dim", self.dim),
+            ("the potential", self.potential.dimension()),
+            ("the start", self.start.dimension()),
+            ("the box", self.domain.as_ref().and_then(BoxSpec::dimension)),
+        ])
+    }
+
+    /// The escape radius, squared, checked: finite and `> 0`.
+    pub(crate) fn escape2(&self) -> Result<Option<f64>, Error> {
+        self.escape
+            .map(|r| {
+                if r.is_finite() && r > 0.0 {
+                    Ok(r * r)
+                } else {
+                    Err(hrla::Error::NotPositive {
+                        name: "escape",
+                        value: r,
+                    }
+                    .into())
+                }
+            })
+            .transpose()
+    }
+
+    pub(crate) fn bounds(&self) -> Result<Bounds, Error> {
+        self.domain
+            .as_ref()
+            .map_or(Ok(Bounds::Unbounded), |b| Ok(Bounds::Box(b.interval()?)))
+    }
+}
+
+/// The one dimension that every source that fixes one agrees on:
+/// [`Error::DimensionMismatch`] when two differ, [`Error::NoDimension`]
+/// when none fixes one.
+pub fn dimension(sources: &[(&'static str, Option<usize>)]) -> Result<usize, Error> {
+    let mut found: Option<(&'static str, usize)> = None;
+    for &(name, d) in sources {
+        match (found, d) {
+            (None, Some(d)) => found = Some((name, d)),
+            (Some((first, d0)), Some(d)) if d != d0 => {
+                return Err(Error::DimensionMismatch {
+                    first,
+                    first_dim: d0,
+                    other: name,
+                    other_dim: d,
+                });
+            }
+            _ => {}
+        }
+    }
+    found.map(|(_, d)| d).ok_or(Error::NoDimension)
+}

@@ -1,0 +1,321 @@
+//! The layer runs the kernel's computation, bit for bit, whatever the front
+//! end's way of describing it; and refuses what the kernel cannot run with
+//! a typed error.
+
+use std::ops::ControlFlow;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use hrla::{
+    AnySampler, AnySchedule, Auto, Builder, Chain, Constant, Gaussian, Interval, Lbfgs, Potential,
+    Rastrigin, SamplerKind, Stop, Termination,
+};
+use hrla_dyn::auto::{Problem, solve};
+use hrla_dyn::{
+    BatchFunction, BoxSpec, BuiltinKind, BuiltinSpec, Error, PotentialSpec, Settings, StartSpec,
+    UserError,
+};
+
+fn settings(potential: PotentialSpec) -> Settings {
+    Settings {
+        potential,
+        sampler: AnySampler::paper(SamplerKind::Hrla, 0.01).unwrap(),
+        schedule: AnySchedule::Constant(Constant::new(4.0).unwrap()),
+        start: StartSpec::Isotropic {
+            centre: 3.0,
+            std_dev: 10f64.sqrt(),
+        },
+        domain: None,
+        seed: 7,
+        stride: 1,
+        stop: Stop::new().steps(200),
+        chains: 6,
+        dim: Some(10),
+        escape: None,
+    }
+}
+
+fn rastrigin() -> PotentialSpec {
+    PotentialSpec::Builtin(BuiltinSpec::Named(BuiltinKind::Rastrigin))
+}
+
+/// Rastrigin through the batch interface, counting its calls.
+struct Batched(AtomicUsize);
+
+impl BatchFunction for Batched {
+    fn evaluate(
+        &self,
+        points: &[f64],
+        d: usize,
+        values: &mut [f64],
+        grads: &mut [f64],
+    ) -> Result<(), UserError> {
+        self.0.fetch_add(1, Ordering::Relaxed);
+        assert_eq!(d, 10);
+        for ((x, v), g) in points
+            .chunks_exact(d)
+            .zip(values.iter_mut())
+            .zip(grads.chunks_exact_mut(d))
+        {
+            let x: &[f64; 10] = x.try_into().unwrap();
+            let g: &mut [f64; 10] = g.try_into().unwrap();
+            *v = Rastrigin.value_and_gradient(x, g);
+        }
+        Ok(())
+    }
+}
+
+/// The kernel's own run of the same settings, built by hand.
+fn kernel_run() -> (hrla::Report<f64>, Vec<[f64; 10]>) {
+    let chains: Vec<Chain<f64, 10>> = (0..6).map(|_| Chain::new()).collect();
+    let mut opt = Builder::new(
+        Rastrigin,
+        AnySampler::paper(SamplerKind::Hrla, 0.01).unwrap(),
+        AnySchedule::Constant(Constant::new(4.0).unwrap()),
+        Gaussian::new([3.0; 10], 10f64.sqrt()).unwrap(),
+    )
+    .seed(7)
+    .stop(Stop::new().steps(200))
+    .build(chains)
+    .unwrap();
+    let report = opt.run().unwrap();
+    (report, opt.chains().iter().map(|c| *c.x()).collect())
+}
+
+fn positions(engine: &dyn hrla_dyn::Engine) -> Vec<[f64; 10]> {
+    let l = engine.layout();
+    assert_eq!((l.n, l.d), (6, 10));
+    let x = engine.positions();
+    x.chunks_exact(10).map(|r| r.try_into().unwrap()).collect()
+}
+
+#[test]
+fn a_builtin_run_is_the_kernels_run() {
+    let (report, x) = kernel_run();
+    let mut engine = settings(rastrigin()).build().unwrap();
+    let ours = engine
+        .run(1000, &mut |_| ControlFlow::Continue(()))
+        .unwrap();
+    assert_eq!(ours, report);
+    assert_eq!(ours.termination, Termination::Steps);
+    assert_eq!(positions(&*engine), x);
+}
+
+/// A user's batched function gives the kernel's bits and is called once
+/// per step for all live chains (plus once for the initial points).
+#[test]
+fn a_batched_function_gives_the_same_bits_in_one_call_per_step() {
+    let (report, x) = kernel_run();
+    let f = Arc::new(Batched(AtomicUsize::new(0)));
+    let mut engine = settings(PotentialSpec::User(f.clone())).build().unwrap();
+    assert!(engine.is_user());
+    let ours = engine.run(1, &mut |_| ControlFlow::Continue(())).unwrap();
+    assert_eq!(ours, report);
+    assert_eq!(f.0.load(Ordering::Relaxed), 201);
+    assert_eq!(positions(&*engine), x);
+}
+
+#[test]
+fn the_observer_ends_the_run() {
+    for user in [false, true] {
+        let potential = if user {
+            PotentialSpec::User(Arc::new(Batched(AtomicUsize::new(0))))
+        } else {
+            rastrigin()
+        };
+        let mut engine = settings(potential).build().unwrap();
+        let report = engine
+            .run(1, &mut |p| {
+                if p.iteration >= 10 {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            })
+            .unwrap();
+        assert_eq!(report.termination, Termination::Observer, "user {user}");
+        assert_eq!(report.iterations, 10, "user {user}");
+    }
+}
+
+#[derive(Debug)]
+struct Refused;
+
+impl std::fmt::Display for Refused {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("refused")
+    }
+}
+
+impl std::error::Error for Refused {}
+
+/// Fails from its `after`-th call on.
+struct Failing(AtomicUsize, usize);
+
+impl BatchFunction for Failing {
+    fn evaluate(
+        &self,
+        points: &[f64],
+        d: usize,
+        values: &mut [f64],
+        grads: &mut [f64],
+    ) -> Result<(), UserError> {
+        if self.0.fetch_add(1, Ordering::Relaxed) >= self.1 {
+            return Err(Box::new(Refused));
+        }
+        Batched(AtomicUsize::new(0)).evaluate(points, d, values, grads)
+    }
+}
+
+/// A user's error comes back as it was returned, and is never a report.
+#[test]
+fn a_failing_function_is_its_own_error() {
+    let f = Arc::new(Failing(AtomicUsize::new(0), 5));
+    let mut engine = settings(PotentialSpec::User(f.clone())).build().unwrap();
+    let Err(Error::User(e)) = engine.run(1, &mut |_| ControlFlow::Continue(())) else {
+        panic!("the function's error must end the run");
+    };
+    assert!(e.downcast_ref::<Refused>().is_some());
+    assert_eq!(engine.iteration(), 4);
+    let f = Arc::new(Failing(AtomicUsize::new(0), 0));
+    assert!(matches!(
+        settings(PotentialSpec::User(f)).build().err(),
+        Some(Error::User(_))
+    ));
+}
+
+#[test]
+fn what_the_kernel_cannot_run_is_a_typed_error() {
+    let mut s = settings(rastrigin());
+    s.dim = Some(17);
+    assert!(matches!(s.build().err(), Some(Error::Dimension(17))));
+    s.dim = None;
+    assert!(matches!(s.build().err(), Some(Error::NoDimension)));
+    s.start = StartSpec::Point(vec![0.0; 3]);
+    s.dim = Some(2);
+    let e = s.build().err().unwrap();
+    assert_eq!(e.to_string(), "dim has dimension 2 but the start has 3");
+    // A box per coordinate: uniform runs, different intervals do not (yet).
+    let mut s = settings(rastrigin());
+    s.domain = Some(BoxSpec::PerCoordinate(vec![(-5.0, 5.0); 10]));
+    assert!(s.build().is_ok());
+    let mut sides = vec![(-5.0, 5.0); 10];
+    sides[3] = (0.0, 1.0);
+    s.domain = Some(BoxSpec::PerCoordinate(sides));
+    assert!(matches!(s.build().err(), Some(Error::NonUniformBox)));
+    s.domain = Some(BoxSpec::PerCoordinate(vec![(-5.0, 5.0); 3]));
+    assert!(matches!(
+        s.build().err(),
+        Some(Error::DimensionMismatch { .. })
+    ));
+    s.domain = Some(BoxSpec::Uniform { lo: 1.0, hi: 0.0 });
+    assert!(matches!(s.build().err(), Some(Error::Kernel(_))));
+    let mut s = settings(rastrigin());
+    s.chains = usize::MAX;
+    assert!(matches!(
+        s.build().err(),
+        Some(Error::Memory {
+            address_space: true,
+            ..
+        })
+    ));
+}
+
+/// The layer's `Auto` is the kernel's, bit for bit, and a batched
+/// function there gives the same bits.
+#[test]
+fn auto_is_the_kernels() {
+    let mut chains: Vec<Chain<f64, 10>> = (0..8).map(|_| Chain::new()).collect();
+    let mut lbfgs: Lbfgs<f64, 10, 8> = Lbfgs::new();
+    let domain = Interval::new(-5.12, 5.12).unwrap();
+    let kernel = Auto::default()
+        .minimize(&Rastrigin, domain, 20_000, 3, &mut chains, &mut lbfgs)
+        .unwrap();
+    for potential in [
+        rastrigin(),
+        PotentialSpec::User(Arc::new(Batched(AtomicUsize::new(0)))),
+    ] {
+        let problem = Problem {
+            potential,
+            domain: domain.into(),
+            budget: 20_000,
+            seed: 3,
+            chains: Some(8),
+            dim: Some(10),
+        };
+        let s = solve(&Auto::default(), &problem, &mut |_| {
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+        assert_eq!(s.x, kernel.x);
+        assert_eq!(s.value.to_bits(), kernel.value.to_bits());
+        assert_eq!(s.evaluations, kernel.evaluations);
+        assert_eq!(s.message, kernel.to_string());
+    }
+}
+
+/// Rastrigin as a Rust function of one point.
+struct Native;
+
+impl hrla_dyn::PointFunction for Native {
+    fn value_and_gradient(&self, x: &[f64], grad: &mut [f64]) -> f64 {
+        let x: &[f64; 10] = x.try_into().unwrap();
+        let g: &mut [f64; 10] = grad.try_into().unwrap();
+        Rastrigin.value_and_gradient(x, g)
+    }
+}
+
+#[test]
+fn a_native_function_runs_as_a_builtin() {
+    let (report, x) = kernel_run();
+    let mut engine = settings(PotentialSpec::Native(Arc::new(Native)))
+        .build()
+        .unwrap();
+    assert!(!engine.is_user());
+    let ours = engine
+        .run(1000, &mut |_| ControlFlow::Continue(()))
+        .unwrap();
+    assert_eq!(ours, report);
+    assert_eq!(positions(&*engine), x);
+}
+
+/// A step far too long (h = 1): the chains grow geometrically with
+/// finite values, so the kernel sees no divergence; with an escape radius
+/// the run fails at the first step where every chain is beyond it, whether
+/// stepped or run, and keeps failing.
+#[test]
+fn every_chain_beyond_the_escape_radius_fails_the_run() {
+    let mut s = settings(rastrigin());
+    s.sampler = AnySampler::paper(SamplerKind::Hrla, 1.0).unwrap();
+    s.dim = Some(2);
+    s.chains = 16;
+    s.start = StartSpec::Gaussian {
+        mean: vec![3.0, 3.0],
+        std_dev: 0.5,
+    };
+    s.stop = Stop::new().steps(10_000);
+    s.escape = Some(5000.0);
+    let mut stepped = s.build().unwrap();
+    let Err(Error::RanAway(away)) = stepped.step(10_000) else {
+        panic!("the chains must run away");
+    };
+    let at = stepped.iteration();
+    assert!(at > 1 && at < 1000, "failed at {at}");
+    assert_eq!((away.chains, away.radius, away.diverged), (16, 5000.0, 0));
+    assert!(away.farthest > 5000.0 && away.farthest.is_finite());
+    for x in stepped.positions().chunks_exact(2) {
+        assert!(x[0].hypot(x[1]) > 5000.0);
+    }
+    assert!(matches!(stepped.step(1), Err(Error::RanAway(a)) if a == away));
+    let mut run = s.build().unwrap();
+    let Err(Error::RanAway(same)) = run.run(1, &mut |_| ControlFlow::Continue(())) else {
+        panic!("run must fail the same way");
+    };
+    assert_eq!((same, run.iteration()), (away, at));
+    assert!(run.report_now().is_none());
+    // Without a radius the same run goes on; a radius must be positive.
+    s.escape = None;
+    assert!(s.build().unwrap().step(at + 10).is_ok());
+    s.escape = Some(-1.0);
+    assert!(matches!(s.build().err(), Some(Error::Kernel(_))));
+}
