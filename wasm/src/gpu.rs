@@ -12,7 +12,7 @@
 //! of each step of a dispatch.
 
 use hrla::{AnyKernel, AnySampler, Float, Kernel, OlaKernel, OuKernel, SamplerKind};
-use hrla::{Sampler as _, chain_seed};
+use hrla::{Sampler as _, StandardNormal, chain_seed};
 use rand_xoshiro::Xoshiro128PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use wasm_bindgen::prelude::*;
@@ -104,6 +104,21 @@ pub fn coefficients(sampler: &str, h: f64, a: f64) -> Result<Vec<f64>, JsError> 
     Ok(step_coefficients(kind, h, a).map_err(refuse)?.to_vec())
 }
 
+/// Refuses a start `N(centre, spread^2 I)` that is not finite in f32.
+fn check_start(centre_x: f64, centre_y: f64, spread: f64) -> Result<(), JsError> {
+    for (name, v) in [("cx", centre_x), ("cy", centre_y)] {
+        if !(v as f32).is_finite() {
+            return Err(refuse(format!("{name} must be a finite number, not {v}")));
+        }
+    }
+    if !(spread >= 0.0 && (spread as f32).is_finite()) {
+        return Err(refuse(format!(
+            "spread must be a finite number at least 0, not {spread}"
+        )));
+    }
+    Ok(())
+}
+
 /// The constants buffer of a run (see the module's layout), in f32: the
 /// Ziggurat's tables rounded as the kernel's f32 normals round them, the
 /// start `N(centre, spread^2 I)`, and [`GPU_MAX_STEPS`] copies of the
@@ -120,16 +135,7 @@ pub fn gpu_tables(
 ) -> Result<Vec<f32>, JsError> {
     let kind = sampler_kind(sampler)?;
     let coefficients = step_coefficients(kind, h, a).map_err(refuse)?;
-    for (name, v) in [("cx", centre_x), ("cy", centre_y)] {
-        if !v.is_finite() || !(v as f32).is_finite() {
-            return Err(refuse(format!("{name} must be a finite number, not {v}")));
-        }
-    }
-    if !(spread >= 0.0 && (spread as f32).is_finite()) {
-        return Err(refuse(format!(
-            "spread must be a finite number at least 0, not {spread}"
-        )));
-    }
+    check_start(centre_x, centre_y, spread)?;
     let mut t = Vec::with_capacity((GPU_COEF_OFFSET + 8 * GPU_MAX_STEPS) as usize);
     t.extend(ziggurat_tables::X.iter().map(|&v| v as f32));
     t.extend(ziggurat_tables::F.iter().map(|&v| v as f32));
@@ -161,6 +167,39 @@ pub fn gpu_generators(seed: u64, first: u32, count: u32) -> Result<Vec<u32>, JsE
         );
     }
     Ok(words)
+}
+
+/// The start of chains `first .. first + count` of a run of `seed` from
+/// `N(centre, spread^2 I)`, as the kernel draws it in f32 on the CPU from
+/// the generators of [`gpu_generators`]: `centre_i + spread * z` with the
+/// kernel's `f32::standard_normal`, coordinate-major (`x1` of the `k`-th
+/// chain at `k`, `x2` at `count + k`). The device's `init` draws the same
+/// numbers; the browser tests compare the two bit for bit.
+#[wasm_bindgen]
+pub fn gpu_kernel_starts(
+    seed: u64,
+    first: u32,
+    count: u32,
+    centre_x: f64,
+    centre_y: f64,
+    spread: f64,
+) -> Result<Vec<f32>, JsError> {
+    check_start(centre_x, centre_y, spread)?;
+    let words = gpu_generators(seed, first, count)?;
+    let (m, s) = ([centre_x as f32, centre_y as f32], spread as f32);
+    let n = count as usize;
+    let mut out = vec![0.0f32; 2 * n];
+    for (k, w) in words.chunks_exact(4).enumerate() {
+        let mut state = [0u8; 16];
+        for (bytes, word) in state.chunks_exact_mut(4).zip(w) {
+            bytes.copy_from_slice(&word.to_le_bytes());
+        }
+        let mut rng = Xoshiro128PlusPlus::from_seed(state);
+        for (i, mi) in m.iter().enumerate() {
+            out[i * n + k] = mi + s * f32::standard_normal(&mut rng);
+        }
+    }
+    Ok(out)
 }
 
 /// The most chains the page's device path runs.
@@ -445,6 +484,15 @@ mod tests {
         let s = Xoshiro128PlusPlus::seed_from_u64(chain_seed(7, 4)).state();
         assert_eq!(w[4], u32::from_le_bytes([s[0], s[1], s[2], s[3]]));
         assert_eq!(w.len(), 8);
+    }
+
+    #[test]
+    fn kernel_starts_are_the_kernels_gaussian_draws() {
+        let x = gpu_kernel_starts(5, 10, 3, 3.0, -1.0, 0.5).unwrap();
+        let mut rng = Xoshiro128PlusPlus::seed_from_u64(chain_seed(5, 11));
+        let x1 = 3.0f32 + 0.5 * f32::standard_normal(&mut rng);
+        let x2 = -1.0f32 + 0.5 * f32::standard_normal(&mut rng);
+        assert_eq!((x[1], x[3 + 1]), (x1, x2));
     }
 
     #[test]

@@ -94,8 +94,8 @@ function moments(xs) {
 }
 
 for (const sampler of ["hrla", "ula", "ola"]) {
-  test(`${sampler.toUpperCase()} on the device: the chains' law after 40 steps is the closed form on the bowl`, async (t) => {
-    const [a, step, cx, cy, spread, k, n] = [1, 0.05, 2, -1, 0.5, 40, 20_000];
+  test(`${sampler.toUpperCase()} on the device: the chains' law after 20 steps is the closed form on the bowl`, async (t) => {
+    const [a, step, cx, cy, spread, k, n] = [1, 0.1, 4, -2, 0.5, 20, 100_000];
     await openPaused({ potential: "quadratic", sampler, a, h: step, cx, cy, spread, seed: 11 });
     if (!(await adapterOr(t))) return;
     await startRun(n);
@@ -121,6 +121,20 @@ for (const sampler of ["hrla", "ula", "ola"]) {
     }
   });
 }
+
+test("the device's starts are the kernel's f32 Gaussian draws from chain_seed's xoshiro128++, bit for bit", async (t) => {
+  const [seed, cx, cy, spread, n] = [9, 2.5, -1.25, 0.7, 4096];
+  await openPaused({ potential: "rastrigin", sampler: "hrla", seed, cx, cy, spread });
+  if (!(await adapterOr(t))) return;
+  await startRun(n);
+  const device = await positions();
+  const kernel = await h.page.evaluate(
+    async (args) => Array.from((await import("/pkg/hrla_wasm.js")).gpu_kernel_starts(...args)),
+    [BigInt(seed), 0, n, cx, cy, spread],
+  );
+  const first = device.findIndex((v, i) => !Object.is(v, kernel[i]));
+  assert.equal(first, -1, `first difference at ${first}: device ${device[first]}, kernel ${kernel[first]}`);
+});
 
 test("the same seed gives the same chains, bit for bit; another seed others", async (t) => {
   await openPaused({ potential: "rastrigin", sampler: "hrla", seed: 3 });
