@@ -28,9 +28,44 @@ function setState(state, message) {
 }
 
 /**
+ * Over the density (on its own canvas, so that the density's pixels stay
+ * the counts' colours): the global minimisers as crosses, the axes where
+ * they cross the view, and the view's box in words.
+ */
+function drawMarks(box, minimisers) {
+  const canvas = $("gpu-marks");
+  const size = Math.round(canvas.clientWidth * (window.devicePixelRatio || 1)) || 512;
+  canvas.width = canvas.height = size;
+  const ctx = canvas.getContext("2d");
+  const [x0, x1, y0, y1] = box;
+  const px = (x) => ((x - x0) / (x1 - x0)) * size;
+  const py = (y) => ((y1 - y) / (y1 - y0)) * size;
+  ctx.strokeStyle = "rgba(255, 255, 255, 0.25)";
+  ctx.lineWidth = 1;
+  ctx.beginPath();
+  if (x0 < 0 && x1 > 0) ctx.moveTo(px(0), 0), ctx.lineTo(px(0), size);
+  if (y0 < 0 && y1 > 0) ctx.moveTo(0, py(0)), ctx.lineTo(size, py(0));
+  ctx.stroke();
+  ctx.strokeStyle = "rgba(255, 90, 54, 0.9)";
+  ctx.lineWidth = 2;
+  const arm = size / 40;
+  for (const [x, y] of minimisers) {
+    ctx.beginPath();
+    ctx.moveTo(px(x) - arm, py(y) - arm);
+    ctx.lineTo(px(x) + arm, py(y) + arm);
+    ctx.moveTo(px(x) - arm, py(y) + arm);
+    ctx.lineTo(px(x) + arm, py(y) - arm);
+    ctx.stroke();
+  }
+  const f = (v) => +v.toPrecision(4);
+  $("gpu-view").textContent = `The view [${f(x0)}, ${f(x1)}] × [${f(y0)}, ${f(y1)}] (the picture's above), ${BINS} × ${BINS} cells; crosses: the global minimisers; faint lines: the axes.`;
+}
+
+/**
  * Wires the section to the page: `page.settings()` gives the page's run
  * settings and problems ({ settings, problems }), `page.box()` the view
- * [x0, x1, y0, y1], `page.annealing()` whether a schedule is chosen.
+ * [x0, x1, y0, y1], `page.minimisers()` the landscape's global
+ * minimisers, `page.annealing()` whether a schedule is chosen.
  */
 export async function setUpGpuSection(page) {
   const g = { device: null, label: "", run: null, playing: false, busy: null, lastRate: NaN };
@@ -69,6 +104,7 @@ export async function setUpGpuSection(page) {
     const d = await run.density(page.box(), BINS, BINS);
     g.density = d;
     paintDensity($("gpu-density"), d, VIRIDIS);
+    drawMarks(page.box(), page.minimisers());
     setOutput("gpu-iteration", String(run.iteration), run.iteration);
     setOutput("gpu-best", Number.isFinite(d.best) ? d.best.toExponential(3) : "–", d.best);
     setOutput("gpu-lowest", Number.isFinite(d.lowest) ? d.lowest.toExponential(3) : "–", d.lowest);
@@ -137,6 +173,7 @@ export async function setUpGpuSection(page) {
     }
   }
 
+  g.device.addEventListener("uncapturederror", (e) => fail(new Error(`the device reported: ${e.error.message}`)));
   $("gpu-start").addEventListener("click", start);
   $("gpu-forward").addEventListener("click", () => {
     const k = stepsWanted();

@@ -1126,6 +1126,7 @@ async function main() {
   await gpu.setUpGpuSection({
     settings: readSettings,
     box: () => [state.frame.x0, state.frame.x1, state.frame.y0, state.frame.y1],
+    minimisers: () => state.land.minimisers ?? [],
     annealing: () => radio("schedule") === "linear",
   });
 }
