@@ -136,6 +136,13 @@ pub fn gpu_tables(
     let kind = sampler_kind(sampler)?;
     let coefficients = step_coefficients(kind, h, a).map_err(refuse)?;
     check_start(centre_x, centre_y, spread)?;
+    // The kernel's f64 coefficients may be finite where f32 is not (OLA's
+    // drift at h = 1e39): the device would step by infinity.
+    if let Some(c) = coefficients.iter().find(|&&c| !(c as f32).is_finite()) {
+        return Err(refuse(format!(
+            "at h = {h} and a = {a} the step's coefficient {c:e} exceeds f32, the device's float"
+        )));
+    }
     let mut t = Vec::with_capacity((GPU_COEF_OFFSET + 8 * GPU_MAX_STEPS) as usize);
     t.extend(ziggurat_tables::X.iter().map(|&v| v as f32));
     t.extend(ziggurat_tables::F.iter().map(|&v| v as f32));
