@@ -7,7 +7,7 @@
 // state is in data attributes (`#gpu-status[data-state]`, each readout's
 // `data-value`). Steps happen only on "+ steps" (an exact count) or Play.
 
-import { GpuRun, maxGpuChains, openDevice, paintDensity } from "./gpu.js";
+import { GpuRun, findAdapter, maxGpuChains, openDevice, paintDensity } from "./gpu.js";
 import { VIRIDIS } from "./colormap.js";
 
 /** Bins per side of the density. */
@@ -68,23 +68,31 @@ function drawMarks(box, minimisers) {
  * minimisers, `page.annealing()` whether a schedule is chosen.
  */
 export async function setUpGpuSection(page) {
-  const g = { device: null, label: "", run: null, playing: false, busy: null, lastRate: NaN };
+  const g = { adapter: null, device: null, label: "", run: null, playing: false, busy: null, lastRate: NaN };
   window.hrlaGpu = g;
-  const opened = await openDevice();
-  if (!opened.device) {
+  const found = await findAdapter();
+  if (!found.adapter) {
     setState(
       "unavailable",
-      `No WebGPU here: ${opened.why}. The chains run on the CPU, in WebAssembly, in the picture above (up to 1024 of them).`,
+      `No WebGPU here: ${found.why}. The chains run on the CPU, in WebAssembly, in the picture above (up to 1024 of them).`,
     );
     return g;
   }
-  g.device = opened.device;
-  g.label = opened.label;
+  g.adapter = found.adapter;
+  g.label = found.label;
   $("gpu-panel").hidden = false;
   setState("ready", `WebGPU adapter: ${g.label}. Start runs the settings above on it.`);
-  g.device.lost.then((info) => {
-    if (info.reason !== "destroyed") setState("lost", `The WebGPU device was lost (${info.message}); reload the page to use it again.`);
-  });
+
+  /** The device, asked for at the first start. */
+  const device = async () => {
+    if (g.device) return g.device;
+    g.device = await openDevice(g.adapter);
+    g.device.lost.then((info) => {
+      if (info.reason !== "destroyed") setState("lost", `The WebGPU device was lost (${info.message}); reload the page to use it again.`);
+    });
+    g.device.addEventListener("uncapturederror", (e) => fail(new Error(`the device reported: ${e.error.message}`)));
+    return g.device;
+  };
 
   const fail = (e) => {
     $("gpu-error").textContent = e.message;
@@ -129,7 +137,7 @@ export async function setUpGpuSection(page) {
       const text = $("gpu-chains").value.trim();
       const chains = /^[0-9]+$/.test(text) ? Number(text) : NaN;
       try {
-        g.run = new GpuRun(g.device, { ...settings, chains });
+        g.run = new GpuRun(await device(), { ...settings, chains });
       } catch (e) {
         if (e.field === "gpu-chains") $("err-gpu-chains").textContent = `N ${e.message}`;
         throw e;
@@ -173,7 +181,6 @@ export async function setUpGpuSection(page) {
     }
   }
 
-  g.device.addEventListener("uncapturederror", (e) => fail(new Error(`the device reported: ${e.error.message}`)));
   $("gpu-start").addEventListener("click", start);
   $("gpu-forward").addEventListener("click", () => {
     const k = stepsWanted();

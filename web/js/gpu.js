@@ -20,10 +20,11 @@ const DIVERGED = 1;
 export const maxGpuChains = () => gpu_max_chains();
 
 /**
- * The browser's WebGPU device, or why there is none: { device, adapter,
- * label } or { why }.
+ * The browser's WebGPU adapter, or why there is none: { adapter, label } or
+ * { why }. The device itself is asked for only when a run starts
+ * (`openDevice`), so that a visitor who never starts one holds none.
  */
-export async function openDevice() {
+export async function findAdapter() {
   if (!navigator.gpu) return { why: "this browser has no WebGPU" };
   let adapter;
   try {
@@ -32,16 +33,19 @@ export async function openDevice() {
     return { why: `WebGPU refused an adapter (${e.message})` };
   }
   if (!adapter) return { why: "this browser offers no WebGPU adapter" };
-  const need = 32 * 1024 * 1024;
-  const limits = {};
-  // The status of 10^6 chains is 24 MB; ask for what the adapter allows.
-  for (const name of ["maxStorageBufferBindingSize", "maxBufferSize"]) {
-    limits[name] = Math.min(adapter.limits[name], Math.max(need, 128 * 1024 * 1024));
-  }
-  const device = await adapter.requestDevice({ requiredLimits: limits });
   const info = adapter.info ?? {};
   const label = [info.vendor, info.architecture, info.description].filter(Boolean).join(" ") || "WebGPU adapter";
-  return { device, adapter, label };
+  return { adapter, label };
+}
+
+/** A device of `adapter` with storage bindings large enough for 10^6 chains (the status: 24 MB). */
+export function openDevice(adapter) {
+  const want = 128 * 1024 * 1024;
+  const requiredLimits = {};
+  for (const name of ["maxStorageBufferBindingSize", "maxBufferSize"]) {
+    requiredLimits[name] = Math.min(adapter.limits[name], want);
+  }
+  return adapter.requestDevice({ requiredLimits });
 }
 
 /** Bins each live chain's position into a grid, and finds the lowest running best and current value. */
