@@ -502,6 +502,40 @@ mod tests {
         assert_eq!((x[1], x[3 + 1]), (x1, x2));
     }
 
+    /// The pieces of `hrla-gpu`'s `shader.rs` that this module repeats
+    /// (that crate runs on wgpu, which the page's wasm does not link): its
+    /// steps word for word, its fdlibm constants and sine and cosine
+    /// coefficients, checked against its source so that the two cannot
+    /// drift apart.
+    #[test]
+    fn the_repeated_pieces_are_hrla_gpus() {
+        let shader = include_str!("../../gpu/src/shader.rs");
+        assert!(shader.contains(OU_STEP), "OU_STEP");
+        assert!(shader.contains(OLA_STEP), "OLA_STEP");
+        assert!(shader.contains("pub(crate) const WORKGROUP: u32 = 64;"));
+        for bits in SIN.iter().chain(&COS) {
+            let hex = format!("{bits:016X}");
+            let written = format!(
+                "0x{}_{}_{}_{},",
+                &hex[0..4],
+                &hex[4..8],
+                &hex[8..12],
+                &hex[12..16]
+            );
+            assert!(shader.contains(&written), "{written}");
+        }
+        for (name, value) in FDLIBM {
+            let head = format!("(\"{name}\", ");
+            let at = shader.find(&head).expect(name) + head.len();
+            let end = at + shader[at..].find(')').unwrap();
+            let theirs: f32 = shader[at..end].parse().unwrap();
+            assert_eq!(theirs.to_bits(), value.to_bits(), "{name}");
+        }
+        // The Gaussian start and the layout of the constants buffer.
+        assert!(shader.contains("u_star: (514 + dim + 1) as u32"));
+        assert!(shader.contains("\"x[i] = tables[{m}u + i] + mul(tables[{s}u], normal());\""));
+    }
+
     #[test]
     fn every_page_landscape_has_a_program() {
         for name in POTENTIALS {
