@@ -65,7 +65,8 @@ function drawMarks(box, minimisers) {
  * Wires the section to the page: `page.settings()` gives the page's run
  * settings and problems ({ settings, problems }), `page.box()` the view
  * [x0, x1, y0, y1], `page.minimisers()` the landscape's global
- * minimisers, `page.annealing()` whether a schedule is chosen.
+ * minimisers, `page.cpuChains()` the CPU runs' most chains,
+ * `page.annealing()` whether a schedule is chosen.
  */
 export async function setUpGpuSection(page) {
   const g = { adapter: null, device: null, label: "", run: null, playing: false, busy: null, lastRate: NaN };
@@ -74,7 +75,7 @@ export async function setUpGpuSection(page) {
   if (!found.adapter) {
     setState(
       "unavailable",
-      `No WebGPU here: ${found.why}. The chains run on the CPU, in WebAssembly, in the picture above (up to 1024 of them).`,
+      `No WebGPU here: ${found.why}. The chains run on the CPU, in WebAssembly, in the picture above (up to ${page.cpuChains()} of them).`,
     );
     return g;
   }

@@ -1127,6 +1127,7 @@ async function main() {
     settings: readSettings,
     box: () => [state.frame.x0, state.frame.x1, state.frame.y0, state.frame.y1],
     minimisers: () => state.land.minimisers ?? [],
+    cpuChains: () => sim.maxChains(),
     annealing: () => radio("schedule") === "linear",
   });
 }

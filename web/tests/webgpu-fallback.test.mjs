@@ -18,7 +18,11 @@ test("without navigator.gpu the section says so, and the CPU run steps", async (
   await openPaused({ potential: "quadratic", spf: 50 });
   await settled(h.page);
   assert.equal(await h.page.getAttribute("#gpu-status", "data-state"), "unavailable");
-  assert.match(await h.page.textContent("#gpu-status"), /No WebGPU here: this browser has no WebGPU\. The chains run on the CPU/);
+  const max = await h.page.evaluate(async () => (await import("/pkg/hrla_wasm.js")).max_chains());
+  assert.equal(
+    await h.page.textContent("#gpu-status"),
+    `No WebGPU here: this browser has no WebGPU. The chains run on the CPU, in WebAssembly, in the picture above (up to ${max} of them).`,
+  );
   assert.equal(await h.page.isVisible("#gpu-panel"), false);
   assert.equal(await h.page.isVisible("#gpu-start"), false);
   await advance(50);
