@@ -96,6 +96,7 @@ export async function setUpGpuSection(page) {
   };
 
   const fail = (e) => {
+    setPlaying(false);
     $("gpu-error").textContent = e.message;
     setState("error", "The WebGPU run stopped: see the message below.");
   };

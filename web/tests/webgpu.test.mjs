@@ -215,4 +215,19 @@ test("refused settings: N beyond 10^6, a step the kernel refuses; no run is left
   assert.equal(await h.page.evaluate(() => window.hrlaGpu.run), null);
 });
 
+test("a run whose every chain diverges says so and stops; it never reads as a result", async (t) => {
+  // OLA on the bowl at h = 2.5: x' = -1.5 x + noise, past f32's range
+  // within 300 steps from |x| about 3.
+  await openPaused({ potential: "quadratic", sampler: "ola", a: 1, h: 2.5, cx: 3, cy: 3, spread: 0.5, seed: 2 });
+  if (!(await adapterOr(t))) return;
+  await startRun(1000);
+  await h.page.fill("#gpu-steps", "300");
+  await h.page.click("#gpu-forward");
+  await h.page.waitForFunction(() => document.getElementById("gpu-status").dataset.state === "error", null, { timeout: 60_000 });
+  assert.equal(await h.page.textContent("#gpu-error"), "Every chain diverged: the step h is too long for this landscape.");
+  assert.equal(await h.page.getAttribute("#gpu-diverged", "data-value"), "1000");
+  assert.equal(await h.page.getAttribute("#gpu-lowest", "data-value"), "NaN");
+  assert.equal(await h.page.getAttribute("#gpu-play", "aria-pressed"), "false");
+});
+
 test("no console errors, failed requests or requests leaving 127.0.0.1", noProblems);
