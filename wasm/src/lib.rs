@@ -56,6 +56,7 @@
 mod descent;
 mod error;
 mod formula;
+mod gpu;
 mod landscape;
 mod read;
 mod settings;

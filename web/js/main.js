@@ -1144,6 +1144,15 @@ async function main() {
   window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now), anatomySpans: drawAnatomy };
   document.body.dataset.ready = "true";
   requestAnimationFrame(tick);
+  // The WebGPU section (its own runs; the page's above are unchanged).
+  const gpu = await import("./gpu-section.js");
+  await gpu.setUpGpuSection({
+    settings: readSettings,
+    box: () => [state.frame.x0, state.frame.x1, state.frame.y0, state.frame.y1],
+    minimisers: () => state.land.minimisers ?? [],
+    cpuChains: () => sim.maxChains(),
+    annealing: () => radio("schedule") === "linear",
+  });
 }
 
 main().catch((e) => fatal(`The demo stopped: ${e.message}`));

@@ -24,13 +24,16 @@ const FLAGS = [
   "--disable-sync",
 ];
 
-/** A browser context on a fresh user data dir; close() also removes the dir. */
-export async function launch(viewport = { width: 1280, height: 800 }) {
+/**
+ * A browser context on a fresh user data dir; close() also removes the dir.
+ * `args`: more command-line flags (the WebGPU tests' `--enable-unsafe-webgpu`).
+ */
+export async function launch(viewport = { width: 1280, height: 800 }, args = []) {
   const profile = mkdtempSync(join(tmpdir(), "hrla-chromium-"));
   const context = await chromium.launchPersistentContext(profile, {
     executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
     headless: true,
-    args: FLAGS,
+    args: [...FLAGS, ...args],
     viewport,
   });
   const close = async () => {

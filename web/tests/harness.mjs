@@ -20,14 +20,14 @@ export { OUT, ROOT, SHOTS };
 /** The shared state of one test file: filled by `setUp`. */
 export const h = { server: null, base: "", browser: null, page: null, problems: [] };
 
-/** Registers the before/after hooks of a test file: server, browser, page, watchers. */
-export function setUp(viewport) {
+/** Registers the before/after hooks of a test file: server, browser (with more flags `args`), page, watchers. */
+export function setUp(viewport, args = []) {
   before(async () => {
     mkdirSync(OUT, { recursive: true });
     mkdirSync(SHOTS, { recursive: true });
     h.server = await startServer(join(ROOT, "web"), 0);
     h.base = `http://127.0.0.1:${h.server.address().port}/`;
-    h.browser = await launch(viewport);
+    h.browser = await launch(viewport, args);
     h.page = h.browser.context.pages()[0] ?? (await h.browser.context.newPage());
     watch(h.page);
   });
@@ -42,6 +42,9 @@ export function watch(page) {
   page.on("console", (m) => {
     // Chromium's advice on getImageData comes from the tests' own pixel reads.
     if (/willReadFrequently/.test(m.text())) return;
+    // Chromium's note that this machine has no WebGPU adapter (the page
+    // then says so itself, and runs on the CPU).
+    if (m.type() === "warning" && m.text() === "No available adapters.") return;
     if (m.type() === "error" || m.type() === "warning") h.problems.push(`console ${m.type()}: ${m.text()}`);
   });
   page.on("pageerror", (e) => h.problems.push(`page error: ${e.message}`));
