@@ -222,6 +222,7 @@
 #![deny(missing_docs)]
 
 mod auto;
+mod dim;
 mod domain;
 mod error;
 mod float;
@@ -237,17 +238,18 @@ mod start;
 mod ziggurat_tables;
 
 pub use auto::{Auto, AutoProgress, Solution, Tempering};
-pub use domain::{Domain, Interval, Unbounded};
+pub use dim::{Const, Dim, Dyn};
+pub use domain::{Bounds, Domain, Interval, SliceDomain, Unbounded};
 pub use error::Error;
 pub use float::Float;
 pub use lockstep::{LANES, Lane, Xoshiro256Lanes};
 pub use normal::StandardNormal;
 pub use optimizer::*;
-pub use polish::{Lbfgs, PolishEnd, PolishSettings, Polished};
+pub use polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished};
 pub use potential::*;
 pub use sampler::*;
 pub use schedule::{AnySchedule, Constant, FnSchedule, Geometric, Linear, Schedule};
-pub use start::{FromFn, Gaussian, Point, Start};
+pub use start::{FromFn, FromSliceFn, Gaussian, Point, SliceStart, Start};
 
 pub use heapless;
 pub use rand_core;

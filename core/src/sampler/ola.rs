@@ -3,7 +3,7 @@
 
 use rand_core::Rng;
 
-use super::traits::{ChainState, Kernel, Sampler, StepMoments};
+use super::traits::{ChainSlices, ChainState, Kernel, LaneChain, Sampler, StepMoments};
 use crate::error::{Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
@@ -120,10 +120,34 @@ impl<F: Float> Kernel<F> for OlaKernel<F> {
         mut chains: [ChainState<'_, F, D>; LANES],
         rng: &mut Xoshiro256Lanes,
     ) {
-        for i in 0..D {
+        self.lanes(&mut chains, D, rng);
+    }
+
+    #[inline]
+    fn step_slice<R: Rng + ?Sized>(&self, x: &mut [F], _y: &mut [F], grad: &[F], rng: &mut R) {
+        for (xi, &gi) in x.iter_mut().zip(grad) {
+            let z = F::standard_normal(rng);
+            *xi = *xi - self.drift * gi + self.noise * z;
+        }
+    }
+
+    #[inline]
+    fn step_lanes_slice(&self, mut chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+        let d = chains[0].x.len();
+        self.lanes(&mut chains, d, rng);
+    }
+}
+
+impl<F: Float> OlaKernel<F> {
+    /// The `d` coordinates of [`LANES`] chains, every chain's normal of a
+    /// coordinate in lockstep.
+    #[inline(always)]
+    fn lanes<C: LaneChain<F>>(&self, chains: &mut [C; LANES], d: usize, rng: &mut Xoshiro256Lanes) {
+        let mut parts = chains.each_mut().map(|c| c.parts());
+        for i in 0..d {
             let z = F::standard_normal_lanes(rng);
-            for (chain, &zl) in chains.iter_mut().zip(&z) {
-                chain.x[i] = chain.x[i] - self.drift * chain.grad[i] + self.noise * zl;
+            for ((x, _, grad), &zl) in parts.iter_mut().zip(&z) {
+                x[i] = x[i] - self.drift * grad[i] + self.noise * zl;
             }
         }
     }

@@ -44,7 +44,7 @@
 
 use rand_core::Rng;
 
-use super::traits::{ChainState, Kernel, StepMoments};
+use super::traits::{ChainSlices, ChainState, Kernel, LaneChain, StepMoments};
 use crate::error::{ALPHA_H, Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
@@ -313,14 +313,48 @@ impl<F: Float> Kernel<F> for OuKernel<F> {
         rng: &mut Xoshiro256Lanes,
     ) {
         if D <= BLOCK {
-            self.step_lanes_block::<D, D>(&mut chains, 0, rng);
+            self.step_lanes_block::<_, D>(&mut chains, D, 0, rng);
         } else {
             for start in (0..D).step_by(BLOCK) {
-                self.step_lanes_block::<D, BLOCK>(&mut chains, start, rng);
+                self.step_lanes_block::<_, BLOCK>(&mut chains, D, start, rng);
+            }
+        }
+    }
+
+    /// [`step`](Kernel::step)'s draws and updates in blocks of a size
+    /// fixed at compile time (16 coordinates for small points, 64 beyond):
+    /// the stream and the arithmetic do not depend on the blocks.
+    #[inline]
+    fn step_slice<R: Rng + ?Sized>(&self, x: &mut [F], y: &mut [F], grad: &[F], rng: &mut R) {
+        if x.len() <= SMALL_BLOCK {
+            self.step_block::<R, SMALL_BLOCK>(x, y, grad, rng);
+        } else {
+            for ((xb, yb), gb) in x
+                .chunks_mut(BLOCK)
+                .zip(y.chunks_mut(BLOCK))
+                .zip(grad.chunks(BLOCK))
+            {
+                self.step_block::<R, BLOCK>(xb, yb, gb, rng);
+            }
+        }
+    }
+
+    #[inline]
+    fn step_lanes_slice(&self, mut chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+        let d = chains[0].x.len();
+        if d <= SMALL_BLOCK {
+            self.step_lanes_block::<_, SMALL_BLOCK>(&mut chains, d, 0, rng);
+        } else {
+            for start in (0..d).step_by(BLOCK) {
+                self.step_lanes_block::<_, BLOCK>(&mut chains, d, start, rng);
             }
         }
     }
 }
+
+/// The block of [`Kernel::step_slice`] for points of at most this many
+/// coordinates: a buffer small enough to cost nothing to set up.
+const SMALL_BLOCK: usize = 16;
 
 /// Coordinates stepped together: all of a block's draws first, then its
 /// update, so that the update's loop has no branch and vectorises (the
@@ -353,13 +387,14 @@ impl<F: Float> OuKernel<F> {
     /// chain's normals in lockstep first, then each chain's update, which
     /// vectorises over its coordinates.
     #[inline]
-    fn step_lanes_block<const D: usize, const B: usize>(
+    fn step_lanes_block<C: LaneChain<F>, const B: usize>(
         &self,
-        chains: &mut [ChainState<'_, F, D>; LANES],
+        chains: &mut [C; LANES],
+        d: usize,
         start: usize,
         rng_out: &mut Xoshiro256Lanes,
     ) {
-        let n = D.min(start + B) - start;
+        let n = d.min(start + B) - start;
         // A local copy: its address never escapes, so the generators stay
         // in vector registers.
         let mut lanes = *rng_out;
@@ -373,9 +408,10 @@ impl<F: Float> OuKernel<F> {
         }
         *rng_out = lanes;
         for ((chain, z1), z2) in chains.iter_mut().zip(&z1).zip(&z2) {
-            let x = &mut chain.x[start..start + n];
-            let y = &mut chain.y[start..start + n];
-            let grad = &chain.grad[start..start + n];
+            let (x, y, grad) = chain.parts();
+            let x = &mut x[start..start + n];
+            let y = &mut y[start..start + n];
+            let grad = &grad[start..start + n];
             for i in 0..n {
                 self.apply(&mut x[i], &mut y[i], grad[i], z1[i], z2[i]);
             }
