@@ -484,3 +484,31 @@ fn bad_shapes_are_refused() {
         Err(Error::Zero { .. })
     ));
 }
+
+/// Every built-in potential gives the same bits through `Potential<F, 17>`
+/// and `SlicePotential<F>` (the same code), at points across its domain.
+#[test]
+fn built_ins_are_the_same_through_slices() {
+    fn check<P: Potential<f64, D> + SlicePotential<f64>>(p: P, name: &str) {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..200 {
+            let x: [f64; D] = core::array::from_fn(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                (state >> 11) as f64 / (1u64 << 53) as f64 * 20.0 - 10.0
+            });
+            let (mut ga, mut gs) = ([0.0; D], [0.0; D]);
+            let ua = Potential::value_and_gradient(&p, &x, &mut ga);
+            let us = SlicePotential::value_and_gradient(&p, &x[..], &mut gs[..]);
+            assert_eq!(ua.to_bits(), us.to_bits(), "{name}");
+            assert_eq!(bits(&ga), bits(&gs), "{name}");
+        }
+    }
+    check(Rastrigin, "rastrigin");
+    check(hrla::Ackley, "ackley");
+    check(hrla::Levy, "levy");
+    check(hrla::DoubleWell, "double well");
+    check(hrla::StyblinskiTang, "styblinski-tang");
+    check(hrla::Quadratic::new(2.0, [1.0; D]).unwrap(), "quadratic");
+}
