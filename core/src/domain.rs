@@ -304,12 +304,12 @@ impl<F: Float, const D: usize> Domain<F, D> for Interval<F> {
 }
 
 impl<F: Float> SliceDomain<F> for Interval<F> {
-    #[inline]
+    #[inline(always)]
     fn confine(&self, x: &mut [F], y: &mut [F]) {
         confine_each(x, y, |_| self.lo, |_| self.hi);
     }
 
-    #[inline]
+    #[inline(always)]
     fn project(&self, x: &mut [F]) {
         project_each(x, |_| self.lo, |_| self.hi);
     }
@@ -427,13 +427,13 @@ impl<F: Float, S: AsRef<[F]>, const D: usize> Domain<F, D> for Bounds<F, S> {
 }
 
 impl<F: Float, S: AsRef<[F]>> SliceDomain<F> for Bounds<F, S> {
-    #[inline]
+    #[inline(always)]
     fn confine(&self, x: &mut [F], y: &mut [F]) {
         let (lo, hi) = self.sides();
         confine_each(x, y, |i| lo[i], |i| hi[i]);
     }
 
-    #[inline]
+    #[inline(always)]
     fn project(&self, x: &mut [F]) {
         let (lo, hi) = self.sides();
         project_each(x, |i| lo[i], |i| hi[i]);

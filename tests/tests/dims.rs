@@ -512,3 +512,50 @@ fn built_ins_are_the_same_through_slices() {
     check(hrla::StyblinskiTang, "styblinski-tang");
     check(hrla::Quadratic::new(2.0, [1.0; D]).unwrap(), "quadratic");
 }
+
+/// The dimensions a run-time front end asks for, up to 10 000: a short run
+/// at each ends with a finite best inside a box per coordinate, and the
+/// polish lowers it.
+#[test]
+fn large_run_time_dimensions_run() {
+    for d in [1, 24, 257, 10_000] {
+        let n = 4;
+        let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(n, d)];
+        let (mut iterations, mut diverged) = (vec![0; n], vec![false; n]);
+        let mut rngs: Vec<_> = (0..n)
+            .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
+            .collect();
+        let chains =
+            FlatChains::new(d, &mut floats, &mut iterations, &mut diverged, &mut rngs).unwrap();
+        let lo: Vec<f64> = (0..d).map(|i| -1.0 - (i % 7) as f64).collect();
+        let hi: Vec<f64> = (0..d).map(|i| 1.0 + (i % 3) as f64).collect();
+        let bounds = Bounds::new(&lo[..], &hi[..]).unwrap();
+        let sampler = AnySampler::paper(SamplerKind::Hrla, 0.01).unwrap();
+        let mut opt = Builder::new(Rastrigin, sampler, 4.0, bounds)
+            .domain(bounds)
+            .seed(3)
+            .stop(Stop::new().steps(20))
+            .build_flat(Dyn(d), chains)
+            .unwrap();
+        let report = opt.run().unwrap();
+        assert!(report.value.is_finite(), "{d}: {report}");
+        let x = opt.chains().positions();
+        assert!(
+            x.chunks_exact(d)
+                .all(|p| p.iter().enumerate().all(|(i, &v)| v >= lo[i] && v <= hi[i]))
+        );
+        let mut storage = vec![0.0; LbfgsIn::<f64>::floats(d, 5)];
+        let mut lbfgs = LbfgsIn::new(d, 5, &mut storage).unwrap();
+        let polished = opt
+            .polish(opt.best_chain(), &mut lbfgs, PolishSettings::new(200))
+            .unwrap();
+        assert!(polished.value <= report.value, "{d}: {polished:?} {report}");
+        assert!(
+            opt.best()
+                .x
+                .iter()
+                .enumerate()
+                .all(|(i, &v)| v >= lo[i] && v <= hi[i])
+        );
+    }
+}

@@ -27,6 +27,8 @@ impl<F: Float, const D: usize> Potential<F, D> for Ackley {
 }
 
 impl<F: Float> SlicePotential<F> for Ackley {
+    // Always inlined, so that the fixed-size impl's loops know their length.
+    #[inline(always)]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         let (twenty, fifth) = (F::from_f64(20.0), F::from_f64(0.2));
         let e = F::from_f64(core::f64::consts::E);

@@ -21,6 +21,8 @@ impl<F: Float, const D: usize> Potential<F, D> for DoubleWell {
 }
 
 impl<F: Float> SlicePotential<F> for DoubleWell {
+    // Always inlined, so that the fixed-size impl's loops know their length.
+    #[inline(always)]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         let mut u = F::ZERO;
         for (&xi, gi) in x.iter().zip(grad.iter_mut()) {

@@ -23,6 +23,8 @@ impl<F: Float, const D: usize> Potential<F, D> for Levy {
 }
 
 impl<F: Float> SlicePotential<F> for Levy {
+    // Always inlined, so that the fixed-size impl's loops know their length.
+    #[inline(always)]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         let n = x.len().min(grad.len());
         if n == 0 {

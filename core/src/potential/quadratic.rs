@@ -41,6 +41,8 @@ impl<F: Float, const D: usize> Potential<F, D> for Quadratic<F, D> {
 
 /// Of dimension `D`: a run of another dimension is refused.
 impl<F: Float, const D: usize> SlicePotential<F> for Quadratic<F, D> {
+    // Always inlined, so that the fixed-size impl's loops know their length.
+    #[inline(always)]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         // Sum (k r) r rather than k |r|^2: with a tiny k and a huge r the
         // latter is 0 * inf = NaN, the former the finite true value.

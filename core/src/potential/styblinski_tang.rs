@@ -25,6 +25,8 @@ impl<F: Float, const D: usize> Potential<F, D> for StyblinskiTang {
 }
 
 impl<F: Float> SlicePotential<F> for StyblinskiTang {
+    // Always inlined, so that the fixed-size impl's loops know their length.
+    #[inline(always)]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         let (c16, c5) = (F::from_f64(16.0), F::from_f64(5.0));
         let mut u = F::ZERO;

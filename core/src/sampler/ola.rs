@@ -3,7 +3,7 @@
 
 use rand_core::Rng;
 
-use super::traits::{ChainSlices, ChainState, Kernel, LaneChain, Sampler, StepMoments};
+use super::traits::{ChainSlices, ChainState, Kernel, Sampler, StepMoments};
 use crate::error::{Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
@@ -120,7 +120,14 @@ impl<F: Float> Kernel<F> for OlaKernel<F> {
         mut chains: [ChainState<'_, F, D>; LANES],
         rng: &mut Xoshiro256Lanes,
     ) {
-        self.lanes(&mut chains, D, rng);
+        // The arrays' fixed length spares the bounds checks of the slice
+        // version: the same operations on the same values.
+        for i in 0..D {
+            let z = F::standard_normal_lanes(rng);
+            for (chain, &zl) in chains.iter_mut().zip(&z) {
+                chain.x[i] = chain.x[i] - self.drift * chain.grad[i] + self.noise * zl;
+            }
+        }
     }
 
     #[inline]
@@ -131,23 +138,18 @@ impl<F: Float> Kernel<F> for OlaKernel<F> {
         }
     }
 
+    /// [`step_lanes`](Kernel::step_lanes) on slices: the same draws and
+    /// updates.
     #[inline]
-    fn step_lanes_slice(&self, mut chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+    fn step_lanes_slice(&self, chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
         let d = chains[0].x.len();
-        self.lanes(&mut chains, d, rng);
-    }
-}
-
-impl<F: Float> OlaKernel<F> {
-    /// The `d` coordinates of [`LANES`] chains, every chain's normal of a
-    /// coordinate in lockstep.
-    #[inline(always)]
-    fn lanes<C: LaneChain<F>>(&self, chains: &mut [C; LANES], d: usize, rng: &mut Xoshiro256Lanes) {
-        let mut parts = chains.each_mut().map(|c| c.parts());
+        let mut parts = chains.map(|c| (c.x, c.grad));
         for i in 0..d {
             let z = F::standard_normal_lanes(rng);
-            for ((x, _, grad), &zl) in parts.iter_mut().zip(&z) {
-                x[i] = x[i] - self.drift * grad[i] + self.noise * zl;
+            for ((x, grad), &zl) in parts.iter_mut().zip(&z) {
+                if let (Some(xi), Some(&gi)) = (x.get_mut(i), grad.get(i)) {
+                    *xi = *xi - self.drift * gi + self.noise * zl;
+                }
             }
         }
     }

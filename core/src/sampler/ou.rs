@@ -44,7 +44,7 @@
 
 use rand_core::Rng;
 
-use super::traits::{ChainSlices, ChainState, Kernel, LaneChain, StepMoments};
+use super::traits::{ChainSlices, ChainState, Kernel, StepMoments};
 use crate::error::{ALPHA_H, Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
@@ -313,10 +313,10 @@ impl<F: Float> Kernel<F> for OuKernel<F> {
         rng: &mut Xoshiro256Lanes,
     ) {
         if D <= BLOCK {
-            self.step_lanes_block::<_, D>(&mut chains, D, 0, rng);
+            self.step_lanes_block::<D, D>(&mut chains, 0, rng);
         } else {
             for start in (0..D).step_by(BLOCK) {
-                self.step_lanes_block::<_, BLOCK>(&mut chains, D, start, rng);
+                self.step_lanes_block::<D, BLOCK>(&mut chains, start, rng);
             }
         }
     }
@@ -343,10 +343,10 @@ impl<F: Float> Kernel<F> for OuKernel<F> {
     fn step_lanes_slice(&self, mut chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
         let d = chains[0].x.len();
         if d <= SMALL_BLOCK {
-            self.step_lanes_block::<_, SMALL_BLOCK>(&mut chains, d, 0, rng);
+            self.step_lanes_block_slices::<SMALL_BLOCK>(&mut chains, d, 0, rng);
         } else {
             for start in (0..d).step_by(BLOCK) {
-                self.step_lanes_block::<_, BLOCK>(&mut chains, d, start, rng);
+                self.step_lanes_block_slices::<BLOCK>(&mut chains, d, start, rng);
             }
         }
     }
@@ -387,14 +387,55 @@ impl<F: Float> OuKernel<F> {
     /// chain's normals in lockstep first, then each chain's update, which
     /// vectorises over its coordinates.
     #[inline]
-    fn step_lanes_block<C: LaneChain<F>, const B: usize>(
+    fn step_lanes_block<const D: usize, const B: usize>(
         &self,
-        chains: &mut [C; LANES],
+        chains: &mut [ChainState<'_, F, D>; LANES],
+        start: usize,
+        rng_out: &mut Xoshiro256Lanes,
+    ) {
+        let n = D.min(start + B) - start;
+        let (z1, z2) = Self::lane_normals::<B>(n, rng_out);
+        for ((chain, z1), z2) in chains.iter_mut().zip(&z1).zip(&z2) {
+            let x = &mut chain.x[start..start + n];
+            let y = &mut chain.y[start..start + n];
+            let grad = &chain.grad[start..start + n];
+            for i in 0..n {
+                self.apply(&mut x[i], &mut y[i], grad[i], z1[i], z2[i]);
+            }
+        }
+    }
+
+    /// [`step_lanes_block`](Self::step_lanes_block) for chains of `d`
+    /// coordinates in slices: the same draws and updates. (Apart, so that
+    /// the fixed-size version indexes arrays.)
+    #[inline]
+    fn step_lanes_block_slices<const B: usize>(
+        &self,
+        chains: &mut [ChainSlices<'_, F>; LANES],
         d: usize,
         start: usize,
         rng_out: &mut Xoshiro256Lanes,
     ) {
         let n = d.min(start + B) - start;
+        let (z1, z2) = Self::lane_normals::<B>(n, rng_out);
+        for ((chain, z1), z2) in chains.iter_mut().zip(&z1).zip(&z2) {
+            let x = &mut chain.x[start..start + n];
+            let y = &mut chain.y[start..start + n];
+            let grad = &chain.grad[start..start + n];
+            for i in 0..n {
+                self.apply(&mut x[i], &mut y[i], grad[i], z1[i], z2[i]);
+            }
+        }
+    }
+
+    /// The pairs `(z1, z2)` of `n <= B` coordinates of every lane, drawn
+    /// coordinate by coordinate in lockstep.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn lane_normals<const B: usize>(
+        n: usize,
+        rng_out: &mut Xoshiro256Lanes,
+    ) -> ([[F; B]; LANES], [[F; B]; LANES]) {
         // A local copy: its address never escapes, so the generators stay
         // in vector registers.
         let mut lanes = *rng_out;
@@ -407,14 +448,6 @@ impl<F: Float> OuKernel<F> {
             }
         }
         *rng_out = lanes;
-        for ((chain, z1), z2) in chains.iter_mut().zip(&z1).zip(&z2) {
-            let (x, y, grad) = chain.parts();
-            let x = &mut x[start..start + n];
-            let y = &mut y[start..start + n];
-            let grad = &grad[start..start + n];
-            for i in 0..n {
-                self.apply(&mut x[i], &mut y[i], grad[i], z1[i], z2[i]);
-            }
-        }
+        (z1, z2)
     }
 }

@@ -98,26 +98,6 @@ pub struct ChainSlices<'a, F> {
     pub grad: &'a [F],
 }
 
-/// One chain's slices, whichever shape its storage has: what the kernels'
-/// lockstep code reads.
-pub(crate) trait LaneChain<F> {
-    fn parts(&mut self) -> (&mut [F], &mut [F], &[F]);
-}
-
-impl<F, const D: usize> LaneChain<F> for ChainState<'_, F, D> {
-    #[inline(always)]
-    fn parts(&mut self) -> (&mut [F], &mut [F], &[F]) {
-        (self.x, self.y, self.grad)
-    }
-}
-
-impl<F> LaneChain<F> for ChainSlices<'_, F> {
-    #[inline(always)]
-    fn parts(&mut self) -> (&mut [F], &mut [F], &[F]) {
-        (self.x, self.y, self.grad)
-    }
-}
-
 /// What [`Kernel::step_lanes`] advances of one chain: its position and
 /// velocity, and the gradient at the position.
 #[derive(Debug)]

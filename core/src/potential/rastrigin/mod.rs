@@ -32,13 +32,23 @@ pub struct Rastrigin;
 impl<F: Float, const D: usize> Potential<F, D> for Rastrigin {
     #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        SlicePotential::value_and_gradient(self, x, grad)
+        rastrigin_any(x, grad)
     }
 }
 
 impl<F: Float> SlicePotential<F> for Rastrigin {
     #[inline]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
+        rastrigin_any(x, grad)
+    }
+}
+
+/// Both impls' one body, always inlined: into the fixed-size one, the
+/// length is a constant and every block loop unrolls (a call through the
+/// slice impl measured 20% slower steps at d = 10 and 100).
+#[inline(always)]
+fn rastrigin_any<F: Float>(x: &[F], grad: &mut [F]) -> F {
+    {
         // Blocks of one 256-bit vector where the target has them (AVX) and
         // the point fills one, else of one 128-bit vector, single
         // coordinates without vectors (padding would only waste work
