@@ -237,8 +237,10 @@ pub struct FlatProgress<'a, F> {
 /// ([`Dyn`](crate::Dyn)). Built by
 /// [`Builder::build_flat`](crate::Builder::build_flat).
 ///
-/// Each step moves every live chain, then evaluates all the new points in
-/// one [`BatchPotential::values_and_gradients`] call.
+/// Each step moves the live chains, then evaluates their new points through
+/// [`BatchPotential::values_and_gradients`]: all of them in one call, or in
+/// groups of the size the potential asks for
+/// ([`BatchPotential::chains_per_call`]).
 #[derive(Debug)]
 pub struct FlatOptimizer<'a, F: Float, P, S: Sampler<F>, C, Dm, R, B> {
     potential: P,
@@ -593,8 +595,9 @@ impl<F: Float, P: BatchPotential<F>> SlicePotential<F> for Counted<'_, P> {
     }
 }
 
-/// One step of every live chain of `chains`: all moved (groups of
-/// [`LANES`] in lockstep where the const path would), confined, then
+/// One step of every live chain of `chains`, by groups of chains of the
+/// size the potential asks for (a multiple of [`LANES`]): each group moved
+/// (by [`LANES`] in lockstep where the const path would), confined, then
 /// evaluated in one batch and judged in chain order.
 #[allow(clippy::too_many_arguments)]
 fn sweep_flat<F, K, P, B, R>(
@@ -618,34 +621,79 @@ where
         && TypeId::of::<R>() == TypeId::of::<Xoshiro256PlusPlus>()
         && (F::MANTISSA_DIGITS <= 24 || d >= LOCKSTEP_F64_FROM);
     let grouped = if lockstep { n / LANES * LANES } else { 0 };
-    let mut c = 0;
-    while c < n {
-        if c < grouped {
-            let live = chains.diverged[c..c + LANES].iter().all(|&v| !v);
-            if !(live && step_group(kernel, chains, c, d)) {
-                for i in c..c + LANES {
-                    step_one(kernel, chains, i, d);
-                }
-            }
-            c += LANES;
-        } else {
-            step_one(kernel, chains, c, d);
-            c += 1;
-        }
-    }
+    let per_call = potential
+        .chains_per_call()
+        .map_or(n, |g| g.max(1).next_multiple_of(LANES));
     let mut found = Sweep::NOTHING;
-    for ((x, y), &dead) in chains
-        .x
+    let mut first = 0;
+    while first < n {
+        let end = n.min(first.saturating_add(per_call));
+        let mut c = first;
+        while c < end {
+            if c + LANES <= grouped.min(end) {
+                let live = chains.diverged[c..c + LANES].iter().all(|&v| !v);
+                if !(live && step_group(kernel, chains, c, d)) {
+                    for i in c..c + LANES {
+                        step_one(kernel, chains, i, d);
+                    }
+                }
+                c += LANES;
+            } else {
+                step_one(kernel, chains, c, d);
+                c += 1;
+            }
+        }
+        evaluate_group(
+            potential,
+            domain,
+            chains,
+            first..end,
+            d,
+            k,
+            record,
+            &mut found,
+        );
+        first = end;
+    }
+    found
+}
+
+/// Confines the stepped chains `group`, evaluates them in one batch and
+/// judges them in order, recording their bests.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn evaluate_group<F, P, B, R>(
+    potential: &P,
+    domain: &B,
+    chains: &mut FlatChains<'_, F, R>,
+    group: core::ops::Range<usize>,
+    d: usize,
+    k: u64,
+    record: bool,
+    found: &mut Sweep<F>,
+) where
+    F: Float,
+    P: BatchPotential<F> + ?Sized,
+    B: SliceDomain<F>,
+{
+    let points = group.start * d..group.end * d;
+    for ((x, y), &dead) in chains.x[points.clone()]
         .chunks_exact_mut(d)
-        .zip(chains.y.chunks_exact_mut(d))
-        .zip(chains.diverged.iter())
+        .zip(chains.y[points.clone()].chunks_exact_mut(d))
+        .zip(&chains.diverged[group.clone()])
     {
         if !dead {
             domain.confine(x, y);
         }
     }
-    potential.values_and_gradients(d, chains.x, chains.grad, chains.value, chains.diverged);
-    for c in 0..n {
+    potential.values_and_gradients(
+        d,
+        &chains.x[points.clone()],
+        &mut chains.grad[points],
+        &mut chains.value[group.clone()],
+        &chains.diverged[group.clone()],
+    );
+    for c in group {
         if chains.diverged[c] {
             continue;
         }
@@ -660,6 +708,8 @@ where
         ) {
             Verdict::Feasible => {}
             verdict => {
+                // Frozen, so that a non-finite value or one below the
+                // floor never becomes the best.
                 if verdict == Verdict::Unbounded {
                     found.unbounded.get_or_insert((c, value));
                 }
@@ -677,7 +727,6 @@ where
             }
         }
     }
-    found
 }
 
 /// Steps chain `c` unless it has diverged.

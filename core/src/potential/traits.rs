@@ -121,10 +121,20 @@ pub trait BatchPotential<F: Float> {
     fn batch_dimension(&self) -> Option<usize> {
         None
     }
+
+    /// How many chains a call should carry at most: `None` (the default),
+    /// all of a step's. A potential that gains nothing from large batches
+    /// asks for few, so that a group's state is still in cache when it is
+    /// evaluated right after its step (the blanket implementation asks for
+    /// [`LANES`](crate::LANES), one group of chains stepped in lockstep).
+    /// Any answer gives the same bits.
+    fn chains_per_call(&self) -> Option<usize> {
+        None
+    }
 }
 
 impl<F: Float, P: SlicePotential<F> + ?Sized> BatchPotential<F> for P {
-    #[inline]
+    #[inline(always)]
     fn values_and_gradients(
         &self,
         d: usize,
@@ -143,5 +153,9 @@ impl<F: Float, P: SlicePotential<F> + ?Sized> BatchPotential<F> for P {
 
     fn batch_dimension(&self) -> Option<usize> {
         self.dimension()
+    }
+
+    fn chains_per_call(&self) -> Option<usize> {
+        Some(crate::LANES)
     }
 }

@@ -326,7 +326,9 @@ impl<F: Float> Kernel<F> for OuKernel<F> {
     /// the stream and the arithmetic do not depend on the blocks.
     #[inline]
     fn step_slice<R: Rng + ?Sized>(&self, x: &mut [F], y: &mut [F], grad: &[F], rng: &mut R) {
-        if x.len() <= SMALL_BLOCK {
+        if x.len() <= TINY_BLOCK {
+            self.step_block::<R, TINY_BLOCK>(x, y, grad, rng);
+        } else if x.len() <= SMALL_BLOCK {
             self.step_block::<R, SMALL_BLOCK>(x, y, grad, rng);
         } else {
             for ((xb, yb), gb) in x
@@ -352,8 +354,9 @@ impl<F: Float> Kernel<F> for OuKernel<F> {
     }
 }
 
-/// The block of [`Kernel::step_slice`] for points of at most this many
-/// coordinates: a buffer small enough to cost nothing to set up.
+/// The blocks of [`Kernel::step_slice`] for points of at most this many
+/// coordinates: buffers small enough to cost nothing to set up.
+const TINY_BLOCK: usize = 4;
 const SMALL_BLOCK: usize = 16;
 
 /// Coordinates stepped together: all of a block's draws first, then its
