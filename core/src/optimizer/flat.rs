@@ -25,6 +25,7 @@ use core::ops::ControlFlow;
 use rand_core::Rng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
+use super::executor::{Executor, Split};
 use super::report::Report;
 use super::stop::{Stop, Termination};
 use super::sweep::{LOCKSTEP_F64_FROM, Sweep, Verdict, judge};
@@ -204,6 +205,61 @@ impl<'a, F: Float, R> FlatChains<'a, F, R> {
     }
 }
 
+/// Consecutive chains, split as a slice splits: the parts of a step on an
+/// [`Executor`](crate::Executor)'s threads.
+impl<F: Float + Send, R: Send> Split for FlatChains<'_, F, R> {
+    fn len(&self) -> usize {
+        self.rng.len()
+    }
+
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let d = self.d;
+        let (x0, x1) = self.x.split_at_mut(mid * d);
+        let (y0, y1) = self.y.split_at_mut(mid * d);
+        let (g0, g1) = self.grad.split_at_mut(mid * d);
+        let (b0, b1) = self.best_x.split_at_mut(mid * d);
+        let (v0, v1) = self.value.split_at_mut(mid);
+        let (w0, w1) = self.best_value.split_at_mut(mid);
+        let (i0, i1) = self.best_iteration.split_at_mut(mid);
+        let (d0, d1) = self.diverged.split_at_mut(mid);
+        let (r0, r1) = self.rng.split_at_mut(mid);
+        let part = |x, y, grad, best_x, value, best_value, best_iteration, diverged, rng| Self {
+            d,
+            x,
+            y,
+            grad,
+            best_x,
+            value,
+            best_value,
+            best_iteration,
+            diverged,
+            rng,
+        };
+        (
+            part(x0, y0, g0, b0, v0, w0, i0, d0, r0),
+            part(x1, y1, g1, b1, v1, w1, i1, d1, r1),
+        )
+    }
+}
+
+impl<F, R> FlatChains<'_, F, R> {
+    /// The same chains, borrowed for a shorter time.
+    fn reborrow(&mut self) -> FlatChains<'_, F, R> {
+        FlatChains {
+            d: self.d,
+            x: &mut *self.x,
+            y: &mut *self.y,
+            grad: &mut *self.grad,
+            best_x: &mut *self.best_x,
+            value: &mut *self.value,
+            best_value: &mut *self.best_value,
+            best_iteration: &mut *self.best_iteration,
+            diverged: &mut *self.diverged,
+            rng: &mut *self.rng,
+        }
+    }
+}
+
 /// A chain's best point, in [`FlatChains`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BestRef<'a, F> {
@@ -330,10 +386,22 @@ where
 
     /// One step; `true` when it improved the global best.
     fn advance(&mut self) -> Result<bool, Error> {
-        self.guarded(|opt| opt.advance_live())
+        self.advance_by(|cx, chains| sweep_flat(cx, chains, 0))
     }
 
-    fn advance_live(&mut self) -> Result<bool, Error> {
+    /// A step unless the run has failed, the chains stepped by
+    /// `step_chains`.
+    fn advance_by<T>(&mut self, step_chains: T) -> Result<bool, Error>
+    where
+        T: FnOnce(&FlatContext<'_, S::Kernel, P, B>, FlatChains<'_, F, R>) -> Sweep<F>,
+    {
+        self.guarded(|opt| opt.advance_live(step_chains))
+    }
+
+    fn advance_live<T>(&mut self, step_chains: T) -> Result<bool, Error>
+    where
+        T: FnOnce(&FlatContext<'_, S::Kernel, P, B>, FlatChains<'_, F, R>) -> Sweep<F>,
+    {
         let n = self.chains.len();
         let a = self.schedule.inverse_temperature(self.iteration);
         if a != self.kernel.inverse_temperature() {
@@ -341,15 +409,15 @@ where
         }
         let k = self.iteration + 1;
         let before = self.chains.best_value[self.best];
-        let found = sweep_flat(
-            &self.kernel,
-            &self.potential,
-            &self.domain,
-            &mut self.chains,
-            self.dim.value(),
+        let cx = FlatContext {
+            kernel: &self.kernel,
+            potential: &self.potential,
+            domain: &self.domain,
+            d: self.dim.value(),
             k,
-            k.is_multiple_of(self.stride),
-        );
+            record: k.is_multiple_of(self.stride),
+        };
+        let found = step_chains(&cx, self.chains.reborrow());
         self.evaluations += found.evaluated;
         self.diverged += found.diverged;
         self.iteration = k;
@@ -577,6 +645,79 @@ where
     }
 }
 
+/// Steps on an [`Executor`]: the chains of every step in parts, on
+/// threads if the executor has them, with the same bits as
+/// [`step`](FlatOptimizer::step) and [`run`](FlatOptimizer::run) for any
+/// executor. Each part evaluates its own chains through the batch seam.
+impl<F, P, S, C, Dm, R, B> FlatOptimizer<'_, F, P, S, C, Dm, R, B>
+where
+    F: Float + Send,
+    P: BatchPotential<F> + Sync,
+    S: Sampler<F>,
+    S::Kernel: Sync,
+    C: Schedule<F>,
+    Dm: Dim,
+    R: Rng + Send + 'static,
+    B: SliceDomain<F> + Sync,
+{
+    /// [`step`](FlatOptimizer::step), the chains stepped by `executor`.
+    pub fn step_on<E: Executor>(&mut self, executor: &E) -> Result<(), Error> {
+        self.advance_by(|cx, chains| in_parts(executor, cx, chains))
+            .map(drop)
+    }
+
+    /// [`run`](FlatOptimizer::run), the chains of every step stepped by
+    /// `executor`.
+    pub fn run_on<E: Executor>(&mut self, executor: &E) -> Result<Report<F>, Error> {
+        if self.stop.is_empty() {
+            return Err(Error::NoStoppingRule);
+        }
+        loop {
+            if let Some(e) = self.failed {
+                return Err(e);
+            }
+            if let Some(termination) = self.termination() {
+                return Ok(self.report(termination));
+            }
+            self.advance_by(|cx, chains| in_parts(executor, cx, chains))?;
+        }
+    }
+}
+
+/// One step of `chains`, in the executor's parts.
+fn in_parts<E, F, K, P, B, R>(
+    executor: &E,
+    cx: &FlatContext<'_, K, P, B>,
+    chains: FlatChains<'_, F, R>,
+) -> Sweep<F>
+where
+    E: Executor,
+    F: Float + Send,
+    K: Kernel<F> + Sync,
+    P: BatchPotential<F> + Sync,
+    B: SliceDomain<F> + Sync,
+    R: Rng + Send + 'static,
+{
+    executor
+        .fold_split(
+            chains,
+            |first, part| sweep_flat(cx, part, first),
+            Sweep::then,
+        )
+        .unwrap_or(Sweep::NOTHING)
+}
+
+/// What every chain's step needs: the kernel, the potential, the domain,
+/// the dimension, the new iterate's index and whether it is recorded.
+pub(crate) struct FlatContext<'a, K, P, B> {
+    kernel: &'a K,
+    potential: &'a P,
+    domain: &'a B,
+    d: usize,
+    k: u64,
+    record: bool,
+}
+
 /// A potential whose evaluations are counted.
 struct Counted<'a, P> {
     potential: &'a P,
@@ -599,23 +740,20 @@ impl<F: Float, P: BatchPotential<F>> SlicePotential<F> for Counted<'_, P> {
 /// size the potential asks for (a multiple of [`LANES`]): each group moved
 /// (by [`LANES`] in lockstep where the const path would), confined, then
 /// evaluated in one batch and judged in chain order.
-#[allow(clippy::too_many_arguments)]
 fn sweep_flat<F, K, P, B, R>(
-    kernel: &K,
-    potential: &P,
-    domain: &B,
-    chains: &mut FlatChains<'_, F, R>,
-    d: usize,
-    k: u64,
-    record: bool,
+    cx: &FlatContext<'_, K, P, B>,
+    mut chains: FlatChains<'_, F, R>,
+    offset: usize,
 ) -> Sweep<F>
 where
     F: Float,
     K: Kernel<F>,
-    P: BatchPotential<F> + ?Sized,
+    P: BatchPotential<F>,
     B: SliceDomain<F>,
     R: Rng + 'static,
 {
+    let (kernel, potential, d) = (cx.kernel, cx.potential, cx.d);
+    let chains = &mut chains;
     let n = chains.len();
     let lockstep = lanes::VECTORS
         && TypeId::of::<R>() == TypeId::of::<Xoshiro256PlusPlus>()
@@ -643,16 +781,7 @@ where
                 c += 1;
             }
         }
-        evaluate_group(
-            potential,
-            domain,
-            chains,
-            first..end,
-            d,
-            k,
-            record,
-            &mut found,
-        );
+        evaluate_group(cx, chains, first..end, offset, &mut found);
         first = end;
     }
     found
@@ -660,22 +789,19 @@ where
 
 /// Confines the stepped chains `group`, evaluates them in one batch and
 /// judges them in order, recording their bests.
-#[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn evaluate_group<F, P, B, R>(
-    potential: &P,
-    domain: &B,
+fn evaluate_group<F, K, P, B, R>(
+    cx: &FlatContext<'_, K, P, B>,
     chains: &mut FlatChains<'_, F, R>,
     group: core::ops::Range<usize>,
-    d: usize,
-    k: u64,
-    record: bool,
+    offset: usize,
     found: &mut Sweep<F>,
 ) where
     F: Float,
-    P: BatchPotential<F> + ?Sized,
+    P: BatchPotential<F>,
     B: SliceDomain<F>,
 {
+    let (potential, domain, d) = (cx.potential, cx.domain, cx.d);
     let points = group.start * d..group.end * d;
     for ((x, y), &dead) in chains.x[points.clone()]
         .chunks_exact_mut(d)
@@ -711,19 +837,19 @@ fn evaluate_group<F, P, B, R>(
                 // Frozen, so that a non-finite value or one below the
                 // floor never becomes the best.
                 if verdict == Verdict::Unbounded {
-                    found.unbounded.get_or_insert((c, value));
+                    found.unbounded.get_or_insert((offset + c, value));
                 }
                 chains.diverged[c] = true;
                 found.diverged += 1;
                 continue;
             }
         }
-        if record && value < chains.best_value[c] {
+        if cx.record && value < chains.best_value[c] {
             chains.best_x[span.clone()].copy_from_slice(&chains.x[span]);
             chains.best_value[c] = value;
-            chains.best_iteration[c] = k;
+            chains.best_iteration[c] = cx.k;
             if found.best.is_none_or(|(b, _)| value < b) {
-                found.best = Some((value, c));
+                found.best = Some((value, offset + c));
             }
         }
     }

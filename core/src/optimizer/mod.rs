@@ -22,7 +22,7 @@ mod sweep;
 pub use algorithm::Optimizer;
 pub use builder::{Builder, START_TRIES};
 pub use chain::{Best, Chain};
-pub use executor::{Executor, Serial};
+pub use executor::{Executor, Serial, Split};
 pub use flat::{BestRef, FlatChains, FlatOptimizer, FlatProgress};
 pub use report::{Progress, Report};
 pub use stop::{Stop, Termination};
