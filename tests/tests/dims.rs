@@ -28,7 +28,7 @@ impl<F: Float> SlicePotential<F> for Cliff {
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         let u = SlicePotential::value_and_gradient(&Rastrigin, x, grad);
         if x[0] > F::ONE {
-            F::INFINITY - F::INFINITY
+            F::from_f64(f64::NAN)
         } else {
             u
         }
@@ -353,7 +353,8 @@ impl BatchPotential<f64> for Batched {
 
 #[test]
 fn the_batch_seam_is_one_call_per_step() {
-    let run = |potential: &dyn Fn(FlatChains<'_, f64, Xoshiro256PlusPlus>) -> (Vec<u64>, u64)| {
+    type Run<'a> = &'a dyn Fn(FlatChains<'_, f64, Xoshiro256PlusPlus>) -> (Vec<u64>, u64);
+    let run = |potential: Run<'_>| {
         let d = 23;
         let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(N, d)];
         let (mut iterations, mut diverged) = (vec![0; N], vec![false; N]);

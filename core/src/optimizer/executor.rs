@@ -35,7 +35,7 @@ pub trait Executor {
         Part: Fn(usize, T) -> A + Sync + Send,
         Then: Fn(A, A) -> A + Sync + Send,
     {
-        (items.len() > 0).then(|| part(0, items))
+        (!items.is_empty()).then(|| part(0, items))
     }
 }
 
@@ -44,6 +44,10 @@ pub trait Executor {
 pub trait Split: Sized + Send {
     /// The number of items.
     fn len(&self) -> usize;
+    /// Whether there are no items.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
     /// Items `..mid` and `mid..`; `mid <= len()`.
     fn split_at(self, mid: usize) -> (Self, Self);
 }

@@ -212,6 +212,10 @@ impl<F: Float + Send, R: Send> Split for FlatChains<'_, F, R> {
         self.rng.len()
     }
 
+    fn is_empty(&self) -> bool {
+        self.rng.is_empty()
+    }
+
     fn split_at(self, mid: usize) -> (Self, Self) {
         let d = self.d;
         let (x0, x1) = self.x.split_at_mut(mid * d);
