@@ -1,8 +1,9 @@
 //! Algorithm 1 for a dimension known at run time: the chains in flat
 //! slices the caller owns ([`FlatChains`]), stepped by the same kernels,
 //! confined by the same reflection and judged by the same rule as
-//! [`Chain`](crate::Chain)s, and evaluated a whole step at a time through
-//! the batch seam ([`BatchPotential`]).
+//! [`Chain`](crate::Chain)s, and evaluated through the batch seam
+//! ([`BatchPotential`]): a whole step's chains in one call, or groups of
+//! the size the potential asks for.
 //!
 //! A run of dimension `d` given as [`Dyn`](crate::Dyn)`(d)` or as
 //! [`Const`](crate::Const)`<d>` gives the bits of the same run over

@@ -156,6 +156,6 @@ impl<F: Float, P: SlicePotential<F> + ?Sized> BatchPotential<F> for P {
     }
 
     fn chains_per_call(&self) -> Option<usize> {
-        Some(crate::LANES)
+        Some(crate::lockstep::LANES)
     }
 }
