@@ -397,7 +397,9 @@ impl<F: Float> OuKernel<F> {
         rng_out: &mut Xoshiro256Lanes,
     ) {
         let n = D.min(start + B) - start;
-        let (z1, z2) = Self::lane_normals::<B>(n, rng_out);
+        let mut z1 = [[F::ZERO; B]; LANES];
+        let mut z2 = [[F::ZERO; B]; LANES];
+        Self::lane_normals(n, rng_out, &mut z1, &mut z2);
         for ((chain, z1), z2) in chains.iter_mut().zip(&z1).zip(&z2) {
             let x = &mut chain.x[start..start + n];
             let y = &mut chain.y[start..start + n];
@@ -420,7 +422,9 @@ impl<F: Float> OuKernel<F> {
         rng_out: &mut Xoshiro256Lanes,
     ) {
         let n = d.min(start + B) - start;
-        let (z1, z2) = Self::lane_normals::<B>(n, rng_out);
+        let mut z1 = [[F::ZERO; B]; LANES];
+        let mut z2 = [[F::ZERO; B]; LANES];
+        Self::lane_normals(n, rng_out, &mut z1, &mut z2);
         for ((chain, z1), z2) in chains.iter_mut().zip(&z1).zip(&z2) {
             let x = &mut chain.x[start..start + n];
             let y = &mut chain.y[start..start + n];
@@ -432,18 +436,18 @@ impl<F: Float> OuKernel<F> {
     }
 
     /// The pairs `(z1, z2)` of `n <= B` coordinates of every lane, drawn
-    /// coordinate by coordinate in lockstep.
+    /// coordinate by coordinate in lockstep, into the caller's buffers (a
+    /// returned pair of buffers was copied: 4% of a step at d = 100).
     #[inline(always)]
-    #[allow(clippy::type_complexity)]
     fn lane_normals<const B: usize>(
         n: usize,
         rng_out: &mut Xoshiro256Lanes,
-    ) -> ([[F; B]; LANES], [[F; B]; LANES]) {
+        z1: &mut [[F; B]; LANES],
+        z2: &mut [[F; B]; LANES],
+    ) {
         // A local copy: its address never escapes, so the generators stay
         // in vector registers.
         let mut lanes = *rng_out;
-        let mut z1 = [[F::ZERO; B]; LANES];
-        let mut z2 = [[F::ZERO; B]; LANES];
         for i in 0..n {
             let pairs = F::standard_normal_pair_lanes(&mut lanes);
             for l in 0..LANES {
@@ -451,6 +455,5 @@ impl<F: Float> OuKernel<F> {
             }
         }
         *rng_out = lanes;
-        (z1, z2)
     }
 }
