@@ -25,3 +25,4 @@ pub use executor::{Executor, Serial};
 pub use report::{Progress, Report};
 pub use stop::{Stop, Termination};
 pub use stream::{chain_seed, splitmix64};
+pub(crate) use sweep::{Verdict, judge};
