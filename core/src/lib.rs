@@ -236,7 +236,7 @@ mod schedule;
 mod start;
 mod ziggurat_tables;
 
-pub use auto::{Auto, AutoProgress, Parts, Sampling, Solution, Tempering};
+pub use auto::{Auto, AutoProgress, MAX_STEPS, Parts, Sampling, Solution, Tempering};
 pub use domain::{Domain, Interval, Unbounded};
 pub use error::Error;
 pub use float::Float;

@@ -122,48 +122,41 @@ fn bad_settings_are_refused() {
     };
     let d = Auto::default();
     assert!(matches!(
-        run(Auto { rounds: 0, ..d }, 1000, 4),
-        Err(Error::Zero { name: "rounds" })
+        run(Auto { steps: 0, ..d }, 1000, 4),
+        Err(Error::Zero { name: "steps" })
+    ));
+    assert!(matches!(
+        run(
+            Auto {
+                steps: hrla::MAX_STEPS + 1,
+                ..d
+            },
+            1000,
+            4
+        ),
+        Err(Error::OutOfRange { name: "steps", .. })
     ));
     assert!(matches!(
         run(Auto { quench: 0, ..d }, 1000, 4),
         Err(Error::Zero { name: "quench" })
     ));
     assert!(matches!(
-        run(
-            Auto {
-                low_rate: -1.0,
-                ..d
-            },
-            1000,
-            4
-        ),
-        Err(Error::NotPositive {
-            name: "low_rate",
-            ..
-        })
+        run(Auto { stall: 0, ..d }, 1000, 4),
+        Err(Error::Zero { name: "stall" })
     ));
     assert!(matches!(
-        run(
-            Auto {
-                high_rate: f64::NAN,
-                ..d
-            },
-            1000,
-            4
-        ),
-        Err(Error::NotPositive {
-            name: "high_rate",
-            ..
-        })
+        run(Auto { ladder: -1.0, ..d }, 1000, 4),
+        Err(Error::NotPositive { name: "ladder", .. })
     ));
-    assert!(matches!(
-        run(Auto { factor: 1.0, ..d }, 1000, 4),
-        Err(Error::NotPositive {
-            name: "factor - 1",
-            ..
-        })
-    ));
+    for jump_rate in [f64::NAN, -0.1, 1.5] {
+        assert!(matches!(
+            run(Auto { jump_rate, ..d }, 1000, 4),
+            Err(Error::NotPositive {
+                name: "jump_rate (in [0, 1])",
+                ..
+            })
+        ));
+    }
     assert!(matches!(
         run(
             Auto {

@@ -71,6 +71,9 @@ impl<F: Float> Schedule<F> for Tempering<F> {
     }
 }
 
+/// The most HRLA steps per round [`Auto::steps`] may ask for.
+pub const MAX_STEPS: u64 = 10_000;
+
 /// How a round moves a chain away from its basin before the quench.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Sampling {
@@ -113,7 +116,7 @@ impl Default for Parts {
 /// crate's source, and [`Auto::minimize`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Auto<F> {
-    /// HRLA steps per round, from the chain's basin.
+    /// HRLA steps per round, from the chain's basin (1 to [`MAX_STEPS`]).
     pub steps: u64,
     /// `h = step_scale / L`, `L` the typical curvature at the basins'
     /// bottoms.
@@ -290,8 +293,8 @@ impl<F: Float> Auto<F> {
     }
 
     /// [`minimize`](Auto::minimize) with an observer: called once after
-    /// the initial points, then after every proposal of a chain (its
-    /// trajectory and quench), every restart and the final polish, with
+    /// the initial points, then after every HRLA step of a chain, every
+    /// quench, every restart and the final polish, with
     /// the best so far and whether it fell since the last call. Returning
     /// `ControlFlow::Break(())` ends the run at once with the best so far
     /// and [`Termination::Observer`]: a time limit, a cancellation (Ctrl-C)
@@ -364,6 +367,15 @@ impl<F: Float> Auto<F> {
         }
         if self.steps == 0 && self.parts.sampling != Sampling::Off {
             return Err(Error::Zero { name: "steps" });
+        }
+        // A jump's steps cost no evaluation: the budget would not bound them.
+        if self.steps > MAX_STEPS {
+            return Err(Error::OutOfRange {
+                name: "steps",
+                value: self.steps as f64,
+                min: 1.0,
+                max: MAX_STEPS as f64,
+            });
         }
         if !(self.step_scale.is_finite() && self.step_scale > F::ZERO) {
             return Err(Error::NotPositive {

@@ -303,6 +303,7 @@ where
                         Some(v) => value = v,
                         None => return self.reject(c),
                     }
+                    self.observe()?;
                 }
                 known = true;
             }
