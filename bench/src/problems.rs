@@ -219,8 +219,9 @@ impl<const D: usize> Potential<f64, D> for Rotated<'_, D> {
     fn value_and_gradient(&self, x: &[f64; D], g: &mut [f64; D]) -> f64 {
         let mut z = self.centre;
         for (i, zi) in z.iter_mut().enumerate() {
-            for j in 0..D {
-                *zi += self.q[i * D + j] * (x[j] - self.centre[j]);
+            let row = &self.q[i * D..(i + 1) * D];
+            for ((q, xj), cj) in row.iter().zip(x).zip(&self.centre) {
+                *zi += q * (xj - cj);
             }
         }
         let mut gz = [0.0; D];

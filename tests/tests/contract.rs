@@ -200,6 +200,181 @@ fn auto_constants_above_the_budget_are_bounded_by_it() {
     }
 }
 
+/// A schedule whose length is 0 would be a run of no steps reported as
+/// fine: refused like `Stop::steps(0)`.
+#[test]
+fn a_schedule_of_no_steps_is_refused() {
+    struct Empty;
+    impl Schedule<f64> for Empty {
+        fn inverse_temperature(&self, _k: u64) -> f64 {
+            1.0
+        }
+        fn length(&self) -> Option<u64> {
+            Some(0)
+        }
+    }
+    let got = Builder::new(
+        Rastrigin,
+        Hrla::paper(0.01).unwrap(),
+        Empty,
+        Point::new([1.0; 2]).unwrap(),
+    )
+    .build(chains::<2>(2))
+    .map(drop);
+    assert_eq!(
+        got,
+        Err(Error::Zero {
+            name: "schedule length"
+        })
+    );
+}
+
+/// `U = x0 - ln x0 + (x1 - 1/2)^2`, NaN for `x0 < 0` and `+inf` at 0: the
+/// minimum 1 at `(1, 1/2)`, 40% of the box `[-2, 3]^2` infeasible.
+struct LogBarrier;
+
+impl Potential<f64, 2> for LogBarrier {
+    fn value_and_gradient(&self, x: &[f64; 2], g: &mut [f64; 2]) -> f64 {
+        *g = [1.0 - 1.0 / x[0], 2.0 * (x[1] - 0.5)];
+        x[0] - libm::log(x[0]) + (x[1] - 0.5) * (x[1] - 0.5)
+    }
+}
+
+/// A start where `U` is not finite is redrawn from the chain's own stream:
+/// each chain starts at the first feasible point of its stream, every
+/// draw counts as an evaluation, and a run whose starts are all feasible
+/// draws once per chain.
+#[test]
+fn infeasible_starts_are_redrawn() {
+    let p = LogBarrier;
+    let domain = Interval::new(-2.0, 3.0).unwrap();
+    let n = 16;
+    let mut store = chains::<2>(n);
+    let opt = Builder::new(&p, Hrla::paper(0.01).unwrap(), 1.0, domain)
+        .domain(domain)
+        .seed(7)
+        .stop(Stop::new().steps(100))
+        .build(&mut store)
+        .unwrap();
+    let mut draws = 0;
+    for c in 0..n {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(chain_seed(7, c as u64));
+        let x = loop {
+            let mut x = [0.0; 2];
+            hrla::Start::initial_point(&mut domain.clone(), c, &mut rng, &mut x);
+            draws += 1;
+            if x[0] > 0.0 {
+                break x;
+            }
+        };
+        assert_eq!(opt.chains()[c].x(), &x, "chain {c}");
+        assert_eq!(opt.chains()[c].rng(), &rng, "chain {c}");
+    }
+    assert!(
+        draws > n as u64,
+        "no start was infeasible: the test tests nothing"
+    );
+    assert_eq!(opt.evaluations(), draws);
+
+    // A start law with no feasible point: all `START_TRIES` tried, or as
+    // many as the evaluation budget allows.
+    let nowhere = Point::new([-1.0, 0.0]).unwrap();
+    let got = Builder::new(&p, Hrla::paper(0.01).unwrap(), 1.0, nowhere)
+        .stop(Stop::new().steps(10))
+        .build(chains::<2>(3))
+        .map(drop);
+    let want = Error::NonFiniteStart {
+        chain: 0,
+        what: "value",
+        tries: START_TRIES,
+    };
+    assert_eq!(got, Err(want));
+    assert_eq!(
+        want.to_string(),
+        "no feasible initial point for chain 0: 100 drawn, the last one's value is not finite"
+    );
+    let got = Builder::new(&p, Hrla::paper(0.01).unwrap(), 1.0, nowhere)
+        .stop(Stop::new().evaluations(3 + 4))
+        .build(chains::<2>(3))
+        .map(drop);
+    assert_eq!(
+        got,
+        Err(Error::NonFiniteStart {
+            chain: 0,
+            what: "value",
+            tries: 5,
+        })
+    );
+    // The evaluation budget holds every redraw.
+    for budget in [16, 20, 40] {
+        let mut store = chains::<2>(n);
+        let got = Builder::new(&p, Hrla::paper(0.01).unwrap(), 1.0, domain)
+            .domain(domain)
+            .seed(7)
+            .stop(Stop::new().evaluations(budget))
+            .build(&mut store);
+        match got {
+            Ok(opt) => assert!(opt.evaluations() <= budget),
+            Err(e) => assert!(matches!(e, Error::NonFiniteStart { .. }), "{e:?}"),
+        }
+    }
+}
+
+/// `Auto` on a problem with an infeasible region returns the minimum: its
+/// starts are redrawn, and chains that step into the region restart.
+#[test]
+fn auto_treats_non_finite_points_as_infeasible() {
+    let p = LogBarrier;
+    for seed in 0..8 {
+        let mut lbfgs: Lbfgs<f64, 2, 8> = Lbfgs::new();
+        let found = Auto::default()
+            .minimize(
+                &p,
+                Interval::new(-2.0, 3.0).unwrap(),
+                4_000,
+                seed,
+                &mut chains::<2>(8),
+                &mut lbfgs,
+            )
+            .unwrap();
+        assert!((found.value - 1.0).abs() < 1e-12, "{found:?}");
+        assert!((found.x[0] - 1.0).abs() < 1e-5 && (found.x[1] - 0.5).abs() < 1e-5);
+        assert_eq!(found.termination, Termination::Evaluations);
+    }
+}
+
+/// A potential that fails now and then (NaN at one call in 7, wherever it
+/// is: a simulation that does not converge) never costs `Auto` its best
+/// point: a quench that meets it at its start skips the chain.
+#[test]
+fn auto_keeps_its_best_through_failing_evaluations() {
+    let calls = Cell::new(0u64);
+    let p = FnPotential::new(|x: &[f64; 4], g: &mut [f64; 4]| {
+        calls.set(calls.get() + 1);
+        let v = Rastrigin.value_and_gradient(x, g);
+        if calls.get().is_multiple_of(7) {
+            f64::NAN
+        } else {
+            v
+        }
+    });
+    for seed in 0..4 {
+        let mut lbfgs: Lbfgs<f64, 4, 8> = Lbfgs::new();
+        let found = Auto::default()
+            .minimize(
+                &p,
+                Interval::new(-5.12, 5.12).unwrap(),
+                20_000,
+                seed,
+                &mut chains::<4>(8),
+                &mut lbfgs,
+            )
+            .unwrap();
+        assert!(found.value.is_finite() && found.value < 1.0, "{found:?}");
+        assert_eq!(Rastrigin.value(&found.x), found.value);
+    }
+}
+
 /// Every chain steps into the half of the box where `U` is NaN (long steps
 /// of a large `step_scale`): `Auto` keeps each chain in its basin and
 /// returns the best.

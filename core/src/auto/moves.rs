@@ -16,7 +16,7 @@ pub(super) fn uniform<F: Float, R: Rng + ?Sized>(rng: &mut R) -> F {
 
 /// Uniform in `0..n`.
 pub(super) fn index<R: Rng + ?Sized>(rng: &mut R, n: usize) -> usize {
-    ((rng.next_u64() >> 32) * n as u64 >> 32) as usize
+    (((rng.next_u64() >> 32) * n as u64) >> 32) as usize
 }
 
 /// Whether an event of probability `p` happens.
