@@ -40,10 +40,12 @@ pub(super) fn position<F: Float>(c: usize, n: usize) -> F {
 }
 
 /// `h = scale / L` with `L` the median of the positive finite curvatures
-/// measured; with none (a landscape flat at every probe), the largest step
-/// whose velocity term `h |y|` (`|y| ~ 1/sqrt(b)` per coordinate) moves
-/// a tenth of the box.
+/// measured, and never above the step whose velocity term `h |y|`
+/// (`|y| ~ 1/sqrt(b)` per coordinate) moves a tenth of the box: on a
+/// landscape flat at the probes (`L` zero, or the tail of a far well,
+/// `1e-30`), that longest step.
 pub(super) fn step<F: Float>(curvatures: &mut [F], scale: F, width: F) -> F {
+    let longest = F::from_f64(0.1 * 10f64.sqrt()) * width;
     let mut m = 0;
     for i in 0..curvatures.len() {
         let k = curvatures[i];
@@ -53,10 +55,11 @@ pub(super) fn step<F: Float>(curvatures: &mut [F], scale: F, width: F) -> F {
         }
     }
     let h = if m == 0 {
-        F::from_f64(0.1 * 10f64.sqrt()) * width
+        longest
     } else {
         sort(&mut curvatures[..m]);
-        scale / curvatures[m / 2]
+        let h = scale / curvatures[m / 2];
+        if h < longest { h } else { longest }
     };
     clamp(h, H_RANGE)
 }
