@@ -274,7 +274,8 @@ def main(argv=None):
     ap.add_argument("--problems", default=",".join(functions.PROBLEMS),
                     help="comma list (default: all: %(default)s)")
     ap.add_argument("--d", default="2,10",
-                    help="dimensions of the textbook problems (default %(default)s); lj7 always runs in 21")
+                    help="dimensions of the textbook problems (default %(default)s); the others run in "
+                         "their own (functions.DIMS)")
     ap.add_argument("--seeds", default="0-19", help="e.g. 0-19, 0..4 or 1,3 (default %(default)s)")
     ap.add_argument("--budgets", default="10000,125000", help="evaluation budgets B (default %(default)s)")
     ap.add_argument("--methods", default=",".join(METHODS), help="comma list (default: %(default)s)")
