@@ -17,6 +17,7 @@ textbook form cancels near the minimum (1 - cos, 1 - exp) it is computed as
 import math
 import sys
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Callable, Optional, Tuple
 
 import numpy as np
@@ -242,6 +243,123 @@ def _lj7_bipyramid():
 
 
 # ---------------------------------------------------------------------------
+# Problems of other classes than the textbook ones: a plateau-and-valley
+# landscape, a deceptive one, a larger cluster and a least-squares fit.
+# ---------------------------------------------------------------------------
+
+# Plateau and valley: per coordinate, 1 on flat plateaus with narrow
+# Gaussian valleys at the integers -4..4 of depth 1 (down to 0) and one of
+# depth 2 at 3 (down to -1): U* = -d at x = (3, ..., 3); the valleys' tails
+# meet at exp(-50), so the gradient is 0 to double precision between them.
+PLATEAU_CENTRES = np.arange(-4.0, 5.0)
+PLATEAU_DEPTHS = np.where(PLATEAU_CENTRES == 3.0, 2.0, 1.0)
+PLATEAU_WIDTH = 0.1
+
+
+def _plateau(x, need_grad):
+    z = (x[:, None] - PLATEAU_CENTRES[None, :]) / PLATEAU_WIDTH
+    e = PLATEAU_DEPTHS[None, :] * np.exp(-0.5 * z * z)
+    u = float(x.size - np.sum(e))
+    if not need_grad:
+        return u, None
+    return u, np.sum(e * z, axis=1) / PLATEAU_WIDTH
+
+
+# Schwefel's function, the deceptive classic: the best basin per coordinate
+# (x = 420.97, at the box's edge) is far from the second best (x = -302.5).
+# The constant is -min_t t sin(sqrt|t|) per coordinate, so U* = 0 to
+# rounding; d/dx [x sin sqrt|x|] = sin s + (s / 2) cos s, s = sqrt|x|.
+SCHWEFEL_PER_COORD = 418.98288727243374
+SCHWEFEL_XSTAR = 420.9687463599821
+
+
+def _schwefel(x, need_grad):
+    s = np.sqrt(np.abs(x))
+    sn = np.sin(s)
+    u = float(SCHWEFEL_PER_COORD * x.size - np.sum(x * sn))
+    if not need_grad:
+        return u, None
+    return u, -(sn + 0.5 * s * np.cos(s))
+
+
+def _lj(n):
+    ii, jj = np.triu_indices(n, k=1)
+
+    def vg(x, need_grad):
+        p = x.reshape(n, 3)
+        diff = p[ii] - p[jj]
+        r2 = np.einsum("ij,ij->i", diff, diff)
+        inv6 = 1.0 / (r2 * r2 * r2)
+        u = float(4.0 * np.sum(inv6 * (inv6 - 1.0)))
+        if not need_grad:
+            return u, None
+        coef = (24.0 * inv6 - 48.0 * inv6 * inv6) / r2
+        f = diff * coef[:, None]
+        g = np.zeros((n, 3))
+        np.add.at(g, ii, f)
+        np.add.at(g, jj, -f)
+        return u, g.ravel()
+
+    return vg
+
+
+# LJ13: the Mackay icosahedron, -44.326801 (Wales & Doye 1997).
+LJ13_USTAR = -44.326801
+
+# A least-squares fit of two Gaussian peaks A exp(-(t - c)^2 / (2 w^2)) to
+# noiseless data at t = 0, 1, ..., 100 from (A, c, w) = (5, 30, 3) and
+# (2, 70, 10): parameters on different scales (amplitudes ~1, centres ~10^2,
+# widths ~10) in one box [0.5, 100]; U* = 0 (also at the peaks swapped).
+FIT_T = np.arange(0.0, 101.0)
+FIT_TRUE = np.array([5.0, 30.0, 3.0, 2.0, 70.0, 10.0])
+
+
+def _fit_model(p):
+    out = np.zeros_like(FIT_T)
+    parts = []
+    for k in range(2):
+        a, c, w = p[3 * k: 3 * k + 3]
+        z = (FIT_T - c) / w
+        e = np.exp(-0.5 * z * z)
+        out += a * e
+        parts.append((a, w, z, e))
+    return out, parts
+
+
+FIT_DATA = _fit_model(FIT_TRUE)[0]
+
+
+def _gauss_fit(x, need_grad):
+    m, parts = _fit_model(x)
+    r = m - FIT_DATA
+    u = float(r @ r)
+    if not need_grad:
+        return u, None
+    g = np.empty(6)
+    for k, (a, w, z, e) in enumerate(parts):
+        g[3 * k] = 2.0 * (r @ e)
+        g[3 * k + 1] = 2.0 * (r @ (a * e * z / w))
+        g[3 * k + 2] = 2.0 * (r @ (a * e * z * z / w))
+    return u, g
+
+
+# The rotated problems: U(c + Q (x - c)) with Q the committed orthogonal
+# matrix rotation10.txt (numpy default_rng(12345), QR of a standard normal
+# 10 x 10 matrix, signs fixed by R's diagonal) and c the minimiser, so that
+# the minimum stays where it was, inside the box.
+ROTATION10 = np.loadtxt(Path(__file__).resolve().parent / "rotation10.txt")
+
+
+def _rotated(vg, c):
+    def rvg(x, need_grad):
+        z = c + ROTATION10 @ (x - c)
+        u, g = vg(z, need_grad)
+        return u, (None if g is None else ROTATION10.T @ g)
+
+    return rvg
+
+
+# ---------------------------------------------------------------------------
 # The registry.
 # ---------------------------------------------------------------------------
 
@@ -256,9 +374,14 @@ PROBLEMS = [
     "zakharov",
     "lj7",
 ]
+ROTATED = ["rot_" + n for n in PROBLEMS if n != "lj7"]
+NEW = ["plateau", "schwefel", "lj13", "gauss_fit"]
+PROBLEMS = PROBLEMS + ROTATED + NEW
 
 DIMS = {name: (2, 10) for name in PROBLEMS}
 DIMS["lj7"] = (21,)
+DIMS.update({name: (10,) for name in ROTATED})
+DIMS.update({"plateau": (10,), "schwefel": (10,), "lj13": (39,), "gauss_fit": (6,)})
 
 
 def make(name, d):
@@ -269,6 +392,19 @@ def make(name, d):
         if d != 21:
             raise ValueError("lj7 exists only in dimension 21 (7 atoms in 3-D)")
         return Problem("lj7", 21, -1.5, 1.5, LJ7_USTAR, _lj7, None)
+    if DIMS[name] != (2, 10) and d not in DIMS[name]:
+        raise ValueError(f"{name} exists only in dimension(s) {DIMS[name]}")
+    if name.startswith("rot_"):
+        base = make(name[4:], d)
+        return Problem(name, d, base.lo, base.hi, base.fstar, _rotated(base.vg, base.xstar), base.xstar)
+    if name == "plateau":
+        return Problem(name, d, -5.0, 5.0, -float(d), _plateau, np.full(d, 3.0))
+    if name == "schwefel":
+        return Problem(name, d, -500.0, 500.0, 0.0, _schwefel, np.full(d, SCHWEFEL_XSTAR))
+    if name == "lj13":
+        return Problem(name, 39, -2.0, 2.0, LJ13_USTAR, _lj(13), None)
+    if name == "gauss_fit":
+        return Problem(name, 6, 0.5, 100.0, 0.0, _gauss_fit, FIT_TRUE.copy())
     if d < 2:
         raise ValueError("d must be at least 2")
     zero, one = np.zeros(d), np.ones(d)
@@ -293,6 +429,8 @@ def all_problems(dims=(2, 10), names=None):
     for name in names or PROBLEMS:
         if name == "lj7":
             out.append(make("lj7", 21))
+        elif DIMS[name] != (2, 10):
+            out.extend(make(name, d) for d in DIMS[name])
         else:
             out.extend(make(name, d) for d in dims)
     return out
@@ -385,7 +523,7 @@ def check(verbose=True):
     rng = np.random.default_rng(12345)
     failures = 0
     rows = []
-    for p in all_problems(dims=(2, 10)) + [make(n, 3) for n in PROBLEMS if n != "lj7"]:
+    for p in all_problems(dims=(2, 10)) + [make(n, 3) for n in PROBLEMS if DIMS[n] == (2, 10)]:
         worst = 0.0
         pts = [p.start(rng) for _ in range(8)]
         if p.xstar is not None:
@@ -397,7 +535,13 @@ def check(verbose=True):
             if not math.isclose(u, p.value(x), rel_tol=0, abs_tol=0):
                 failures += 1
                 print(f"FAIL {p.name} d={p.d}: value and value_and_grad disagree", file=sys.stderr)
-            ref = float(_textbook_value(p.name, x))
+            if p.name.startswith("rot_"):
+                base = make(p.name[4:], p.d)
+                ref = float(_textbook_value(base.name, base.xstar + ROTATION10 @ (x - base.xstar)))
+            elif p.name in NEW:
+                ref = u  # one formula only: the gradient check below is the test
+            else:
+                ref = float(_textbook_value(p.name, x))
             if abs(u - ref) > 1e-12 * max(1.0, abs(ref)):
                 failures += 1
                 print(f"FAIL {p.name} d={p.d}: U = {u!r} but the textbook formula gives {ref!r}", file=sys.stderr)

@@ -28,6 +28,11 @@ Methods (all with the problem's analytic gradient where they can use one):
                   with x0 a callable drawing uniformly in the box at each
                   (re)start (pycma's advice for restarts; seed 0 would mean
                   "from the clock" to pycma, hence seed + 1). No gradient.
+  differential-evolution  scipy.optimize.differential_evolution(f, bounds=box,
+                  maxiter=10**9, rng=default_rng(seed)); the rest its
+                  defaults (best1bin, popsize 15, tol 0.01, then its own
+                  L-BFGS-B polish with finite differences). It may stop by
+                  itself before B (its tolerance), as a user would run it.
 
 Counting (the same rule for every method): the problem is wrapped so that
 every call of value, gradient or value-and-gradient at a point is one
@@ -63,7 +68,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import functions  # noqa: E402
 
 COLUMNS = ["problem", "d", "method", "budget", "seed", "best_gap", "evals_to_1e-3", "evaluations", "wall_seconds"]
-METHODS = ["dual-annealing", "basinhopping", "ipop-cma-es"]
+METHODS = ["dual-annealing", "basinhopping", "ipop-cma-es", "differential-evolution"]
 EXTRA_METHODS = ["dual-annealing-plain"]  # run only when named in --methods
 HIT = 1e-3
 
@@ -187,10 +192,22 @@ def run_ipop_cma_es(p, f, seed, budget):
     )
 
 
+def run_differential_evolution(p, f, seed, budget):
+    from scipy.optimize import differential_evolution
+
+    differential_evolution(
+        f.value,
+        p.bounds,
+        maxiter=10**9,
+        rng=np.random.default_rng(seed),
+    )
+
+
 RUNNERS = {
     "dual-annealing": run_dual_annealing,
     "basinhopping": run_basinhopping,
     "ipop-cma-es": run_ipop_cma_es,
+    "differential-evolution": run_differential_evolution,
     "dual-annealing-plain": run_dual_annealing_plain,
 }
 
@@ -257,7 +274,8 @@ def main(argv=None):
     ap.add_argument("--problems", default=",".join(functions.PROBLEMS),
                     help="comma list (default: all: %(default)s)")
     ap.add_argument("--d", default="2,10",
-                    help="dimensions of the textbook problems (default %(default)s); lj7 always runs in 21")
+                    help="dimensions of the textbook problems (default %(default)s); the others run in "
+                         "their own (functions.DIMS)")
     ap.add_argument("--seeds", default="0-19", help="e.g. 0-19, 0..4 or 1,3 (default %(default)s)")
     ap.add_argument("--budgets", default="10000,125000", help="evaluation budgets B (default %(default)s)")
     ap.add_argument("--methods", default=",".join(METHODS), help="comma list (default: %(default)s)")

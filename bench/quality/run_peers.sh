@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Quality benchmark of the peers (scipy dual_annealing, scipy basinhopping,
-# pycma IPOP-CMA-ES) on the problems of functions.py.
+# scipy differential_evolution, pycma IPOP-CMA-ES) on the problems of
+# functions.py.
 #
 #   bench/quality/run_peers.sh                 # everything: all problems, d = 2 and 10
-#                                              # (lj7 in 21), seeds 0-19, B = 10_000 and 125_000
+#                                              # (the problems of one dimension in theirs:
+#                                              # rot_*, plateau, schwefel 10, lj7 21, lj13 39,
+#                                              # gauss_fit 6), seeds 0-19, B = 10_000 and 125_000
 #   bench/quality/run_peers.sh --seeds 0-4 --budgets 10000 --problems rastrigin,lj7
 #
 # Creates the virtualenv target/quality-venv (python3 -m venv; numpy, scipy

@@ -146,9 +146,9 @@
 //! - **During a run**, a chain that steps there diverges: it is frozen (no
 //!   more steps, no more draws) and kept out of the best, and the others
 //!   go on; [`Optimizer::restart`] revives it at a feasible point.
-//! - [`Auto`] restarts its diverged chains after each round, and a quench
-//!   that meets such a point treats it as `+inf`: its best point is always
-//!   one where `U` and `∇U` were finite.
+//! - [`Auto`] rejects a proposal that meets such a point (the chain stays
+//!   in its basin), and a quench that meets one treats it as `+inf`: its
+//!   best point is always one where `U` and `∇U` were finite.
 //!
 //! # Randomness and reproducibility
 //!
@@ -286,7 +286,7 @@ mod schedule;
 mod start;
 mod ziggurat_tables;
 
-pub use auto::{Auto, AutoProgress, Solution, Tempering};
+pub use auto::{Auto, AutoProgress, MAX_STEPS, Parts, Sampling, Solution, Tempering};
 pub use dim::{Const, Dim, Dyn};
 pub use domain::{Bounds, Domain, Interval, SliceDomain, Unbounded};
 pub use error::Error;

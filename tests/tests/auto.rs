@@ -122,48 +122,41 @@ fn bad_settings_are_refused() {
     };
     let d = Auto::default();
     assert!(matches!(
-        run(Auto { rounds: 0, ..d }, 1000, 4),
-        Err(Error::Zero { name: "rounds" })
+        run(Auto { steps: 0, ..d }, 1000, 4),
+        Err(Error::Zero { name: "steps" })
+    ));
+    assert!(matches!(
+        run(
+            Auto {
+                steps: hrla::MAX_STEPS + 1,
+                ..d
+            },
+            1000,
+            4
+        ),
+        Err(Error::OutOfRange { name: "steps", .. })
     ));
     assert!(matches!(
         run(Auto { quench: 0, ..d }, 1000, 4),
         Err(Error::Zero { name: "quench" })
     ));
     assert!(matches!(
-        run(
-            Auto {
-                low_rate: -1.0,
-                ..d
-            },
-            1000,
-            4
-        ),
-        Err(Error::NotPositive {
-            name: "low_rate",
-            ..
-        })
+        run(Auto { stall: 0, ..d }, 1000, 4),
+        Err(Error::Zero { name: "stall" })
     ));
     assert!(matches!(
-        run(
-            Auto {
-                high_rate: f64::NAN,
-                ..d
-            },
-            1000,
-            4
-        ),
-        Err(Error::NotPositive {
-            name: "high_rate",
-            ..
-        })
+        run(Auto { ladder: -1.0, ..d }, 1000, 4),
+        Err(Error::NotPositive { name: "ladder", .. })
     ));
-    assert!(matches!(
-        run(Auto { factor: 1.0, ..d }, 1000, 4),
-        Err(Error::NotPositive {
-            name: "factor - 1",
-            ..
-        })
-    ));
+    for jump_rate in [f64::NAN, -0.1, 1.5] {
+        assert!(matches!(
+            run(Auto { jump_rate, ..d }, 1000, 4),
+            Err(Error::NotPositive {
+                name: "jump_rate (in [0, 1])",
+                ..
+            })
+        ));
+    }
     assert!(matches!(
         run(
             Auto {
@@ -232,4 +225,122 @@ fn restart_moves_a_chain_within_the_budget() {
         })
     );
     assert_eq!(opt.evaluations(), 6);
+}
+
+/// Rosenbrock in 6-D: `sum 100 (x_{i+1} - x_i^2)^2 + (1 - x_i)^2`, one
+/// narrow curved valley.
+fn rosenbrock(x: &[f64; 6], g: &mut [f64; 6]) -> f64 {
+    *g = [0.0; 6];
+    let mut u = 0.0;
+    for i in 0..5 {
+        let a = x[i + 1] - x[i] * x[i];
+        let b = 1.0 - x[i];
+        u += 100.0 * a * a + b * b;
+        g[i] += -400.0 * x[i] * a - 2.0 * b;
+        g[i + 1] += 200.0 * a;
+    }
+    u
+}
+
+/// The returned point is a local minimum to machine precision even when
+/// every quench is cut short (5 evaluations, far from converged in a
+/// curved valley): the best point is polished until L-BFGS converges.
+#[test]
+fn the_returned_point_is_polished() {
+    for seed in 0..3 {
+        let mut lbfgs: Lbfgs<f64, 6, 8> = Lbfgs::new();
+        let found = Auto {
+            quench: 5,
+            ..Auto::default()
+        }
+        .minimize(
+            &FnPotential::new(rosenbrock),
+            Interval::new(-5.0, 10.0).unwrap(),
+            5_000,
+            seed,
+            &mut chains::<6>(4),
+            &mut lbfgs,
+        )
+        .unwrap();
+        let mut g = [0.0; 6];
+        rosenbrock(&found.x, &mut g);
+        let norm = g.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        assert!(
+            norm < 1e-6 && found.value < 1e-12,
+            "seed {seed}: |g| = {norm:e}, {found:?}"
+        );
+    }
+}
+
+/// The temperature comes from the problem's quenched minima and the step
+/// from its curvature, so the scale of `U` does not matter: Rastrigin
+/// times `1e9` (random points at `1e10` and more) is solved with the same
+/// budget and seeds as Rastrigin itself (to `1e-12` relative).
+#[test]
+fn the_scale_of_u_does_not_matter() {
+    let scaled = FnPotential::new(|x: &[f64; 4], g: &mut [f64; 4]| {
+        let u = Rastrigin.value_and_gradient(x, g);
+        for gi in g.iter_mut() {
+            *gi *= 1e9;
+        }
+        1e9 * u
+    });
+    let domain = Interval::new(-5.12, 5.12).unwrap();
+    for seed in 0..3 {
+        let mut lbfgs: Lbfgs<f64, 4, 8> = Lbfgs::new();
+        let plain = Auto::default()
+            .minimize(
+                &Rastrigin,
+                domain,
+                20_000,
+                seed,
+                &mut chains::<4>(4),
+                &mut lbfgs,
+            )
+            .unwrap();
+        let big = Auto::default()
+            .minimize(
+                &scaled,
+                domain,
+                20_000,
+                seed,
+                &mut chains::<4>(4),
+                &mut lbfgs,
+            )
+            .unwrap();
+        assert!(plain.value < 1e-12, "seed {seed}: {plain:?}");
+        assert!(big.value < 1e-3, "seed {seed}: {big:?}");
+    }
+}
+
+/// A landscape flat at every start (a narrow well of width 0.2 in a box
+/// of width 10: the gradient underflows to 0 at almost every point) gives
+/// a step bounded by the box, not the exact step's cap of 50, and the run
+/// still finds the well.
+#[test]
+fn flat_stretches_give_a_finite_step() {
+    let well = FnPotential::new(|x: &[f64; 2], g: &mut [f64; 2]| {
+        let d = [x[0] - 1.3, x[1] + 2.1];
+        let e = (-(d[0] * d[0] + d[1] * d[1]) / (2.0 * 0.1 * 0.1)).exp();
+        *g = [d[0] / 0.01 * e, d[1] / 0.01 * e];
+        -e
+    });
+    let mut found_it = 0;
+    for seed in 0..5 {
+        let mut lbfgs: Lbfgs<f64, 2, 8> = Lbfgs::new();
+        let found = Auto::default()
+            .minimize(
+                &well,
+                Interval::new(-5.0, 5.0).unwrap(),
+                20_000,
+                seed,
+                &mut chains::<2>(4),
+                &mut lbfgs,
+            )
+            .unwrap();
+        // At most the longest step: a tenth of the box by the velocity.
+        assert!(found.step <= 0.1 * 10f64.sqrt() * 10.0, "{found:?}");
+        found_it += usize::from(found.value < -1.0 + 1e-12);
+    }
+    assert!(found_it >= 4, "the well found in {found_it} of 5 runs");
 }

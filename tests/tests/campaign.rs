@@ -16,8 +16,8 @@ use std::ops::ControlFlow;
 
 use hrla::{
     Auto, Builder, Chain, Constant, Domain, Error, Gaussian, Geometric, Hrla, Interval, Lbfgs,
-    Linear, Point, PolishSettings, Potential, Quadratic, Rastrigin, Schedule, Start, Stop,
-    Termination, Unbounded,
+    Linear, Parts, Point, PolishSettings, Potential, Quadratic, Rastrigin, Sampling, Schedule,
+    Start, Stop, Termination, Unbounded,
 };
 use hrla_tests::hostile::{mostly_sane64, no_panic, steps_strategy, wild64};
 use hrla_tests::prop::config;
@@ -484,29 +484,49 @@ fn exercise_optimizer(s: &Setup, counts: &mut [u32; 4]) -> Result<(), TestCaseEr
 fn wild_auto() -> impl Strategy<Value = Auto<f64>> {
     (
         prop_oneof![
-            Just(0u64),
-            1..100u64,
-            Just(1 << 61),
-            Just((1 << 62) + 1),
-            Just(u64::MAX),
-            any::<u64>()
+            1 => Just(0u64),
+            6 => 1..100u64,
+            1 => Just(hrla::MAX_STEPS),
+            1 => Just(hrla::MAX_STEPS + 1),
+            1 => Just(u64::MAX),
+            1 => any::<u64>()
         ],
+        mostly_sane64(),
+        mostly_sane64(),
         prop_oneof![Just(0u64), 1..200u64, Just(u64::MAX)],
-        mostly_sane64(),
-        mostly_sane64(),
-        prop_oneof![mostly_sane64(), (1.0f64..3.0)],
-        mostly_sane64(),
-        prop_oneof![Just(0usize), 1..100usize, Just(usize::MAX)],
+        prop_oneof![1 => mostly_sane64(), 3 => 0.0f64..=1.0],
+        prop_oneof![1 => Just(0u64), 4 => 1..100u64, 1 => Just(u64::MAX)],
+        prop_oneof![
+            Just(Sampling::Langevin),
+            Just(Sampling::Jump),
+            Just(Sampling::Off)
+        ],
+        any::<(bool, bool)>(),
     )
         .prop_map(
-            |(rounds, quench, low_rate, high_rate, factor, step_scale, restarts)| Auto {
-                rounds,
-                quench,
-                low_rate,
-                high_rate,
-                factor,
+            |(
+                steps,
                 step_scale,
-                restarts,
+                ladder,
+                quench,
+                jump_rate,
+                stall,
+                sampling,
+                (global, quenches),
+            )| {
+                Auto {
+                    steps,
+                    step_scale,
+                    ladder,
+                    quench,
+                    jump_rate,
+                    stall,
+                    parts: Parts {
+                        sampling,
+                        global_moves: global,
+                        quenches,
+                    },
+                }
             },
         )
 }

@@ -8,7 +8,11 @@
 //! ```
 //!
 //! Strategies: `hrla-default` (the kernel's [`hrla::Auto`] with
-//! `Auto::chains_for(B)` chains), `hrla-paper` (the paper's settings: h = 0.01, linear annealing
+//! `Auto::chains_for(B)` chains); its ablations `hrla-no-sampling` (a:
+//! [`hrla::Sampling::Off`]), `hrla-jump` (the sampler's gradient removed:
+//! [`hrla::Sampling::Jump`]), `hrla-no-global` (b: no differential moves,
+//! no restarts), `hrla-no-quench` (c: no quench of the proposals), all five
+//! at once with `--strategies ablation`; `hrla-paper` (the paper's settings: h = 0.01, linear annealing
 //! 0.1 -> 4, 250 chains), `hrla-paper-polish` (the same with 5% of the
 //! budget kept for an L-BFGS polish of the best point). Every run is
 //! confined to the problem's box and starts uniform in it.
@@ -19,6 +23,15 @@ use std::time::Instant;
 
 use hrla::{Builder, Chain, Error, Hrla, Interval, Lbfgs, Linear, PolishSettings, Potential, Stop};
 use hrla_bench::problems;
+
+/// `--strategies ablation`: the default and each ablation.
+const ABLATION: [&str; 5] = [
+    "hrla-default",
+    "hrla-no-sampling",
+    "hrla-jump",
+    "hrla-no-global",
+    "hrla-no-quench",
+];
 
 /// One run's outcome, as the peers' CSV has it.
 struct Outcome {
@@ -91,37 +104,54 @@ fn paper<const D: usize>(
     })
 }
 
-/// The kernel's default solver, [`hrla::Auto`], with
-/// [`hrla::Auto::chains_for`] chains (or $HRLA_AUTO_N, for the chain
-/// count's rows in docs/QUALITY.md).
+/// `$name` parsed, or `default`: the knobs of the tuning runs in
+/// docs/QUALITY.md.
+fn env<T: std::str::FromStr>(name: &str, default: T) -> T {
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+/// The solver a strategy names: [`hrla::Auto::default`], or one of its
+/// ablations (a part switched off; its evaluations go to the others).
+fn auto_for(strategy: &str) -> hrla::Auto<f64> {
+    let d = hrla::Auto::<f64>::default();
+    let mut auto = hrla::Auto {
+        steps: env("HRLA_AUTO_STEPS", d.steps),
+        step_scale: env("HRLA_AUTO_SCALE", d.step_scale),
+        ladder: env("HRLA_AUTO_LADDER", d.ladder),
+        quench: env("HRLA_AUTO_QUENCH", d.quench),
+        jump_rate: env("HRLA_AUTO_JUMP", d.jump_rate),
+        stall: env("HRLA_AUTO_STALL", d.stall),
+        parts: d.parts,
+    };
+    match strategy {
+        "hrla-default" => {}
+        "hrla-no-sampling" => auto.parts.sampling = hrla::Sampling::Off,
+        "hrla-jump" => auto.parts.sampling = hrla::Sampling::Jump,
+        "hrla-no-global" => auto.parts.global_moves = false,
+        "hrla-no-quench" => auto.parts.quenches = false,
+        _ => panic!("unknown strategy {strategy}"),
+    }
+    auto
+}
+
+/// The kernel's default solver, [`hrla::Auto`] (or an ablation of it), with
+/// [`hrla::Auto::chains_for`] chains (or $HRLA_AUTO_N).
 fn default<const D: usize>(
+    strategy: &str,
     p: &dyn Potential<f64, D>,
     minimum: f64,
     bounds: (f64, f64),
     budget: u64,
     seed: u64,
 ) -> Result<Outcome, Error> {
-    let n = std::env::var("HRLA_AUTO_N")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(hrla::Auto::<f64>::chains_for(budget));
+    let n = env("HRLA_AUTO_N", hrla::Auto::<f64>::chains_for(budget));
     let mut chains: Vec<Chain<f64, D>> = (0..n).map(|_| Chain::new()).collect();
     let mut lbfgs: Lbfgs<f64, D, 8> = Lbfgs::new();
     let mut to_1e3 = None;
-    let restarts = std::env::var("HRLA_AUTO_RESTARTS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(hrla::Auto::<f64>::default().restarts);
-    let rounds = std::env::var("HRLA_AUTO_ROUNDS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(hrla::Auto::<f64>::default().rounds);
-    let auto = hrla::Auto {
-        restarts,
-        rounds,
-        ..hrla::Auto::default()
-    };
-    let found = auto.minimize_with(
+    let found = auto_for(strategy).minimize_with(
         p,
         boxed(bounds),
         budget,
@@ -167,11 +197,14 @@ fn run_problems<const D: usize>(args: &[String], out: &mut String, for_each: &Fo
     let problems: Vec<String> = list(args, "--problems", "");
     let seeds: Vec<u64> = list(args, "--seeds", "20");
     let budgets: Vec<u64> = list(args, "--budgets", "10000,125000");
-    let strategies: Vec<String> = list(
+    let mut strategies: Vec<String> = list(
         args,
         "--strategies",
         "hrla-default,hrla-paper,hrla-paper-polish",
     );
+    if strategies.iter().any(|s| s == "ablation") {
+        strategies = ABLATION.iter().map(|s| s.to_string()).collect();
+    }
     let keep = |name: &str| problems.is_empty() || problems.iter().any(|p| p == name);
     for_each(&keep, &mut |name, p, minimum, bounds| {
         for strategy in &strategies {
@@ -183,8 +216,8 @@ fn run_problems<const D: usize>(args: &[String], out: &mut String, for_each: &Fo
                     } else {
                         0.0
                     };
-                    let r = if strategy == "hrla-default" {
-                        default::<D>(p, minimum, bounds, budget, seed)
+                    let r = if !strategy.starts_with("hrla-paper") {
+                        default::<D>(strategy, p, minimum, bounds, budget, seed)
                     } else {
                         paper::<D>(p, minimum, bounds, budget, seed, polish)
                     };
@@ -214,7 +247,7 @@ fn main() {
         .windows(2)
         .find(|w| w[0] == "--out")
         .map_or("target/quality/hrla.csv".to_string(), |w| w[1].clone());
-    let dims: Vec<usize> = list(&args, "--d", "2,10");
+    let dims: Vec<usize> = list(&args, "--d", "2,6,10,21,39");
     let mut out = String::from(
         "problem,d,method,budget,seed,best_gap,evals_to_1e-3,evaluations,wall_seconds\n",
     );
@@ -222,8 +255,10 @@ fn main() {
         match d {
             2 => run_d::<2>(&args, &mut out),
             10 => run_d::<10>(&args, &mut out),
+            6 => run_problems::<6>(&args, &mut out, &problems::for_each_6),
             21 => run_problems::<21>(&args, &mut out, &problems::for_each_21),
-            _ => panic!("dimension {d} is not compiled in (2, 10, 21)"),
+            39 => run_problems::<39>(&args, &mut out, &problems::for_each_39),
+            _ => panic!("dimension {d} is not compiled in (2, 6, 10, 21, 39)"),
         }
     }
     if let Some(dir) = std::path::Path::new(&path).parent() {

@@ -545,15 +545,6 @@ where
         Ok(())
     }
 
-    /// Lets a run whose chains all diverged go on, for a caller that
-    /// restarts them (the default solver, to which a non-finite point is
-    /// infeasible, not fatal).
-    pub(crate) fn forgive_divergence(&mut self) {
-        if let Some(Error::AllDiverged { .. }) = self.failed {
-            self.failed = None;
-        }
-    }
-
     /// Replaces the sampler between steps (for a step size chosen once the
     /// run has seen its initial points), taking its kernel at the current
     /// inverse temperature. On error the optimiser is unchanged.

@@ -27,3 +27,4 @@ pub use flat::{BestRef, FlatChains, FlatOptimizer, FlatProgress};
 pub use report::{Progress, Report};
 pub use stop::{Stop, Termination};
 pub use stream::{chain_seed, splitmix64};
+pub(crate) use sweep::{Verdict, judge};

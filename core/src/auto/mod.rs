@@ -1,0 +1,401 @@
+//! The default solver: Langevin basin hopping on a ladder of temperatures,
+//! with no setting to tune.
+//!
+//! Every chain holds a basin: a point quenched to a local minimum, and its
+//! value. A round moves each chain by named steps:
+//!
+//! 1. **Global move** (with probability [`Auto::jump_rate`]): from its
+//!    basin, a differential move `x + γ (x_i - x_j)` along the difference
+//!    of two other chains' basins (`γ` uniform in `[0.5, 1]`). Its length
+//!    and direction come from where the chains are, not from the
+//!    coordinate axes, so the solver is rotation invariant as CMA-ES and
+//!    differential evolution are.
+//! 2. **Sampling**: [`Auto::steps`] HRLA steps at the chain's inverse
+//!    temperature `a_c`, from there, with the momentum `y` the chain kept
+//!    from its last trajectory. The exact OU step is stable at large `h`,
+//!    so the trajectory follows the gradient's trend across several basins.
+//! 3. **Quench**: L-BFGS from the trajectory's end until it converges
+//!    (at most [`Auto::quench`] evaluations): the basin it fell into.
+//! 4. **Acceptance**: Metropolis on the quenched values at `a_c`: the chain
+//!    moves to the new basin with probability `min(1, exp(-a_c ΔU))`.
+//!
+//! After each round, **tempering**: adjacent rungs of the ladder swap their
+//! basins with the replica-exchange probability, so good basins flow to the
+//! cold chains and the hot ones keep exploring. When the best has not
+//! fallen for [`Auto::stall`] rounds, the hotter half **restarts** uniformly
+//! in the box. At the end the best point is **polished** by L-BFGS until it
+//! converges: the returned point is a local minimum to the float type's
+//! precision (unless the observer stopped the run, or the budget ran out
+//! within the polish).
+//!
+//! The settings are **measured** on the problem, after the initial points
+//! are quenched ([`measure`]): the ladder is centred on `a_0 = 1 / IQR` of
+//! the quenched values (minima are on the problem's own scale even where
+//! random points reach `1e9`), `±` [`Auto::ladder`] in `ln a`; the step is
+//! `h = step_scale / L`, `L` the median curvature along random directions
+//! at the basins' bottoms, where it is positive even on landscapes with
+//! flat stretches.
+//!
+//! The evaluation budget covers everything: initial points, probes,
+//! steps, quenches, restarts and the final polish. The constants of
+//! [`Auto::default`] were chosen on the quality benchmark
+//! (`bench/quality`, `docs/QUALITY.md`), the same for every problem;
+//! [`Auto::parts`] switches parts off for the benchmark's ablations.
+
+mod measure;
+mod moves;
+mod run;
+
+use core::fmt;
+use core::ops::ControlFlow;
+
+use rand_core::{Rng, SeedableRng};
+
+use crate::domain::Interval;
+use crate::error::Error;
+use crate::float::Float;
+use crate::optimizer::{Chain, Termination};
+use crate::polish::Lbfgs;
+use crate::potential::traits::Potential;
+use crate::schedule::Schedule;
+
+/// An inverse temperature that the caller changes between steps: a
+/// schedule for runs whose temperature adapts to the run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tempering<F>(pub F);
+
+impl<F: Float> Schedule<F> for Tempering<F> {
+    #[inline]
+    fn inverse_temperature(&self, _k: u64) -> F {
+        self.0
+    }
+}
+
+/// The most HRLA steps per round [`Auto::steps`] may ask for.
+pub const MAX_STEPS: u64 = 10_000;
+
+/// How a round moves a chain away from its basin before the quench.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Sampling {
+    /// [`Auto::steps`] HRLA steps at the chain's temperature (the default).
+    Langevin,
+    /// The same dynamics with `∇U` set to zero: a Gaussian jump of the law
+    /// of [`Auto::steps`] gradient-free HRLA steps, evaluated once at its
+    /// end. What the gradient in the sampler adds is the difference.
+    Jump,
+    /// No move: the global moves alone leave the basin (every round, not
+    /// at [`Auto::jump_rate`]), and the evaluations go to more rounds.
+    Off,
+}
+
+/// The parts of a round (all on by default); switched off one at a time,
+/// they are the quality benchmark's ablations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Parts {
+    /// How a chain leaves its basin.
+    pub sampling: Sampling,
+    /// The differential moves and the restarts of a stalled run.
+    pub global_moves: bool,
+    /// The quench of every proposal (without it, the proposal's end point
+    /// is the chain's new state; the best point is still polished at the
+    /// end).
+    pub quenches: bool,
+}
+
+impl Default for Parts {
+    fn default() -> Self {
+        Self {
+            sampling: Sampling::Langevin,
+            global_moves: true,
+            quenches: true,
+        }
+    }
+}
+
+/// The default solver's constants (see the module docs of `auto` in the
+/// crate's source, and [`Auto::minimize`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Auto<F> {
+    /// HRLA steps per round, from the chain's basin (1 to [`MAX_STEPS`]).
+    pub steps: u64,
+    /// `h = step_scale / L`, `L` the typical curvature at the basins'
+    /// bottoms.
+    pub step_scale: F,
+    /// Half-width of the ladder of inverse temperatures in `ln a`: chain
+    /// `c` of `N` samples at `a_0 exp(ladder (2c / (N - 1) - 1))`.
+    pub ladder: F,
+    /// Evaluations per quench, at most (it ends earlier when it converges).
+    pub quench: u64,
+    /// Probability that a chain's round starts with a differential move.
+    pub jump_rate: F,
+    /// Rounds without a new best before the hotter half restarts.
+    pub stall: u64,
+    /// The parts of a round: all on, except in ablations.
+    pub parts: Parts,
+}
+
+impl<F: Float> Default for Auto<F> {
+    /// 10 HRLA steps per round at `h = 2 / L`, a ladder of `±3.5` in
+    /// `ln a`, quenches of up to 1000 evaluations, differential moves in
+    /// 10% of the rounds, restarts after 30 rounds without a new best.
+    fn default() -> Self {
+        Self {
+            steps: 10,
+            step_scale: F::TWO,
+            ladder: F::from_f64(3.5),
+            quench: 1000,
+            jump_rate: F::from_f64(0.1),
+            stall: 30,
+            parts: Parts::default(),
+        }
+    }
+}
+
+/// What [`Auto::minimize`] found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solution<F, const D: usize> {
+    /// The best point.
+    pub x: [F; D],
+    /// `U(x)`.
+    pub value: F,
+    /// Evaluations used, all included (at most the budget).
+    pub evaluations: u64,
+    /// Rounds done.
+    pub rounds: u64,
+    /// The step size chosen.
+    pub step: F,
+    /// The inverse temperature of the coldest chain.
+    pub inverse_temperature: F,
+    /// Why the run ended: [`Termination::Evaluations`] (the budget is
+    /// spent) or [`Termination::Observer`].
+    pub termination: Termination,
+    /// Chains whose last proposal met a point where `U` or its gradient
+    /// is not finite (the chain stayed in its basin).
+    pub diverged_chains: usize,
+    /// Chains in the run.
+    pub chains: usize,
+}
+
+impl<F, const D: usize> Solution<F, D> {
+    /// Whether every chain's last proposal met an infeasible point: the
+    /// best point is then the lowest feasible point found before.
+    pub fn all_diverged(&self) -> bool {
+        self.diverged_chains == self.chains
+    }
+}
+
+impl<F: Float, const D: usize> fmt::Display for Solution<F, D> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}: best U = {} after {} evaluations in {} rounds (h = {}, a = {}); \
+             {} of {} chains diverged",
+            self.termination,
+            self.value,
+            self.evaluations,
+            self.rounds,
+            self.step,
+            self.inverse_temperature,
+            self.diverged_chains,
+            self.chains,
+        )?;
+        if self.all_diverged() {
+            f.write_str(" (all: the best is the last feasible point found)")?;
+        }
+        Ok(())
+    }
+}
+
+/// What the observer of [`Auto::minimize_with`] sees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AutoProgress<'a, F, const D: usize> {
+    /// Evaluations so far, all included.
+    pub evaluations: u64,
+    /// Rounds done.
+    pub rounds: u64,
+    /// The best point so far.
+    pub x: &'a [F; D],
+    /// `U` there.
+    pub value: F,
+    /// Whether the best value fell since the observer's last call (`true`
+    /// at the first call).
+    pub improved: bool,
+    /// The inverse temperature of the coldest chain.
+    pub inverse_temperature: F,
+    /// Chains whose last proposal met an infeasible point.
+    pub diverged_chains: usize,
+}
+
+impl<F: Float> Auto<F> {
+    /// The number of chains measured best for an evaluation budget:
+    /// `budget / 15 000`, at least 4 and at most 16 (few chains, many
+    /// rounds each; see `docs/QUALITY.md`).
+    ///
+    /// ```
+    /// assert_eq!(hrla::Auto::<f64>::chains_for(10_000), 4);
+    /// assert_eq!(hrla::Auto::<f64>::chains_for(125_000), 8);
+    /// assert_eq!(hrla::Auto::<f64>::chains_for(10_000_000), 16);
+    /// ```
+    pub fn chains_for(budget: u64) -> usize {
+        (budget / 15_000).clamp(4, 16) as usize
+    }
+
+    /// Minimises `potential` over the box `domain` within `budget`
+    /// evaluations, with as many chains as `chains` holds
+    /// ([`Auto::chains_for`] is the measured choice) and L-BFGS storage
+    /// `lbfgs`; chain `c` draws from the generator of `(seed, c)`.
+    ///
+    /// ```
+    /// use hrla::{Auto, Chain, Interval, Lbfgs, Rastrigin};
+    ///
+    /// let mut chains: Vec<Chain<f64, 10>> = (0..32).map(|_| Chain::new()).collect();
+    /// let mut lbfgs: Lbfgs<f64, 10, 8> = Lbfgs::new();
+    /// let found = Auto::default().minimize(
+    ///     &Rastrigin,
+    ///     Interval::new(-5.12, 5.12)?,
+    ///     125_000,
+    ///     1,
+    ///     &mut chains,
+    ///     &mut lbfgs,
+    /// )?;
+    /// assert!(found.value < 1e-6, "{found:?}");
+    /// # Ok::<(), hrla::Error>(())
+    /// ```
+    ///
+    /// A point where the potential or its gradient is not finite (a NaN,
+    /// `+inf`) is infeasible, never fatal: initial points are redrawn
+    /// there (up to [`START_TRIES`](crate::START_TRIES) each, within the
+    /// budget); a proposal that meets one is rejected (the chain stays in
+    /// its basin); a quench's trial points there count as `+inf`. The best
+    /// point is always one where `U` and its gradient were finite.
+    ///
+    /// Errors: no chains ([`Error::Zero`]), a budget below twice the
+    /// number of chains ([`Error::Budget`]), no feasible initial point
+    /// ([`Error::NonFiniteStart`]), a bad constant ([`Error::Zero`],
+    /// [`Error::NotPositive`]), and a potential that is unbounded below
+    /// ([`Error::UnboundedBelow`]).
+    pub fn minimize<P, const D: usize, R, const M: usize>(
+        &self,
+        potential: &P,
+        domain: Interval<F>,
+        budget: u64,
+        seed: u64,
+        chains: &mut [Chain<F, D, R>],
+        lbfgs: &mut Lbfgs<F, D, M>,
+    ) -> Result<Solution<F, D>, Error>
+    where
+        P: Potential<F, D> + ?Sized,
+        R: Rng + SeedableRng + 'static,
+    {
+        self.minimize_with(potential, domain, budget, seed, chains, lbfgs, |_| {
+            ControlFlow::Continue(())
+        })
+    }
+
+    /// [`minimize`](Auto::minimize) with an observer: called once after
+    /// the initial points, then after every HRLA step of a chain, every
+    /// quench, every restart and the final polish, with
+    /// the best so far and whether it fell since the last call. Returning
+    /// `ControlFlow::Break(())` ends the run at once with the best so far
+    /// and [`Termination::Observer`]: a time limit, a cancellation (Ctrl-C)
+    /// or a target.
+    ///
+    /// ```
+    /// use core::ops::ControlFlow;
+    /// use hrla::{Auto, Chain, Interval, Lbfgs, Rastrigin, Termination};
+    ///
+    /// let mut chains: Vec<Chain<f64, 4>> = (0..8).map(|_| Chain::new()).collect();
+    /// let mut lbfgs: Lbfgs<f64, 4, 8> = Lbfgs::new();
+    /// // A budget that never runs out: the observer ends the run.
+    /// let found = Auto::default().minimize_with(
+    ///     &Rastrigin,
+    ///     Interval::new(-5.12, 5.12)?,
+    ///     u64::MAX,
+    ///     1,
+    ///     &mut chains,
+    ///     &mut lbfgs,
+    ///     |p| if p.evaluations > 50_000 { ControlFlow::Break(()) } else { ControlFlow::Continue(()) },
+    /// )?;
+    /// assert_eq!(found.termination, Termination::Observer);
+    /// # Ok::<(), hrla::Error>(())
+    /// ```
+    #[allow(clippy::too_many_arguments)]
+    pub fn minimize_with<P, const D: usize, R, const M: usize, O>(
+        &self,
+        potential: &P,
+        domain: Interval<F>,
+        budget: u64,
+        seed: u64,
+        chains: &mut [Chain<F, D, R>],
+        lbfgs: &mut Lbfgs<F, D, M>,
+        observer: O,
+    ) -> Result<Solution<F, D>, Error>
+    where
+        P: Potential<F, D> + ?Sized,
+        R: Rng + SeedableRng + 'static,
+        O: FnMut(&AutoProgress<'_, F, D>) -> ControlFlow<()>,
+    {
+        self.validate()?;
+        let n = chains.len();
+        if n == 0 {
+            return Err(Error::Zero { name: "chains" });
+        }
+        if budget < 2 * n as u64 {
+            return Err(Error::Budget {
+                budget,
+                chains: 2 * n,
+            });
+        }
+        let mut run = run::Run::start(
+            self, potential, domain, budget, seed, chains, lbfgs, observer,
+        )?;
+        let termination = match run.solve() {
+            ControlFlow::Continue(()) => Termination::Evaluations,
+            ControlFlow::Break(run::Stop::Observer) => Termination::Observer,
+            ControlFlow::Break(run::Stop::Budget) => Termination::Evaluations,
+            ControlFlow::Break(run::Stop::Failed(e)) => return Err(e),
+        };
+        Ok(run.solution(termination))
+    }
+
+    fn validate(&self) -> Result<(), Error> {
+        if self.quench == 0 {
+            return Err(Error::Zero { name: "quench" });
+        }
+        if self.stall == 0 {
+            return Err(Error::Zero { name: "stall" });
+        }
+        if self.steps == 0 && self.parts.sampling != Sampling::Off {
+            return Err(Error::Zero { name: "steps" });
+        }
+        // A jump's steps cost no evaluation: the budget would not bound them.
+        if self.steps > MAX_STEPS {
+            return Err(Error::OutOfRange {
+                name: "steps",
+                value: self.steps as f64,
+                min: 1.0,
+                max: MAX_STEPS as f64,
+            });
+        }
+        if !(self.step_scale.is_finite() && self.step_scale > F::ZERO) {
+            return Err(Error::NotPositive {
+                name: "step_scale",
+                value: self.step_scale.to_f64(),
+            });
+        }
+        // Zero is allowed: a ladder of one temperature.
+        if !(self.ladder.is_finite() && self.ladder >= F::ZERO) {
+            return Err(Error::NotPositive {
+                name: "ladder",
+                value: self.ladder.to_f64(),
+            });
+        }
+        if !(self.jump_rate >= F::ZERO && self.jump_rate <= F::ONE) {
+            return Err(Error::NotPositive {
+                name: "jump_rate (in [0, 1])",
+                value: self.jump_rate.to_f64(),
+            });
+        }
+        Ok(())
+    }
+}
