@@ -208,18 +208,16 @@ class Solution:
     message: str
 
 class Auto:
-    """The default solver (rounds of HRLA, quenches, one-coordinate restarts)."""
-    rounds: int
-    quench: int
-    low_rate: float
-    high_rate: float
-    factor: float
+    """The default solver (Langevin basin hopping on a ladder of temperatures)."""
+    steps: int
     step_scale: float
-    restarts: int
-    def __init__(self, *, rounds: Optional[int] = None, quench: Optional[int] = None,
-                 low_rate: Optional[float] = None, high_rate: Optional[float] = None,
-                 factor: Optional[float] = None, step_scale: Optional[float] = None,
-                 restarts: Optional[int] = None) -> None: ...
+    ladder: float
+    quench: int
+    jump_rate: float
+    stall: int
+    def __init__(self, *, steps: Optional[int] = None, step_scale: Optional[float] = None,
+                 ladder: Optional[float] = None, quench: Optional[int] = None,
+                 jump_rate: Optional[float] = None, stall: Optional[int] = None) -> None: ...
     @staticmethod
     def chains_for(budget: int) -> int: ...
     def minimize(self, potential: PotentialLike, domain: BoxLike, budget: int, seed: int = 0, *,

@@ -13,27 +13,28 @@ use crate::engine::SIGNAL_WORK;
 use crate::errors::{guard, layer};
 use crate::potential;
 
-/// The default solver: rounds of HRLA steps, each followed by an L-BFGS
-/// quench of every chain and one-coordinate restarts from the best point,
-/// with `h = step_scale / L` from the curvature `L` at the starts and `a`
-/// from the spread of `U`, cooled by `factor` per round. Needs a box.
+/// The default solver: Langevin basin hopping on a ladder of inverse
+/// temperatures. Each chain holds a basin; a round moves it by `steps`
+/// HRLA steps (sometimes after a differential move along two other
+/// chains' basins), quenches the end by L-BFGS and accepts by Metropolis
+/// at its own `a`; neighbouring rungs exchange basins. `h = step_scale / L`
+/// and the ladder's centre are measured on the quenched starts. The best
+/// point is polished to a local minimum. Needs a box.
 #[pyclass(frozen, module = "hrla", name = "Auto", get_all)]
 #[derive(Clone)]
 pub struct PyAuto {
-    /// Rounds the budget is spread over.
-    pub rounds: u64,
+    /// HRLA steps per round.
+    pub steps: u64,
+    /// `h = step_scale / L`, `L` the typical curvature at the basins.
+    pub step_scale: f64,
+    /// Half-width of the ladder of inverse temperatures in `ln a`.
+    pub ladder: f64,
     /// Evaluations per quench, at most.
     pub quench: u64,
-    /// Heat when fewer than this fraction of chains changed basin.
-    pub low_rate: f64,
-    /// Cool when more than this fraction did.
-    pub high_rate: f64,
-    /// The factor by which `a` changes.
-    pub factor: f64,
-    /// `h = step_scale / L`.
-    pub step_scale: f64,
-    /// Chains restarted after every round.
-    pub restarts: usize,
+    /// Probability that a chain's round starts with a differential move.
+    pub jump_rate: f64,
+    /// Rounds without a new best before the hotter half restarts.
+    pub stall: u64,
 }
 
 /// What `Auto.minimize` found.
@@ -68,26 +69,23 @@ pub struct PySolution {
 #[pymethods]
 impl PyAuto {
     #[new]
-    #[pyo3(signature = (*, rounds = None, quench = None, low_rate = None, high_rate = None, factor = None, step_scale = None, restarts = None))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (*, steps = None, step_scale = None, ladder = None, quench = None, jump_rate = None, stall = None))]
     fn new(
-        rounds: Option<u64>,
-        quench: Option<u64>,
-        low_rate: Option<f64>,
-        high_rate: Option<f64>,
-        factor: Option<f64>,
+        steps: Option<u64>,
         step_scale: Option<f64>,
-        restarts: Option<usize>,
+        ladder: Option<f64>,
+        quench: Option<u64>,
+        jump_rate: Option<f64>,
+        stall: Option<u64>,
     ) -> Self {
         let d = Auto::<f64>::default();
         Self {
-            rounds: rounds.unwrap_or(d.rounds),
-            quench: quench.unwrap_or(d.quench),
-            low_rate: low_rate.unwrap_or(d.low_rate),
-            high_rate: high_rate.unwrap_or(d.high_rate),
-            factor: factor.unwrap_or(d.factor),
+            steps: steps.unwrap_or(d.steps),
             step_scale: step_scale.unwrap_or(d.step_scale),
-            restarts: restarts.unwrap_or(d.restarts),
+            ladder: ladder.unwrap_or(d.ladder),
+            quench: quench.unwrap_or(d.quench),
+            jump_rate: jump_rate.unwrap_or(d.jump_rate),
+            stall: stall.unwrap_or(d.stall),
         }
     }
 
@@ -139,13 +137,13 @@ impl PyAuto {
             dim,
         };
         let auto = Auto {
-            rounds: self.rounds,
-            quench: self.quench,
-            low_rate: self.low_rate,
-            high_rate: self.high_rate,
-            factor: self.factor,
+            steps: self.steps,
             step_scale: self.step_scale,
-            restarts: self.restarts,
+            ladder: self.ladder,
+            quench: self.quench,
+            jump_rate: self.jump_rate,
+            stall: self.stall,
+            ..Auto::default()
         };
         // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated
         // (counted, so where it looks is the same on every machine).

@@ -353,16 +353,15 @@ def test_optimizer_never_panics_and_never_claims_too_much(fun, sampler, schedule
 
 @pytest.mark.timeout(600)
 @campaign(1500)
-@given(fun=potentials, rounds=mostly(st.none(), hostile_count), quench=mostly(st.none(), hostile_count),
-       low=mostly(st.none(), hostile_float), high=mostly(st.none(), hostile_float),
-       factor=mostly(st.none(), hostile_float), scale=mostly(st.none(), hostile_float),
-       restarts=mostly(st.none(), hostile_count), box=boxes, budget=budgets,
-       chains=mostly(st.one_of(st.none(), st.integers(1, 40)), hostile_chains), d=dims)
-def test_auto_never_panics_and_never_claims_too_much(fun, rounds, quench, low, high, factor, scale, restarts, box,
+@given(fun=potentials, steps=mostly(st.none(), hostile_count), quench=mostly(st.none(), hostile_count),
+       ladder=mostly(st.none(), hostile_float), jump=mostly(st.none(), hostile_float),
+       scale=mostly(st.none(), hostile_float), stall=mostly(st.none(), hostile_count), box=boxes,
+       budget=budgets, chains=mostly(st.one_of(st.none(), st.integers(1, 40)), hostile_chains), d=dims)
+def test_auto_never_panics_and_never_claims_too_much(fun, steps, quench, ladder, jump, scale, stall, box,
                                                       budget, chains, d):
     cases["auto"] += 1
-    auto = call(hrla.Auto, rounds=rounds, quench=quench, low_rate=low, high_rate=high, factor=factor,
-                step_scale=scale, restarts=restarts)
+    auto = call(hrla.Auto, steps=steps, quench=quench, ladder=ladder, jump_rate=jump, step_scale=scale,
+                stall=stall)
     interval = call(hrla.Interval, *box)
     if auto is None or interval is None:
         return

@@ -287,10 +287,10 @@ def test_the_exceptions_are_one_hierarchy():
     assert issubclass(hrla.BusyError, RuntimeError) and issubclass(hrla.InternalError, RuntimeError)
 
 
-def test_auto_with_absurd_rounds_raises_a_typed_error_or_succeeds():
-    for rounds in (2**61, 2**64 - 1):
+def test_auto_with_absurd_counts_raises_a_typed_error_or_succeeds():
+    for steps in (2**61, 2**64 - 1):
         try:
-            hrla.Auto(rounds=rounds).minimize(hrla.Rastrigin(), hrla.Interval(-1, 1), 2_000, dim=2)
+            hrla.Auto(steps=steps).minimize(hrla.Rastrigin(), hrla.Interval(-1, 1), 2_000, dim=2)
         except hrla.InternalError:
             raise
         except hrla.HrlaError:
