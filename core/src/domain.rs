@@ -1,4 +1,5 @@
-//! Where the chains may go: all of `R^D`, or a box.
+//! Where the chains may go: all of `R^D`, or a box ([`Interval`], the same
+//! interval in every coordinate, or [`Bounds`], one per coordinate).
 //!
 //! A box keeps the sampler well defined by reflection: a step that leaves
 //! `[lo, hi]` in a coordinate is folded back into it, mirror-wise, and that
@@ -7,11 +8,13 @@
 //! dynamics' continuous-time limit). The polish projects onto the box
 //! instead (a point on a face is a valid minimiser there).
 
+use core::marker::PhantomData;
+
 use rand_core::Rng;
 
 use crate::error::{Error, finite};
 use crate::float::Float;
-use crate::start::Start;
+use crate::start::{SliceStart, Start};
 
 /// A domain for the chains.
 pub trait Domain<F: Float, const D: usize> {
@@ -24,6 +27,54 @@ pub trait Domain<F: Float, const D: usize> {
     /// the domain at once from `x` (coordinates on a face, pointing out),
     /// so that the polish searches along the faces it touches.
     fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]);
+    /// The dimension the domain was made for, if it has one (a box with a
+    /// side per coordinate); a run of another dimension is refused.
+    fn dimension(&self) -> Option<usize> {
+        None
+    }
+}
+
+/// A domain for chains whose dimension is the length of the slices: the
+/// run-time-dimension twin of [`Domain`], with the same per-coordinate
+/// code.
+pub trait SliceDomain<F: Float> {
+    /// As [`Domain::confine`].
+    fn confine(&self, x: &mut [F], y: &mut [F]);
+    /// As [`Domain::project`].
+    fn project(&self, x: &mut [F]);
+    /// As [`Domain::feasible_direction`].
+    fn feasible_direction(&self, x: &[F], d: &mut [F]);
+    /// As [`Domain::dimension`].
+    fn dimension(&self) -> Option<usize> {
+        None
+    }
+}
+
+impl<F: Float> SliceDomain<F> for Unbounded {
+    #[inline(always)]
+    fn confine(&self, _x: &mut [F], _y: &mut [F]) {}
+    #[inline(always)]
+    fn project(&self, _x: &mut [F]) {}
+    #[inline(always)]
+    fn feasible_direction(&self, _x: &[F], _d: &mut [F]) {}
+}
+
+impl<F: Float, B: SliceDomain<F> + ?Sized> SliceDomain<F> for &B {
+    #[inline(always)]
+    fn confine(&self, x: &mut [F], y: &mut [F]) {
+        (**self).confine(x, y);
+    }
+    #[inline(always)]
+    fn project(&self, x: &mut [F]) {
+        (**self).project(x);
+    }
+    #[inline(always)]
+    fn feasible_direction(&self, x: &[F], d: &mut [F]) {
+        (**self).feasible_direction(x, d);
+    }
+    fn dimension(&self) -> Option<usize> {
+        (**self).dimension()
+    }
 }
 
 /// All of `R^D`: no constraint (the default).
@@ -53,6 +104,9 @@ impl<F: Float, const D: usize, B: Domain<F, D> + ?Sized> Domain<F, D> for &B {
     #[inline(always)]
     fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]) {
         (**self).feasible_direction(x, d);
+    }
+    fn dimension(&self) -> Option<usize> {
+        (**self).dimension()
     }
 }
 
@@ -178,33 +232,90 @@ fn floor<F: Float>(v: F) -> F {
     if r > v { r - F::ONE } else { r }
 }
 
+/// Reflects every coordinate of `x` into `[lo(i), hi(i)]`, flipping the
+/// velocity where an odd number of reflections reversed it: the one
+/// confinement of [`Interval`] and [`Bounds`].
+#[inline(always)]
+fn confine_each<F: Float>(
+    x: &mut [F],
+    y: &mut [F],
+    lo: impl Fn(usize) -> F,
+    hi: impl Fn(usize) -> F,
+) {
+    for (i, (xi, yi)) in x.iter_mut().zip(y.iter_mut()).enumerate() {
+        let (v, flipped) = reflect(*xi, lo(i), hi(i));
+        *xi = v;
+        if flipped {
+            *yi = -*yi;
+        }
+    }
+}
+
+#[inline(always)]
+fn project_each<F: Float>(x: &mut [F], lo: impl Fn(usize) -> F, hi: impl Fn(usize) -> F) {
+    for (i, xi) in x.iter_mut().enumerate() {
+        if xi.is_finite() {
+            *xi = clamp(*xi, lo(i), hi(i));
+        }
+    }
+}
+
+#[inline(always)]
+fn feasible_each<F: Float>(x: &[F], d: &mut [F], lo: impl Fn(usize) -> F, hi: impl Fn(usize) -> F) {
+    for (i, (&xi, di)) in x.iter().zip(d.iter_mut()).enumerate() {
+        if (xi <= lo(i) && *di < F::ZERO) || (xi >= hi(i) && *di > F::ZERO) {
+            *di = F::ZERO;
+        }
+    }
+}
+
+/// Uniform in the box: `lo + (hi - lo) u`, `u` from the top 53 (f64) or 24
+/// (f32) bits of one `next_u64` per coordinate.
+#[inline(always)]
+fn uniform_each<F: Float, R: Rng + ?Sized>(
+    rng: &mut R,
+    x: &mut [F],
+    lo: impl Fn(usize) -> F,
+    hi: impl Fn(usize) -> F,
+) {
+    let bits = F::MANTISSA_DIGITS;
+    let scale = F::from_f64(1.0 / (1u64 << bits) as f64);
+    for (i, xi) in x.iter_mut().enumerate() {
+        let u = F::from_u64(rng.next_u64() >> (64 - bits)) * scale;
+        let (lo, hi) = (lo(i), hi(i));
+        *xi = clamp(lo + (hi - lo) * u, lo, hi);
+    }
+}
+
 impl<F: Float, const D: usize> Domain<F, D> for Interval<F> {
     #[inline]
     fn confine(&self, x: &mut [F; D], y: &mut [F; D]) {
-        for (xi, yi) in x.iter_mut().zip(y.iter_mut()) {
-            let (v, flipped) = reflect(*xi, self.lo, self.hi);
-            *xi = v;
-            if flipped {
-                *yi = -*yi;
-            }
-        }
+        SliceDomain::confine(self, x, y);
     }
 
     #[inline]
     fn project(&self, x: &mut [F; D]) {
-        for xi in x.iter_mut() {
-            if xi.is_finite() {
-                *xi = clamp(*xi, self.lo, self.hi);
-            }
-        }
+        SliceDomain::project(self, x);
     }
 
     fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]) {
-        for (&xi, di) in x.iter().zip(d.iter_mut()) {
-            if (xi <= self.lo && *di < F::ZERO) || (xi >= self.hi && *di > F::ZERO) {
-                *di = F::ZERO;
-            }
-        }
+        SliceDomain::feasible_direction(self, x, d);
+    }
+}
+
+impl<F: Float> SliceDomain<F> for Interval<F> {
+    #[inline(always)]
+    fn confine(&self, x: &mut [F], y: &mut [F]) {
+        confine_each(x, y, |_| self.lo, |_| self.hi);
+    }
+
+    #[inline(always)]
+    fn project(&self, x: &mut [F]) {
+        project_each(x, |_| self.lo, |_| self.hi);
+    }
+
+    fn feasible_direction(&self, x: &[F], d: &mut [F]) {
+        feasible_each(x, d, |_| self.lo, |_| self.hi);
     }
 }
 
@@ -212,12 +323,154 @@ impl<F: Float, const D: usize> Start<F, D> for Interval<F> {
     /// Uniform in the box: `lo + (hi - lo) u`, `u` from the top 53 (f64) or
     /// 24 (f32) bits of one `next_u64` per coordinate.
     fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F; D]) {
-        let bits = F::MANTISSA_DIGITS;
-        let scale = F::from_f64(1.0 / (1u64 << bits) as f64);
-        for xi in x.iter_mut() {
-            let u = F::from_u64(rng.next_u64() >> (64 - bits)) * scale;
-            *xi = clamp(self.lo + (self.hi - self.lo) * u, self.lo, self.hi);
+        uniform_each(rng, x, |_| self.lo, |_| self.hi);
+    }
+}
+
+impl<F: Float> SliceStart<F> for Interval<F> {
+    /// As [`Start::initial_point`]: the same draws.
+    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F]) {
+        uniform_each(rng, x, |_| self.lo, |_| self.hi);
+    }
+}
+
+/// A box with its own interval `[lo_i, hi_i]` in every coordinate; also a
+/// start, uniform in the box. The sides live in any `AsRef<[F]>`: arrays
+/// on firmware, a slice or a `Vec` on a host.
+///
+/// Each coordinate reflects exactly as an [`Interval`] of its own sides
+/// does, so a `Bounds` whose sides are all equal gives an `Interval`'s
+/// bits.
+///
+/// ```
+/// use hrla::{Bounds, Builder, Chain, Hrla, Rastrigin, Stop};
+///
+/// // Amplitude in [0, 10], centre in [0, 100], width in [0.1, 20].
+/// let bounds = Bounds::new([0.0, 0.0, 0.1], [10.0, 100.0, 20.0])?;
+/// let mut chains: Vec<Chain<f64, 3>> = (0..8).map(|_| Chain::new()).collect();
+/// let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01)?, 4.0, bounds)
+///     .domain(bounds)
+///     .stop(Stop::new().steps(500))
+///     .build(&mut chains)?;
+/// opt.run()?;
+/// assert!(opt.chains().iter().all(|c| c.x()[1] >= 0.0 && c.x()[1] <= 100.0));
+/// # Ok::<(), hrla::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds<F, S> {
+    lo: S,
+    hi: S,
+    float: PhantomData<F>,
+}
+
+impl<F: Float, S: AsRef<[F]>> Bounds<F, S> {
+    /// `lo_i < hi_i`, each finite with a finite width, and as many of
+    /// each: [`Error::Length`] for sides of different lengths or none,
+    /// [`Error::NotFinite`] for an end that is not finite,
+    /// [`Error::NotPositive`] (`hi - lo`) for an empty or overflowing side.
+    pub fn new(lo: S, hi: S) -> Result<Self, Error> {
+        let (l, h) = (lo.as_ref(), hi.as_ref());
+        if l.is_empty() {
+            return Err(Error::Zero { name: "box sides" });
         }
+        if h.len() != l.len() {
+            return Err(Error::Length {
+                name: "hi",
+                expected: l.len(),
+                got: h.len(),
+            });
+        }
+        for (&a, &b) in l.iter().zip(h) {
+            Interval::new(a, b)?;
+        }
+        Ok(Self {
+            lo,
+            hi,
+            float: PhantomData,
+        })
+    }
+
+    /// The lower ends.
+    pub fn lo(&self) -> &[F] {
+        self.lo.as_ref()
+    }
+
+    /// The upper ends.
+    pub fn hi(&self) -> &[F] {
+        self.hi.as_ref()
+    }
+
+    #[inline(always)]
+    fn sides(&self) -> (&[F], &[F]) {
+        (self.lo.as_ref(), self.hi.as_ref())
+    }
+}
+
+impl<F: Float, S: AsRef<[F]>, const D: usize> Domain<F, D> for Bounds<F, S> {
+    #[inline]
+    fn confine(&self, x: &mut [F; D], y: &mut [F; D]) {
+        SliceDomain::confine(self, x, y);
+    }
+
+    #[inline]
+    fn project(&self, x: &mut [F; D]) {
+        SliceDomain::project(self, x);
+    }
+
+    fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]) {
+        SliceDomain::feasible_direction(self, x, d);
+    }
+
+    fn dimension(&self) -> Option<usize> {
+        Some(self.lo.as_ref().len())
+    }
+}
+
+impl<F: Float, S: AsRef<[F]>> SliceDomain<F> for Bounds<F, S> {
+    #[inline(always)]
+    fn confine(&self, x: &mut [F], y: &mut [F]) {
+        let (lo, hi) = self.sides();
+        confine_each(x, y, |i| lo[i], |i| hi[i]);
+    }
+
+    #[inline(always)]
+    fn project(&self, x: &mut [F]) {
+        let (lo, hi) = self.sides();
+        project_each(x, |i| lo[i], |i| hi[i]);
+    }
+
+    fn feasible_direction(&self, x: &[F], d: &mut [F]) {
+        let (lo, hi) = self.sides();
+        feasible_each(x, d, |i| lo[i], |i| hi[i]);
+    }
+
+    fn dimension(&self) -> Option<usize> {
+        Some(self.lo.as_ref().len())
+    }
+}
+
+impl<F: Float, S: AsRef<[F]>, const D: usize> Start<F, D> for Bounds<F, S> {
+    /// Uniform in the box, as [`Interval`]'s start: one `next_u64` per
+    /// coordinate.
+    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F; D]) {
+        let (lo, hi) = self.sides();
+        uniform_each(rng, x, |i| lo[i], |i| hi[i]);
+    }
+
+    fn dimension(&self) -> Option<usize> {
+        Some(self.lo.as_ref().len())
+    }
+}
+
+impl<F: Float, S: AsRef<[F]>> SliceStart<F> for Bounds<F, S> {
+    /// As [`Start::initial_point`]: the same draws.
+    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F]) {
+        let (lo, hi) = self.sides();
+        uniform_each(rng, x, |i| lo[i], |i| hi[i]);
+    }
+
+    fn dimension(&self) -> Option<usize> {
+        Some(self.lo.as_ref().len())
     }
 }
 

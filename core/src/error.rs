@@ -81,6 +81,16 @@ pub enum Error {
         /// The number of items: valid indices are `0..len`.
         len: usize,
     },
+    /// A length that must match another did not: a box's sides against
+    /// the run's dimension, caller storage against its chains.
+    Length {
+        /// What was measured (`lo`, `hi`, `floats`, ...).
+        name: &'static str,
+        /// The length required.
+        expected: usize,
+        /// The length given.
+        got: usize,
+    },
     /// A potential panicked while the optimiser was evaluating it: the
     /// chains may be partly stepped and the counters stale, so every later
     /// step, run, polish, quench or restart refuses to go on. Rebuild the
@@ -171,6 +181,11 @@ impl fmt::Display for Error {
                     len - 1
                 ),
             },
+            Error::Length {
+                name,
+                expected,
+                got,
+            } => write!(f, "`{name}` must have length {expected}, got {got}"),
             Error::Poisoned => f.write_str(
                 "the potential panicked during an evaluation: the optimiser's state is \
                  inconsistent and it refuses to go on; build a new one",

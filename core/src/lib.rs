@@ -100,6 +100,15 @@
 //! - Schedules: a plain float (constant `a`), [`Constant`], [`Linear`],
 //!   [`Geometric`], [`FnSchedule`], [`AnySchedule`].
 //! - Starts: [`Gaussian`], [`Point`], [`FromFn`].
+//! - Domains: [`Unbounded`], [`Interval`] (the same interval in every
+//!   coordinate) and [`Bounds`] (one per coordinate), each reflecting
+//!   every coordinate into its interval.
+//! - Dimension at run time: [`Dim`] ([`Const`], [`Dyn`]); chains in flat
+//!   storage the caller owns, [`FlatChains`], run by [`FlatOptimizer`]
+//!   ([`Builder::build_flat`]); the slice twins of the traits,
+//!   [`SlicePotential`], [`SliceDomain`], [`SliceStart`] (and
+//!   [`FromSliceFn`]); the batch seam, [`BatchPotential`]; L-BFGS in
+//!   caller storage, [`LbfgsIn`].
 //! - Algorithm 1: [`Builder`] and [`Optimizer`], over [`Chain`]s, with
 //!   [`Stop`] rules, [`Progress`] for an observer, and a [`Report`] whose
 //!   [`Termination`] says why the run ended; failures are [`Error`]s.
@@ -188,6 +197,46 @@
 //!   reproduction tool's `--shard i/n` and `--merge` (a SLURM job array in
 //!   `tools/repro/slurm/`) give the tables of one process, byte for byte.
 //!
+//! # Dimension known at run time
+//!
+//! The const-generic API fixes `D` at compile time, which firmware wants.
+//! A host that learns the dimension at run time (a Python or JavaScript
+//! caller, a 17-parameter fit, a 10 000-D problem) builds the same run
+//! over [`FlatChains`], slices it owns, with [`Builder::build_flat`] and a
+//! dimension [`Dyn`]`(d)` (or [`Const`]`<N>`). Both go through the same
+//! per-coordinate code (the kernels' draws and updates, the reflection,
+//! the judgement of a point, L-BFGS), so a run gives the same bits either
+//! way. Each step of a [`FlatOptimizer`] moves every live chain, then
+//! evaluates all the new points in one [`BatchPotential`] call: a
+//! potential that is cheaper per batch (vectorised, on a GPU, in another
+//! language) evaluates the whole `(n, d)` block at once.
+//!
+//! ```
+//! use hrla::{Bounds, Builder, Dyn, FlatChains, Hrla, LbfgsIn, PolishSettings, Rastrigin, Stop};
+//! use rand_core::SeedableRng;
+//! use rand_xoshiro::Xoshiro256PlusPlus;
+//!
+//! let (n, d) = (8, 24);
+//! let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(n, d)];
+//! let (mut iterations, mut diverged) = (vec![0; n], vec![false; n]);
+//! let mut rngs: Vec<_> = (0..n).map(|_| Xoshiro256PlusPlus::seed_from_u64(0)).collect();
+//! let chains = FlatChains::new(d, &mut floats, &mut iterations, &mut diverged, &mut rngs)?;
+//! // A box per coordinate: the first half in [-1, 1], the rest in [-5, 5].
+//! let lo: Vec<f64> = (0..d).map(|i| if i < d / 2 { -1.0 } else { -5.0 }).collect();
+//! let hi: Vec<f64> = lo.iter().map(|l| -l).collect();
+//! let bounds = Bounds::new(&lo[..], &hi[..])?;
+//! let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01)?, 4.0, bounds)
+//!     .domain(bounds)
+//!     .stop(Stop::new().steps(2_000))
+//!     .build_flat(Dyn(d), chains)?;
+//! let sampled = opt.run()?;
+//! let mut storage = vec![0.0; LbfgsIn::<f64>::floats(d, 8)];
+//! let mut lbfgs = LbfgsIn::new(d, 8, &mut storage)?;
+//! let polished = opt.polish(opt.best_chain(), &mut lbfgs, PolishSettings::new(1_000))?;
+//! assert!(polished.value <= sampled.value);
+//! # Ok::<(), hrla::Error>(())
+//! ```
+//!
 //! # Memory
 //!
 //! The caller owns the chains: any `AsRef<[Chain]> + AsMut<[Chain]>`, such
@@ -222,6 +271,7 @@
 #![deny(missing_docs)]
 
 mod auto;
+mod dim;
 mod domain;
 mod error;
 mod float;
@@ -237,17 +287,18 @@ mod start;
 mod ziggurat_tables;
 
 pub use auto::{Auto, AutoProgress, Solution, Tempering};
-pub use domain::{Domain, Interval, Unbounded};
+pub use dim::{Const, Dim, Dyn};
+pub use domain::{Bounds, Domain, Interval, SliceDomain, Unbounded};
 pub use error::Error;
 pub use float::Float;
 pub use lockstep::{LANES, Lane, Xoshiro256Lanes};
 pub use normal::StandardNormal;
 pub use optimizer::*;
-pub use polish::{Lbfgs, PolishEnd, PolishSettings, Polished};
+pub use polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished};
 pub use potential::*;
 pub use sampler::*;
 pub use schedule::{AnySchedule, Constant, FnSchedule, Geometric, Linear, Schedule};
-pub use start::{FromFn, Gaussian, Point, Start};
+pub use start::{FromFn, FromSliceFn, Gaussian, Point, SliceStart, Start};
 
 pub use heapless;
 pub use rand_core;

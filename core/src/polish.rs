@@ -11,10 +11,10 @@
 //! and the approximation stays positive definite. All storage is the
 //! [`Lbfgs`] value, which the caller owns: `2 M + 3` arrays of `D` floats.
 
-use crate::domain::{Domain, Unbounded};
+use crate::domain::{Domain, SliceDomain, Unbounded};
 use crate::error::{Error, finite, floor};
 use crate::float::Float;
-use crate::potential::traits::Potential;
+use crate::potential::traits::{Potential, SlicePotential};
 
 /// Sufficient decrease (Armijo) constant of the line search.
 const C1: f64 = 1e-4;
@@ -204,33 +204,280 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
         self.next = 0;
     }
 
-    /// `direction = -H grad` by the two-loop recursion.
-    fn direction(&mut self, grad: &[F; D]) {
+    /// Minimises `U` from `x`, which ends at the best point found (never
+    /// worse than the start): L-BFGS steps until a tolerance holds, the
+    /// line search fails or the budget is spent.
+    ///
+    /// Errors: [`Error::Zero`] for a zero budget, [`Error::NotFinite`] if
+    /// `x`, `U(x)` or `∇U(x)` is not finite, [`Error::UnboundedBelow`]
+    /// (chain 0) if `U` falls to `-inf` or below `-sqrt(F::MAX)` at a point
+    /// it evaluates (`x` is then the last point above it).
+    pub fn minimize<P: Potential<F, D> + ?Sized>(
+        &mut self,
+        potential: &P,
+        x: &mut [F; D],
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
+        self.minimize_in(potential, &Unbounded, x, settings)
+    }
+
+    /// [`minimize`](Lbfgs::minimize) within a domain: every trial point is
+    /// projected onto it (so `x` is first projected too), which ends on a
+    /// face where the minimum of the box lies there.
+    pub fn minimize_in<P: Potential<F, D> + ?Sized, B: Domain<F, D> + ?Sized>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &mut [F; D],
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
         let mut alpha = [F::ZERO; M];
-        let q = &mut self.direction;
-        for (qi, &gi) in q.iter_mut().zip(grad) {
+        let mut grad = [F::ZERO; D];
+        let mut memory = Memory {
+            s: self.s.as_flattened_mut(),
+            y: self.y.as_flattened_mut(),
+            rho: &mut self.rho,
+            alpha: &mut alpha,
+            len: &mut self.len,
+            next: &mut self.next,
+            direction: &mut self.direction,
+            trial: &mut self.trial,
+            trial_grad: &mut self.trial_grad,
+            grad: &mut grad,
+            m: M,
+            d: D,
+        };
+        memory.minimize_in(
+            &Arrays::<_, D>(potential),
+            &Arrays::<_, D>(domain),
+            x,
+            settings,
+        )
+    }
+}
+
+/// L-BFGS for a dimension `d` known at run time, in storage the caller
+/// owns: the algorithm of [`Lbfgs`], with the same bits.
+///
+/// ```
+/// use hrla::{LbfgsIn, PolishSettings, Rastrigin, Unbounded};
+///
+/// let (d, m) = (17, 8);
+/// let mut storage = vec![0.0; LbfgsIn::<f64>::floats(d, m)];
+/// let mut lbfgs = LbfgsIn::new(d, m, &mut storage)?;
+/// let mut x = vec![0.3; d];
+/// let done = lbfgs.minimize_in(&Rastrigin, &Unbounded, &mut x, PolishSettings::new(200))?;
+/// assert!(done.value < 1e-20);
+/// # Ok::<(), hrla::Error>(())
+/// ```
+#[derive(Debug)]
+pub struct LbfgsIn<'a, F> {
+    storage: &'a mut [F],
+    len: usize,
+    next: usize,
+    d: usize,
+    m: usize,
+}
+
+impl<'a, F: Float> LbfgsIn<'a, F> {
+    /// The floats of storage that memory `m` in dimension `d` needs:
+    /// `2 m d + 2 m + 5 d` (the pairs, their weights, a direction, a trial
+    /// point, its gradient, the current gradient, and a point for
+    /// [`FlatOptimizer::polish`](crate::FlatOptimizer::polish)).
+    pub const fn floats(d: usize, m: usize) -> usize {
+        2 * m * d + 2 * m + 5 * d
+    }
+
+    /// L-BFGS of memory `m >= 1` in dimension `d >= 1` over `storage`,
+    /// whose length must be [`floats(d, m)`](LbfgsIn::floats)
+    /// ([`Error::Zero`], [`Error::Length`] otherwise).
+    pub fn new(d: usize, m: usize, storage: &'a mut [F]) -> Result<Self, Error> {
+        if d == 0 {
+            return Err(Error::Zero { name: "dimension" });
+        }
+        if m == 0 {
+            return Err(Error::Zero {
+                name: "L-BFGS memory",
+            });
+        }
+        let expected = Self::floats(d, m);
+        if storage.len() != expected {
+            return Err(Error::Length {
+                name: "L-BFGS storage",
+                expected,
+                got: storage.len(),
+            });
+        }
+        Ok(Self {
+            storage,
+            len: 0,
+            next: 0,
+            d,
+            m,
+        })
+    }
+
+    /// The dimension.
+    pub fn dimension(&self) -> usize {
+        self.d
+    }
+
+    /// [`Lbfgs::minimize_in`] for `x` of length [`dimension`](LbfgsIn::dimension)
+    /// ([`Error::Length`] otherwise).
+    pub fn minimize_in<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &mut [F],
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
+        let d = self.d;
+        if x.len() != d {
+            return Err(Error::Length {
+                name: "x",
+                expected: d,
+                got: x.len(),
+            });
+        }
+        let (mut memory, _) = self.split();
+        memory.minimize_in(potential, domain, x, settings)
+    }
+
+    /// Polishes a copy of `start` (of the storage's dimension) in the
+    /// storage's own point, returned with the outcome.
+    pub(crate) fn minimize_from<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        start: &[F],
+        settings: PolishSettings<F>,
+    ) -> (Result<Polished<F>, Error>, &[F]) {
+        let (mut memory, point) = self.split();
+        point.copy_from_slice(start);
+        let done = memory.minimize_in(potential, domain, point, settings);
+        (done, point)
+    }
+
+    /// The working memory, and the spare point.
+    fn split(&mut self) -> (Memory<'_, F>, &mut [F]) {
+        let (d, m) = (self.d, self.m);
+        let (s, rest) = self.storage.split_at_mut(m * d);
+        let (y, rest) = rest.split_at_mut(m * d);
+        let (rho, rest) = rest.split_at_mut(m);
+        let (alpha, rest) = rest.split_at_mut(m);
+        let (direction, rest) = rest.split_at_mut(d);
+        let (trial, rest) = rest.split_at_mut(d);
+        let (trial_grad, rest) = rest.split_at_mut(d);
+        let (grad, point) = rest.split_at_mut(d);
+        let memory = Memory {
+            s,
+            y,
+            rho,
+            alpha,
+            len: &mut self.len,
+            next: &mut self.next,
+            direction,
+            trial,
+            trial_grad,
+            grad,
+            m,
+            d,
+        };
+        (memory, point)
+    }
+}
+
+/// A potential or a domain on `[F; D]` seen through slices of length `D`.
+struct Arrays<'a, T: ?Sized, const D: usize>(&'a T);
+
+impl<F: Float, P: Potential<F, D> + ?Sized, const D: usize> SlicePotential<F> for Arrays<'_, P, D> {
+    #[inline]
+    fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
+        // Every slice the polish passes has length D: the fallback, an
+        // infeasible point, is never taken.
+        match (<&[F; D]>::try_from(x), <&mut [F; D]>::try_from(grad)) {
+            (Ok(x), Ok(grad)) => self.0.value_and_gradient(x, grad),
+            _ => F::INFINITY,
+        }
+    }
+}
+
+impl<F: Float, B: Domain<F, D> + ?Sized, const D: usize> SliceDomain<F> for Arrays<'_, B, D> {
+    fn confine(&self, x: &mut [F], y: &mut [F]) {
+        if let (Ok(x), Ok(y)) = (<&mut [F; D]>::try_from(x), <&mut [F; D]>::try_from(y)) {
+            self.0.confine(x, y);
+        }
+    }
+    fn project(&self, x: &mut [F]) {
+        if let Ok(x) = <&mut [F; D]>::try_from(x) {
+            self.0.project(x);
+        }
+    }
+    fn feasible_direction(&self, x: &[F], d: &mut [F]) {
+        if let (Ok(x), Ok(d)) = (<&[F; D]>::try_from(x), <&mut [F; D]>::try_from(d)) {
+            self.0.feasible_direction(x, d);
+        }
+    }
+}
+
+/// The working storage of one polish, as slices: an [`Lbfgs`]'s arrays or
+/// an [`LbfgsIn`]'s storage. Pair `k` is `s[k d..(k + 1) d]`.
+struct Memory<'a, F> {
+    s: &'a mut [F],
+    y: &'a mut [F],
+    rho: &'a mut [F],
+    alpha: &'a mut [F],
+    len: &'a mut usize,
+    next: &'a mut usize,
+    direction: &'a mut [F],
+    trial: &'a mut [F],
+    trial_grad: &'a mut [F],
+    grad: &'a mut [F],
+    m: usize,
+    d: usize,
+}
+
+impl<F: Float> Memory<'_, F> {
+    /// Forgets the stored pairs (for a new start point).
+    fn reset(&mut self) {
+        *self.len = 0;
+        *self.next = 0;
+    }
+
+    fn pair(v: &[F], k: usize, d: usize) -> &[F] {
+        &v[k * d..(k + 1) * d]
+    }
+
+    /// `direction = -H grad` by the two-loop recursion.
+    fn direction(&mut self) {
+        let (m, d, len, next) = (self.m, self.d, *self.len, *self.next);
+        let alpha = &mut *self.alpha;
+        let (s, y) = (&*self.s, &*self.y);
+        let q = &mut *self.direction;
+        for (qi, &gi) in q.iter_mut().zip(&*self.grad) {
             *qi = -gi;
         }
         // Newest to oldest.
-        for i in 0..self.len {
-            let k = (self.next + M - 1 - i) % M;
-            alpha[k] = self.rho[k] * dot(&self.s[k], q);
-            for (qj, &yj) in q.iter_mut().zip(&self.y[k]) {
+        for i in 0..len {
+            let k = (next + m - 1 - i) % m;
+            alpha[k] = self.rho[k] * dot(Self::pair(s, k, d), q);
+            for (qj, &yj) in q.iter_mut().zip(Self::pair(y, k, d)) {
                 *qj -= alpha[k] * yj;
             }
         }
-        if self.len > 0 {
-            let k = (self.next + M - 1) % M;
-            let gamma = dot(&self.s[k], &self.y[k]) / dot(&self.y[k], &self.y[k]);
+        if len > 0 {
+            let k = (next + m - 1) % m;
+            let (sk, yk) = (Self::pair(s, k, d), Self::pair(y, k, d));
+            let gamma = dot(sk, yk) / dot(yk, yk);
             for qj in q.iter_mut() {
                 *qj *= gamma;
             }
         }
         // Oldest to newest.
-        for i in (0..self.len).rev() {
-            let k = (self.next + M - 1 - i) % M;
-            let beta = self.rho[k] * dot(&self.y[k], q);
-            for (qj, &sj) in q.iter_mut().zip(&self.s[k]) {
+        for i in (0..len).rev() {
+            let k = (next + m - 1 - i) % m;
+            let beta = self.rho[k] * dot(Self::pair(y, k, d), q);
+            for (qj, &sj) in q.iter_mut().zip(Self::pair(s, k, d)) {
                 *qj += (alpha[k] - beta) * sj;
             }
         }
@@ -239,21 +486,21 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
     /// Evaluates `U` and its slope along the direction at `x + step d`, into
     /// the trial buffers; a non-finite value counts as `+inf`, except below
     /// the floor at a finite point (`-inf` included), kept as it is.
-    fn probe<P: Potential<F, D> + ?Sized, B: Domain<F, D> + ?Sized>(
+    fn probe<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
-        x: &[F; D],
+        x: &[F],
         step: F,
     ) -> LinePoint<F> {
-        for ((t, &xi), &di) in self.trial.iter_mut().zip(x).zip(&self.direction) {
+        for ((t, &xi), &di) in self.trial.iter_mut().zip(x).zip(&*self.direction) {
             *t = xi + step * di;
         }
-        domain.project(&mut self.trial);
-        let value = potential.value_and_gradient(&self.trial, &mut self.trial_grad);
+        domain.project(self.trial);
+        let value = potential.value_and_gradient(self.trial, self.trial_grad);
         // Along the path actually taken (the projection may have shortened
         // the step in some coordinates): the derivative in the direction.
-        let slope = dot(&self.trial_grad, &self.direction);
+        let slope = dot(self.trial_grad, self.direction);
         let unbounded = value < floor() && self.trial.iter().all(|t| t.is_finite());
         if unbounded || (value.is_finite() && slope.is_finite()) {
             LinePoint { step, value, slope }
@@ -271,11 +518,11 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
     /// none was found within the trials or the budget. A point below the
     /// floor ends the search at once, returned as it is.
     #[allow(clippy::too_many_arguments)]
-    fn line_search<P: Potential<F, D> + ?Sized, B: Domain<F, D> + ?Sized>(
+    fn line_search<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
-        x: &[F; D],
+        x: &[F],
         f0: F,
         d0: F,
         first: F,
@@ -357,31 +604,12 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
         None
     }
 
-    /// Minimises `U` from `x`, which ends at the best point found (never
-    /// worse than the start): L-BFGS steps until a tolerance holds, the
-    /// line search fails or the budget is spent.
-    ///
-    /// Errors: [`Error::Zero`] for a zero budget, [`Error::NotFinite`] if
-    /// `x`, `U(x)` or `∇U(x)` is not finite, [`Error::UnboundedBelow`]
-    /// (chain 0) if `U` falls to `-inf` or below `-sqrt(F::MAX)` at a point
-    /// it evaluates (`x` is then the last point above it).
-    pub fn minimize<P: Potential<F, D> + ?Sized>(
-        &mut self,
-        potential: &P,
-        x: &mut [F; D],
-        settings: PolishSettings<F>,
-    ) -> Result<Polished<F>, Error> {
-        self.minimize_in(potential, &Unbounded, x, settings)
-    }
-
-    /// [`minimize`](Lbfgs::minimize) within a domain: every trial point is
-    /// projected onto it (so `x` is first projected too), which ends on a
-    /// face where the minimum of the box lies there.
-    pub fn minimize_in<P: Potential<F, D> + ?Sized, B: Domain<F, D> + ?Sized>(
+    /// L-BFGS from `x` within the domain: the algorithm of every polish.
+    fn minimize_in<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
-        x: &mut [F; D],
+        x: &mut [F],
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
         if settings.evaluations == 0 {
@@ -394,41 +622,40 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
         }
         domain.project(x);
         self.reset();
-        let mut grad = [F::ZERO; D];
-        let value = potential.value_and_gradient(x, &mut grad);
+        let value = potential.value_and_gradient(x, self.grad);
         unbounded(value)?;
         let mut value = finite("U(x)", value)?;
-        for &g in &grad {
+        for &g in &*self.grad {
             finite("gradient", g)?;
         }
         let mut budget = settings.evaluations - 1;
         let mut iterations = 0;
         let end = loop {
-            if max_abs(&grad) <= settings.gradient_tolerance {
+            if max_abs(self.grad) <= settings.gradient_tolerance {
                 break PolishEnd::Gradient;
             }
             if budget == 0 {
                 break PolishEnd::Budget;
             }
-            self.direction(&grad);
-            domain.feasible_direction(x, &mut self.direction);
-            let mut slope = dot(&grad, &self.direction);
+            self.direction();
+            domain.feasible_direction(x, self.direction);
+            let mut slope = dot(self.grad, self.direction);
             if slope >= F::ZERO || !slope.is_finite() {
                 // Not a descent direction (rounding in a stale memory, or
                 // one the domain's faces cut): restart from steepest
                 // descent.
                 self.reset();
-                self.direction(&grad);
-                domain.feasible_direction(x, &mut self.direction);
-                slope = dot(&grad, &self.direction);
+                self.direction();
+                domain.feasible_direction(x, self.direction);
+                slope = dot(self.grad, self.direction);
                 if slope >= F::ZERO || !slope.is_finite() {
                     break PolishEnd::Gradient;
                 }
             }
             // Unit steps for quasi-Newton directions; the first, along
             // -grad, is scaled to move x by at most 1 in any coordinate.
-            let first = if self.len == 0 {
-                let m = max_abs(&self.direction);
+            let first = if *self.len == 0 {
+                let m = max_abs(self.direction);
                 if m > F::ONE { F::ONE / m } else { F::ONE }
             } else {
                 F::ONE
@@ -443,20 +670,22 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
             };
             unbounded(p.value)?;
             // The new pair, kept when its curvature is positive.
-            let k = self.next;
-            for j in 0..D {
-                self.s[k][j] = self.trial[j] - x[j];
-                self.y[k][j] = self.trial_grad[j] - grad[j];
+            let (k, d) = (*self.next, self.d);
+            let sk = &mut self.s[k * d..(k + 1) * d];
+            let yk = &mut self.y[k * d..(k + 1) * d];
+            for j in 0..d {
+                sk[j] = self.trial[j] - x[j];
+                yk[j] = self.trial_grad[j] - self.grad[j];
             }
-            let sy = dot(&self.s[k], &self.y[k]);
+            let sy = dot(sk, yk);
             if sy > F::ZERO && sy.is_finite() {
                 self.rho[k] = F::ONE / sy;
-                self.next = (k + 1) % M;
-                self.len = (self.len + 1).min(M);
+                *self.next = (k + 1) % self.m;
+                *self.len = (*self.len + 1).min(self.m);
             }
             let drop = value - p.value;
-            *x = self.trial;
-            grad = self.trial_grad;
+            x.copy_from_slice(self.trial);
+            self.grad.copy_from_slice(self.trial_grad);
             value = p.value;
             iterations += 1;
             let scale = if value.abs() > F::ONE {

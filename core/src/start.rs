@@ -12,6 +12,12 @@ pub trait Start<F: Float, const D: usize> {
     /// with the generator where the last call left it, when the point was
     /// infeasible.
     fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]);
+    /// The dimension the start was made for, if it has one apart from `D`
+    /// (a box with a side per coordinate); a run of another dimension is
+    /// refused.
+    fn dimension(&self) -> Option<usize> {
+        None
+    }
 }
 
 /// A start behind a mutable reference is the same start: it can then live
@@ -19,6 +25,31 @@ pub trait Start<F: Float, const D: usize> {
 impl<F: Float, const D: usize, S: Start<F, D> + ?Sized> Start<F, D> for &mut S {
     fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]) {
         (**self).initial_point(chain, rng, x);
+    }
+    fn dimension(&self) -> Option<usize> {
+        (**self).dimension()
+    }
+}
+
+/// Where each chain starts, for chains whose dimension is the length of
+/// the slice: the run-time-dimension twin of [`Start`], with the same
+/// draws.
+pub trait SliceStart<F: Float> {
+    /// Writes chain `chain`'s initial point into `x`, drawing from `rng`.
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F]);
+    /// The dimension the start was made for, if it has one (a mean, a box);
+    /// a run of another dimension is refused.
+    fn dimension(&self) -> Option<usize> {
+        None
+    }
+}
+
+impl<F: Float, S: SliceStart<F> + ?Sized> SliceStart<F> for &mut S {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F]) {
+        (**self).initial_point(chain, rng, x);
+    }
+    fn dimension(&self) -> Option<usize> {
+        (**self).dimension()
     }
 }
 
@@ -39,6 +70,15 @@ impl<F: Float, const D: usize> Point<F, D> {
 impl<F: Float, const D: usize> Start<F, D> for Point<F, D> {
     fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, _rng: &mut R, x: &mut [F; D]) {
         *x = self.0;
+    }
+}
+
+impl<F: Float, const D: usize> SliceStart<F> for Point<F, D> {
+    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, _rng: &mut R, x: &mut [F]) {
+        x.copy_from_slice(&self.0);
+    }
+    fn dimension(&self) -> Option<usize> {
+        Some(D)
     }
 }
 
@@ -71,10 +111,19 @@ impl<F: Float, const D: usize> Gaussian<F, D> {
 }
 
 impl<F: Float, const D: usize> Start<F, D> for Gaussian<F, D> {
-    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F; D]) {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]) {
+        SliceStart::initial_point(self, chain, rng, x);
+    }
+}
+
+impl<F: Float, const D: usize> SliceStart<F> for Gaussian<F, D> {
+    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F]) {
         for (xi, &m) in x.iter_mut().zip(&self.mean) {
             *xi = m + self.std_dev * F::standard_normal(rng);
         }
+    }
+    fn dimension(&self) -> Option<usize> {
+        Some(D)
     }
 }
 
@@ -93,5 +142,20 @@ where
         // `&mut R` is itself a sized `Rng`, so it coerces to `dyn Rng`.
         let mut rng = rng;
         *x = (self.0)(chain, &mut rng);
+    }
+}
+
+/// Initial points from a function that fills a slice, for chains whose
+/// dimension is known at run time: `f(chain, rng, x)`.
+#[derive(Clone, Copy, Debug)]
+pub struct FromSliceFn<G>(pub G);
+
+impl<F: Float, G> SliceStart<F> for FromSliceFn<G>
+where
+    G: FnMut(usize, &mut dyn Rng, &mut [F]),
+{
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F]) {
+        let mut rng = rng;
+        (self.0)(chain, &mut rng, x);
     }
 }

@@ -34,7 +34,7 @@
 //! costs a few µs (see `docs/PERFORMANCE.md`). With an expensive potential
 //! (a simulation, a model fit) a handful of chains is enough.
 
-use hrla::{Executor, LANES};
+use hrla::{Executor, LANES, Split};
 use rayon::prelude::*;
 
 /// Steps the chains of every step in parts on rayon's current pool.
@@ -85,4 +85,38 @@ impl Executor for Threads {
             .map(|(j, chunk)| part(j * size, chunk))
             .reduce_with(then)
     }
+
+    fn fold_split<T, A, Part, Then>(&self, items: T, part: Part, then: Then) -> Option<A>
+    where
+        T: Split,
+        A: Send,
+        Part: Fn(usize, T) -> A + Sync + Send,
+        Then: Fn(A, A) -> A + Sync + Send,
+    {
+        let n = items.len();
+        (n > 0).then(|| halves(items, 0, self.part_size(n), &part, &then))
+    }
+}
+
+/// `items` (the first at index `first`) in parts of `size` (the last
+/// shorter), halved at part boundaries and run on both sides of
+/// `rayon::join`, the halves' results folded earlier first.
+fn halves<T, A, Part, Then>(items: T, first: usize, size: usize, part: &Part, then: &Then) -> A
+where
+    T: Split,
+    A: Send,
+    Part: Fn(usize, T) -> A + Sync + Send,
+    Then: Fn(A, A) -> A + Sync + Send,
+{
+    let parts = items.len().div_ceil(size);
+    if parts <= 1 {
+        return part(first, items);
+    }
+    let mid = parts / 2 * size;
+    let (left, right) = items.split_at(mid);
+    let (a, b) = rayon::join(
+        || halves(left, first, size, part, then),
+        || halves(right, first + mid, size, part, then),
+    );
+    then(a, b)
 }

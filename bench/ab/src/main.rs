@@ -8,6 +8,9 @@
 
 use std::time::Instant;
 
+use hrla::rand_core::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
+
 const CHAINS: usize = 1000;
 
 macro_rules! swarm {
@@ -18,6 +21,29 @@ macro_rules! swarm {
         $k::Builder::new($k::Rastrigin, sampler, 4.0 as $f, start)
             .seed(1)
             .build(chains)
+            .unwrap()
+    }};
+}
+
+/// The same run over flat storage of run-time dimension `Dyn(d)`, the
+/// storage leaked so that the optimiser can live as long as the bench.
+macro_rules! flat_swarm {
+    ($f:ty, $d:expr, $kind:expr) => {
+        flat_swarm!($f, $d, $kind, hrla::Dyn($d))
+    };
+    ($f:ty, $d:expr, $kind:expr, $dim:expr) => {{
+        let (n, d) = (CHAINS, $d);
+        let floats = vec![0.0 as $f; hrla::FlatChains::<$f, Xoshiro256PlusPlus>::floats(n, d)].leak();
+        let iterations = vec![0u64; n].leak();
+        let diverged = vec![false; n].leak();
+        let rngs: &mut [Xoshiro256PlusPlus] =
+            (0..n).map(|_| Xoshiro256PlusPlus::seed_from_u64(0)).collect::<Vec<_>>().leak();
+        let chains = hrla::FlatChains::new(d, floats, iterations, diverged, rngs).unwrap();
+        let start = hrla::Gaussian::new([3.0 as $f; $d], (10.0 as $f).sqrt()).unwrap();
+        let sampler = hrla::AnySampler::<$f>::paper($kind, 0.01).unwrap();
+        hrla::Builder::new(hrla::Rastrigin, sampler, 4.0 as $f, start)
+            .seed(1)
+            .build_flat($dim, chains)
             .unwrap()
     }};
 }
@@ -42,8 +68,33 @@ macro_rules! case {
         if !$name.contains(std::env::var("AB_CASES").unwrap_or_default().as_str()) {
             return;
         }
+        // AB_DYN=1: this tree's run-time-dimension path (new) against its
+        // own const path (base), instead of the base commit.
+        // AB_DYN=2: the run-time-dimension path against the same flat
+        // storage with the dimension a constant.
+        if std::env::var("AB_DYN").is_ok_and(|v| v == "2") {
+            let mut new = flat_swarm!($f, $d, hrla::SamplerKind::$kind);
+            let mut base = flat_swarm!($f, $d, hrla::SamplerKind::$kind, hrla::Const::<$d>);
+            pairs!($name, $d, $pairs, new, base);
+            return;
+        }
+        if std::env::var("AB_DYN").is_ok_and(|v| v == "1") {
+            let mut new = flat_swarm!($f, $d, hrla::SamplerKind::$kind);
+            let mut base = swarm!(hrla, $f, $d, hrla::SamplerKind::$kind);
+            pairs!($name, $d, $pairs, new, base);
+            return;
+        }
         let mut new = swarm!(hrla, $f, $d, hrla::SamplerKind::$kind);
         let mut base = swarm!(hrla_base, $f, $d, hrla_base::SamplerKind::$kind);
+        pairs!($name, $d, $pairs, new, base);
+    }};
+}
+
+/// Times `$pairs` interleaved pairs of blocks of `$new.step()` and
+/// `$base.step()`, and prints the medians.
+macro_rules! pairs {
+    ($name:expr, $d:expr, $pairs:expr, $new:ident, $base:ident) => {{
+        let (new, base) = (&mut $new, &mut $base);
         let coords = CHAINS * $d;
         // About 2 ms a block.
         let steps = (200_000 / coords).max(1);
@@ -78,7 +129,9 @@ macro_rules! case {
 
 fn main() {
     let pairs: usize = std::env::args().nth(1).map_or(60, |s| s.parse().unwrap());
-    let cases: [fn(usize); 9] = [
+    let cases: [fn(usize); 11] = [
+        |p| case!("f32 d2 hrla/best", f32, 2, Hrla, p),
+        |p| case!("f32 d10 ola/best", f32, 10, Ola, p),
         |p| case!("f64 d10 hrla/best", f64, 10, Hrla, p),
         |p| case!("f32 d10 hrla/best", f32, 10, Hrla, p),
         |p| case!("f64 d32 hrla/best", f64, 32, Hrla, p),

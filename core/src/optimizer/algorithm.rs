@@ -239,25 +239,14 @@ where
 
     /// The first stopping rule that holds now, if any.
     pub fn termination(&self) -> Option<Termination> {
-        let stop = &self.stop;
         let live = (self.chains.as_ref().len() - self.diverged) as u64;
-        if stop.target.is_some_and(|t| self.best().value <= t) {
-            Some(Termination::Target)
-        } else if stop.steps.is_some_and(|k| self.iteration >= k) {
-            Some(Termination::Steps)
-        } else if stop
-            .evaluations
-            .is_some_and(|b| self.evaluations.saturating_add(live) > b)
-        {
-            Some(Termination::Evaluations)
-        } else if stop
-            .stall
-            .is_some_and(|(window, _)| self.iteration - self.stall_since >= window)
-        {
-            Some(Termination::Stalled)
-        } else {
-            None
-        }
+        self.stop.holds(
+            self.best().value,
+            self.iteration,
+            self.evaluations,
+            live,
+            self.stall_since,
+        )
     }
 
     /// Steps until a stopping rule holds, and reports why.

@@ -5,16 +5,18 @@ use rand_core::{Rng, SeedableRng};
 
 use super::algorithm::Optimizer;
 use super::chain::Chain;
+use super::flat::{FlatChains, FlatOptimizer};
 use super::stop::Stop;
 use super::stream::chain_seed;
 use super::sweep::{Verdict, judge};
-use crate::domain::{Domain, Unbounded};
+use crate::dim::Dim;
+use crate::domain::{Domain, SliceDomain, Unbounded};
 use crate::error::{Error, floor};
 use crate::float::Float;
-use crate::potential::Potential;
+use crate::potential::{BatchPotential, Potential};
 use crate::sampler::Sampler;
 use crate::schedule::Schedule;
-use crate::start::Start;
+use crate::start::{SliceStart, Start};
 
 /// The most points drawn for one chain's start: a point where the
 /// potential or its gradient is not finite (a NaN, `+inf`) is infeasible,
@@ -112,41 +114,13 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
         self
     }
 
-    /// Seeds each chain's generator, draws its initial point from the start
-    /// (zero velocity), evaluates the potential there, and checks the
-    /// settings: as many chains as `chains` holds.
-    ///
-    /// An initial point whose position, value or gradient is not finite is
-    /// infeasible: the chain draws another from the start law (the next
-    /// draws of its own generator), up to [`START_TRIES`] points in all and
-    /// within the evaluation budget, which every point drawn counts in. A
-    /// run whose initial points are all feasible draws each once.
-    ///
-    /// Errors: [`Error::Zero`] for no chains, a dimension `D = 0`, a zero
-    /// stride or budget or stall window, or a schedule of length 0;
-    /// [`Error::Budget`] for an evaluation budget below the number of
-    /// chains; [`Error::ScheduleLongerThanRun`] for a step budget that
-    /// would cut the schedule short; the sampler's error if it refuses
-    /// `a_0`; [`Error::NonFiniteStart`] if a chain found no feasible
-    /// initial point; [`Error::UnboundedBelow`] if the potential at an
-    /// initial point is below `-sqrt(F::MAX)`.
-    #[allow(clippy::type_complexity)] // the optimiser's own parameters, all inferred
-    pub fn build<Store, const D: usize, R>(
-        mut self,
-        mut chains: Store,
-    ) -> Result<Optimizer<F, P, S, C, Store, D, R, B>, Error>
-    where
-        P: Potential<F, D>,
-        B: Domain<F, D>,
-        St: Start<F, D>,
-        Store: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
-        R: Rng + SeedableRng + 'static,
-    {
-        let n = chains.as_ref().len();
+    /// The checks of every build, for `n` chains of dimension `d`; sets
+    /// the step budget a schedule's length gives.
+    fn check(&mut self, n: usize, d: usize) -> Result<(), Error> {
         if n == 0 {
             return Err(Error::Zero { name: "chains" });
         }
-        if D == 0 {
+        if d == 0 {
             return Err(Error::Zero {
                 name: "dimension D",
             });
@@ -175,6 +149,56 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
                 }
                 Some(_) => {}
                 None => self.stop.steps = Some(length),
+            }
+        }
+        Ok(())
+    }
+
+    /// Seeds each chain's generator, draws its initial point from the start
+    /// (zero velocity), evaluates the potential there, and checks the
+    /// settings: as many chains as `chains` holds.
+    ///
+    /// An initial point whose position, value or gradient is not finite is
+    /// infeasible: the chain draws another from the start law (the next
+    /// draws of its own generator), up to [`START_TRIES`] points in all and
+    /// within the evaluation budget, which every point drawn counts in. A
+    /// run whose initial points are all feasible draws each once.
+    ///
+    /// Errors: [`Error::Zero`] for no chains, a dimension `D = 0`, a zero
+    /// stride or budget or stall window, or a schedule of length 0;
+    /// [`Error::Budget`] for an evaluation budget below the number of
+    /// chains; [`Error::ScheduleLongerThanRun`] for a step budget that
+    /// would cut the schedule short; the sampler's error if it refuses
+    /// `a_0`; [`Error::NonFiniteStart`] if a chain found no feasible
+    /// initial point; [`Error::UnboundedBelow`] if the potential at an
+    /// initial point is below `-sqrt(F::MAX)`; [`Error::Length`] for a
+    /// box or a start made for another dimension.
+    #[allow(clippy::type_complexity)] // the optimiser's own parameters, all inferred
+    pub fn build<Store, const D: usize, R>(
+        mut self,
+        mut chains: Store,
+    ) -> Result<Optimizer<F, P, S, C, Store, D, R, B>, Error>
+    where
+        P: Potential<F, D>,
+        B: Domain<F, D>,
+        St: Start<F, D>,
+        Store: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
+        R: Rng + SeedableRng + 'static,
+    {
+        let n = chains.as_ref().len();
+        self.check(n, D)?;
+        for (name, dimension) in [
+            ("box sides", self.domain.dimension()),
+            ("start", self.start.dimension()),
+        ] {
+            if let Some(got) = dimension
+                && got != D
+            {
+                return Err(Error::Length {
+                    name,
+                    expected: D,
+                    got,
+                });
             }
         }
         let kernel = self.sampler.at(self.schedule.inverse_temperature(0))?;
@@ -232,6 +256,161 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
             kernel,
             self.schedule,
             chains,
+            best,
+            evaluations,
+            self.stride,
+            self.stop,
+        ))
+    }
+}
+
+impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, B> {
+    /// [`build`](Builder::build) for a dimension `dim` known at compile
+    /// time ([`Const`](crate::Const)) or at run time ([`Dyn`](crate::Dyn)),
+    /// over chains in flat storage: the same checks, the same draws and
+    /// the same bits as over [`Chain`]s of that dimension. The initial
+    /// points are evaluated in one batch (redraws one by one).
+    ///
+    /// ```
+    /// use hrla::{Builder, Dyn, FlatChains, Hrla, Interval, Rastrigin, Stop};
+    /// use rand_core::SeedableRng;
+    /// use rand_xoshiro::Xoshiro256PlusPlus;
+    ///
+    /// let (n, d) = (16, 21);
+    /// let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(n, d)];
+    /// let (mut iterations, mut diverged) = (vec![0; n], vec![false; n]);
+    /// let mut rngs: Vec<_> = (0..n).map(|_| Xoshiro256PlusPlus::seed_from_u64(0)).collect();
+    /// let chains = FlatChains::new(d, &mut floats, &mut iterations, &mut diverged, &mut rngs)?;
+    /// let domain = Interval::new(-5.12, 5.12)?;
+    /// let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01)?, 4.0, domain)
+    ///     .domain(domain)
+    ///     .stop(Stop::new().steps(1_000))
+    ///     .build_flat(Dyn(d), chains)?;
+    /// let report = opt.run()?;
+    /// assert_eq!(opt.best().x.len(), d);
+    /// # let _ = report;
+    /// # Ok::<(), hrla::Error>(())
+    /// ```
+    ///
+    /// Errors: those of [`build`](Builder::build), and
+    /// [`Error::Length`] for storage, a box, a start or a potential of
+    /// another dimension than `dim`.
+    #[allow(clippy::type_complexity)] // the optimiser's own parameters, all inferred
+    pub fn build_flat<'a, Dm, R>(
+        mut self,
+        dim: Dm,
+        chains: FlatChains<'a, F, R>,
+    ) -> Result<FlatOptimizer<'a, F, P, S, C, Dm, R, B>, Error>
+    where
+        Dm: Dim,
+        P: BatchPotential<F>,
+        B: SliceDomain<F>,
+        St: SliceStart<F>,
+        R: Rng + SeedableRng + 'static,
+    {
+        let mut chains = chains;
+        let (n, d) = (chains.len(), dim.value());
+        self.check(n, d)?;
+        for (name, dimension) in [
+            ("chains", Some(chains.dim())),
+            ("box sides", self.domain.dimension()),
+            ("start", self.start.dimension()),
+            ("potential", self.potential.batch_dimension()),
+        ] {
+            if let Some(got) = dimension
+                && got != d
+            {
+                return Err(Error::Length {
+                    name,
+                    expected: d,
+                    got,
+                });
+            }
+        }
+        let kernel = self.sampler.at(self.schedule.inverse_temperature(0))?;
+        let mut spare = self.stop.evaluations.map_or(u64::MAX, |b| b - n as u64);
+        let mut evaluations = n as u64;
+        let FlatChains {
+            x,
+            y,
+            grad,
+            best_x,
+            value,
+            best_value,
+            best_iteration,
+            diverged,
+            rng,
+            ..
+        } = &mut chains;
+        for (c, ((x, y), rng)) in x
+            .chunks_exact_mut(d)
+            .zip(y.chunks_exact_mut(d))
+            .zip(rng.iter_mut())
+            .enumerate()
+        {
+            *rng = R::seed_from_u64(chain_seed(self.seed, c as u64));
+            self.start.initial_point(c, rng, x);
+            y.fill(F::ZERO);
+            self.domain.confine(x, y);
+        }
+        diverged.fill(false);
+        self.potential
+            .values_and_gradients(d, x, grad, value, diverged);
+        for c in 0..n {
+            let span = c * d..(c + 1) * d;
+            let mut tries = 1;
+            loop {
+                match judge(&x[span.clone()], value[c], &grad[span.clone()], floor()) {
+                    Verdict::Feasible => break,
+                    Verdict::Unbounded => {
+                        return Err(Error::UnboundedBelow {
+                            chain: c,
+                            value: value[c].to_f64(),
+                        });
+                    }
+                    Verdict::Infeasible(what) => {
+                        if tries >= START_TRIES || spare == 0 {
+                            return Err(Error::NonFiniteStart {
+                                chain: c,
+                                what,
+                                tries,
+                            });
+                        }
+                        spare -= 1;
+                    }
+                }
+                let (xc, yc) = (&mut x[span.clone()], &mut y[span.clone()]);
+                self.start.initial_point(c, &mut rng[c], xc);
+                yc.fill(F::ZERO);
+                self.domain.confine(xc, yc);
+                self.potential.values_and_gradients(
+                    d,
+                    xc,
+                    &mut grad[span.clone()],
+                    &mut value[c..=c],
+                    &[false],
+                );
+                evaluations += 1;
+                tries += 1;
+            }
+        }
+        best_x.copy_from_slice(x);
+        best_value.copy_from_slice(value);
+        best_iteration.fill(0);
+        let mut best = 0;
+        for c in 0..n {
+            if value[c] < value[best] {
+                best = c;
+            }
+        }
+        Ok(FlatOptimizer::assemble(
+            self.potential,
+            self.domain,
+            self.sampler,
+            kernel,
+            self.schedule,
+            chains,
+            dim,
             best,
             evaluations,
             self.stride,

@@ -23,6 +23,33 @@ pub trait Executor {
         A: Send,
         Part: Fn(usize, &mut [T]) -> A + Sync + Send,
         Then: Fn(A, A) -> A + Sync + Send;
+
+    /// [`fold_parts`](Executor::fold_parts) for items that are not a
+    /// slice but split like one ([`Split`]), such as chains in flat
+    /// storage ([`FlatChains`](crate::FlatChains)): the same contract.
+    /// The default runs everything on the calling thread, as one part.
+    fn fold_split<T, A, Part, Then>(&self, items: T, part: Part, _then: Then) -> Option<A>
+    where
+        T: Split,
+        A: Send,
+        Part: Fn(usize, T) -> A + Sync + Send,
+        Then: Fn(A, A) -> A + Sync + Send,
+    {
+        (!items.is_empty()).then(|| part(0, items))
+    }
+}
+
+/// Items that split in two at an index, as `split_at_mut` splits a slice:
+/// what [`Executor::fold_split`] cuts into parts.
+pub trait Split: Sized + Send {
+    /// The number of items.
+    fn len(&self) -> usize;
+    /// Whether there are no items.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Items `..mid` and `mid..`; `mid <= len()`.
+    fn split_at(self, mid: usize) -> (Self, Self);
 }
 
 /// Every chain on the calling thread, as one part: what

@@ -72,6 +72,39 @@ impl<F: Float> Stop<F> {
     }
 
     /// Checks every rule's numbers.
+    /// The first rule that holds for a run at `iteration` with
+    /// `evaluations` spent, `live` chains, its best value `best` and its
+    /// last improvement beyond the stall tolerance at `stall_since`.
+    pub(crate) fn holds(
+        &self,
+        best: F,
+        iteration: u64,
+        evaluations: u64,
+        live: u64,
+        stall_since: u64,
+    ) -> Option<Termination>
+    where
+        F: Float,
+    {
+        if self.target.is_some_and(|t| best <= t) {
+            Some(Termination::Target)
+        } else if self.steps.is_some_and(|k| iteration >= k) {
+            Some(Termination::Steps)
+        } else if self
+            .evaluations
+            .is_some_and(|b| evaluations.saturating_add(live) > b)
+        {
+            Some(Termination::Evaluations)
+        } else if self
+            .stall
+            .is_some_and(|(window, _)| iteration - stall_since >= window)
+        {
+            Some(Termination::Stalled)
+        } else {
+            None
+        }
+    }
+
     pub(crate) fn validate(&self) -> Result<(), Error> {
         if self.steps == Some(0) {
             return Err(Error::Zero {

@@ -34,7 +34,7 @@ use crate::sampler::{ChainState, Kernel};
 /// 1.09-1.13, d = 32 0.89, d = 100 0.91-0.95 (why AVX-512 code loses at
 /// d = 10 is not known). `f32` gains or breaks even everywhere measured.
 /// Bits are the same either way.
-const LOCKSTEP_F64_FROM: usize = if cfg!(target_feature = "avx512f") {
+pub(crate) const LOCKSTEP_F64_FROM: usize = if cfg!(target_feature = "avx512f") {
     16
 } else {
     8
@@ -217,7 +217,7 @@ fn evaluate<F, K, P, B, R, const D: usize>(
 /// Without short-circuit, so that the checks vectorise: this runs on every
 /// chain at every step, and a chain is almost always finite.
 #[inline(always)]
-pub(crate) fn all_finite<F: Float, const D: usize>(v: &[F; D]) -> bool {
+pub(crate) fn all_finite<F: Float>(v: &[F]) -> bool {
     v.iter().fold(true, |ok, x| ok & x.is_finite())
 }
 
@@ -238,12 +238,7 @@ pub(crate) enum Verdict {
 /// initial points, the steps, the restarts (the polish checks its own
 /// values against the same [`floor`](crate::error::floor)).
 #[inline(always)]
-pub(crate) fn judge<F: Float, const D: usize>(
-    x: &[F; D],
-    value: F,
-    grad: &[F; D],
-    floor: F,
-) -> Verdict {
+pub(crate) fn judge<F: Float>(x: &[F], value: F, grad: &[F], floor: F) -> Verdict {
     if value < floor && all_finite(x) {
         Verdict::Unbounded
     } else if value.is_finite() && all_finite(grad) && all_finite(x) {

@@ -1,7 +1,7 @@
 //! Ackley's function: a nearly flat outer region riddled with local minima
 //! around one deep funnel.
 
-use super::traits::{KnownMinimum, Potential};
+use super::traits::{KnownMinimum, Potential, SlicePotential};
 use crate::float::Float;
 
 /// Ackley's function with the usual constants `(20, 0.2, 2π)`:
@@ -20,10 +20,19 @@ use crate::float::Float;
 pub struct Ackley;
 
 impl<F: Float, const D: usize> Potential<F, D> for Ackley {
+    #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
+        SlicePotential::value_and_gradient(self, x, grad)
+    }
+}
+
+impl<F: Float> SlicePotential<F> for Ackley {
+    // Always inlined, so that the fixed-size impl's loops know their length.
+    #[inline(always)]
+    fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         let (twenty, fifth) = (F::from_f64(20.0), F::from_f64(0.2));
         let e = F::from_f64(core::f64::consts::E);
-        let d = F::from_u64(D as u64);
+        let d = F::from_u64(x.len() as u64);
         let (mut norm2, mut omc) = (F::ZERO, F::ZERO);
         for (&xi, gi) in x.iter().zip(grad.iter_mut()) {
             let (s, c) = (F::PI * xi).fast_sin_cos();

@@ -1,6 +1,6 @@
 //! A potential from a closure.
 
-use super::traits::Potential;
+use super::traits::{Potential, SlicePotential};
 use crate::float::Float;
 
 /// A potential from one closure that writes `∇U(x)` and returns `U(x)`, as
@@ -38,6 +38,27 @@ where
 {
     #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
+        (self.0)(x, grad)
+    }
+}
+
+impl<G> FnPotential<G> {
+    /// A closure over slices, for a dimension known at run time: it writes
+    /// `∇U(x)` into its second argument (as long as `x`) and returns `U(x)`.
+    pub fn slices<F: Float>(value_and_gradient: G) -> Self
+    where
+        G: Fn(&[F], &mut [F]) -> F,
+    {
+        Self(value_and_gradient)
+    }
+}
+
+impl<F: Float, G> SlicePotential<F> for FnPotential<G>
+where
+    G: Fn(&[F], &mut [F]) -> F,
+{
+    #[inline]
+    fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         (self.0)(x, grad)
     }
 }

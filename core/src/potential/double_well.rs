@@ -1,7 +1,7 @@
 //! The separable double well: a two-humped Gibbs law, the test case for
 //! the invariant law.
 
-use super::traits::{KnownMinimum, Potential};
+use super::traits::{KnownMinimum, Potential, SlicePotential};
 use crate::float::Float;
 
 /// The separable double well `U(x) = sum_i (x_i^2 - 1)^2`,
@@ -14,7 +14,16 @@ use crate::float::Float;
 pub struct DoubleWell;
 
 impl<F: Float, const D: usize> Potential<F, D> for DoubleWell {
+    #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
+        SlicePotential::value_and_gradient(self, x, grad)
+    }
+}
+
+impl<F: Float> SlicePotential<F> for DoubleWell {
+    // Always inlined, so that the fixed-size impl's loops know their length.
+    #[inline(always)]
+    fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         let mut u = F::ZERO;
         for (&xi, gi) in x.iter().zip(grad.iter_mut()) {
             let w = xi * xi - F::ONE;

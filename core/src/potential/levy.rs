@@ -1,6 +1,6 @@
 //! Levy's function: many local minima, the global one at `(1, ..., 1)`.
 
-use super::traits::{KnownMinimum, Potential};
+use super::traits::{KnownMinimum, Potential, SlicePotential};
 use crate::float::Float;
 
 /// Levy's function, with `w_i = 1 + (x_i - 1)/4`:
@@ -16,8 +16,18 @@ use crate::float::Float;
 pub struct Levy;
 
 impl<F: Float, const D: usize> Potential<F, D> for Levy {
+    #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        if D == 0 {
+        SlicePotential::value_and_gradient(self, x, grad)
+    }
+}
+
+impl<F: Float> SlicePotential<F> for Levy {
+    // Always inlined, so that the fixed-size impl's loops know their length.
+    #[inline(always)]
+    fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
+        let n = x.len().min(grad.len());
+        if n == 0 {
             return F::ZERO;
         }
         let quarter = F::from_f64(0.25);
@@ -29,10 +39,10 @@ impl<F: Float, const D: usize> Potential<F, D> for Levy {
         let mut u = s1 * s1;
         grad.fill(F::ZERO);
         grad[0] = F::TWO * pi * s1 * c1 * quarter;
-        for i in 0..D {
+        for i in 0..n {
             let wi = w(x[i]);
             let d = wi - F::ONE;
-            let (term, dterm) = if i + 1 < D {
+            let (term, dterm) = if i + 1 < n {
                 let (s, c) = (pi * wi + F::ONE).fast_sin_cos();
                 let bracket = F::ONE + ten * s * s;
                 (

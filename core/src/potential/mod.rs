@@ -25,4 +25,4 @@ pub use levy::Levy;
 pub use quadratic::Quadratic;
 pub use rastrigin::Rastrigin;
 pub use styblinski_tang::StyblinskiTang;
-pub use traits::{KnownMinimum, Potential};
+pub use traits::{BatchPotential, KnownMinimum, Potential, SlicePotential};

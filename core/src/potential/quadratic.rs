@@ -1,7 +1,7 @@
 //! The isotropic quadratic: its Gibbs law is Gaussian, the exact case for
 //! the moment tests.
 
-use super::traits::{KnownMinimum, Potential};
+use super::traits::{KnownMinimum, Potential, SlicePotential};
 use crate::error::{Error, finite, positive};
 use crate::float::Float;
 
@@ -33,7 +33,17 @@ impl<F: Float, const D: usize> Quadratic<F, D> {
 }
 
 impl<F: Float, const D: usize> Potential<F, D> for Quadratic<F, D> {
+    #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
+        SlicePotential::value_and_gradient(self, x, grad)
+    }
+}
+
+/// Of dimension `D`: a run of another dimension is refused.
+impl<F: Float, const D: usize> SlicePotential<F> for Quadratic<F, D> {
+    // Always inlined, so that the fixed-size impl's loops know their length.
+    #[inline(always)]
+    fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         // Sum (k r) r rather than k |r|^2: with a tiny k and a huge r the
         // latter is 0 * inf = NaN, the former the finite true value.
         let mut kr2 = F::ZERO;
@@ -43,6 +53,10 @@ impl<F: Float, const D: usize> Potential<F, D> for Quadratic<F, D> {
             kr2 += *gi * r;
         }
         F::HALF * kr2
+    }
+
+    fn dimension(&self) -> Option<usize> {
+        Some(D)
     }
 }
 

@@ -1,6 +1,6 @@
 //! Styblinski–Tang: one global minimum among `2^D` local ones.
 
-use super::traits::{KnownMinimum, Potential};
+use super::traits::{KnownMinimum, Potential, SlicePotential};
 use crate::float::Float;
 
 /// The root of `4x^3 - 32x + 5 = 0` in `(-3, -2.5)`: the Styblinski–Tang
@@ -18,7 +18,16 @@ const STYBLINSKI_TANG_U: f64 = -39.166_165_703_771_41;
 pub struct StyblinskiTang;
 
 impl<F: Float, const D: usize> Potential<F, D> for StyblinskiTang {
+    #[inline]
     fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
+        SlicePotential::value_and_gradient(self, x, grad)
+    }
+}
+
+impl<F: Float> SlicePotential<F> for StyblinskiTang {
+    // Always inlined, so that the fixed-size impl's loops know their length.
+    #[inline(always)]
+    fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         let (c16, c5) = (F::from_f64(16.0), F::from_f64(5.0));
         let mut u = F::ZERO;
         for (&xi, gi) in x.iter().zip(grad.iter_mut()) {

@@ -68,3 +68,94 @@ impl<F: Float, const D: usize, P: KnownMinimum<F, D> + ?Sized> KnownMinimum<F, D
         (**self).global_minimiser()
     }
 }
+
+/// A smooth potential `U` on `R^d` whose dimension is the length of the
+/// slices: the run-time-dimension twin of [`Potential`]. A built-in
+/// potential gives the same bits through both.
+pub trait SlicePotential<F: Float> {
+    /// Writes `∇U(x)` into `grad` (`grad.len() == x.len()`) and returns
+    /// `U(x)`.
+    fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F;
+
+    /// The dimension the potential was made for, if it has one (a centre,
+    /// a table of coefficients); a run of another dimension is refused.
+    fn dimension(&self) -> Option<usize> {
+        None
+    }
+}
+
+impl<F: Float, P: SlicePotential<F> + ?Sized> SlicePotential<F> for &P {
+    #[inline]
+    fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
+        (**self).value_and_gradient(x, grad)
+    }
+    fn dimension(&self) -> Option<usize> {
+        (**self).dimension()
+    }
+}
+
+/// The batch seam: one call evaluates the new points of a group of chains
+/// (a GPU kernel, a SIMD routine, a Python function of an `(n, d)` array).
+///
+/// The group's points are chain-major: chain `i`'s point is
+/// `x[i * d..(i + 1) * d]`, its gradient goes to `grad[i * d..(i + 1) * d]`
+/// and its value to `value[i]`. A chain with `skip[i]` set has diverged:
+/// leave its gradient and value alone (they are not read). A non-finite
+/// value or gradient is allowed: the optimiser marks the chain diverged.
+///
+/// Every [`SlicePotential`] is one, evaluating the points one by one;
+/// implement this trait directly (and not [`SlicePotential`]) for a
+/// potential that is cheaper per batch.
+pub trait BatchPotential<F: Float> {
+    /// Writes the values and gradients of the group's points.
+    fn values_and_gradients(
+        &self,
+        d: usize,
+        x: &[F],
+        grad: &mut [F],
+        value: &mut [F],
+        skip: &[bool],
+    );
+
+    /// The dimension the potential was made for, if it has one.
+    fn batch_dimension(&self) -> Option<usize> {
+        None
+    }
+
+    /// How many chains a call should carry at most: `None` (the default),
+    /// all of a step's. A potential that gains nothing from large batches
+    /// asks for few, so that a group's state is still in cache when it is
+    /// evaluated right after its step (the blanket implementation asks for
+    /// [`LANES`](crate::LANES), one group of chains stepped in lockstep).
+    /// Any answer gives the same bits.
+    fn chains_per_call(&self) -> Option<usize> {
+        None
+    }
+}
+
+impl<F: Float, P: SlicePotential<F> + ?Sized> BatchPotential<F> for P {
+    #[inline(always)]
+    fn values_and_gradients(
+        &self,
+        d: usize,
+        x: &[F],
+        grad: &mut [F],
+        value: &mut [F],
+        skip: &[bool],
+    ) {
+        let points = x.chunks_exact(d).zip(grad.chunks_exact_mut(d));
+        for (((x, grad), value), &skip) in points.zip(value.iter_mut()).zip(skip) {
+            if !skip {
+                *value = self.value_and_gradient(x, grad);
+            }
+        }
+    }
+
+    fn batch_dimension(&self) -> Option<usize> {
+        self.dimension()
+    }
+
+    fn chains_per_call(&self) -> Option<usize> {
+        Some(crate::lockstep::LANES)
+    }
+}

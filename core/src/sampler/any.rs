@@ -13,7 +13,7 @@ use rand_core::Rng;
 use super::hrla::Hrla;
 use super::ola::{Ola, OlaKernel};
 use super::ou::OuKernel;
-use super::traits::{ChainState, Kernel, Sampler, StepMoments};
+use super::traits::{ChainSlices, ChainState, Kernel, Sampler, StepMoments};
 use super::ula::Ula;
 use crate::error::Error;
 use crate::float::Float;
@@ -117,6 +117,20 @@ macro_rules! samplers {
             ) {
                 match self {
                     $( Self::$variant(k) => k.step(x, y, grad, rng), )+
+                }
+            }
+
+            #[inline]
+            fn step_slice<R: Rng + ?Sized>(&self, x: &mut [F], y: &mut [F], grad: &[F], rng: &mut R) {
+                match self {
+                    $( Self::$variant(k) => k.step_slice(x, y, grad, rng), )+
+                }
+            }
+
+            #[inline]
+            fn step_lanes_slice(&self, chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+                match self {
+                    $( Self::$variant(k) => k.step_lanes_slice(chains, rng), )+
                 }
             }
 

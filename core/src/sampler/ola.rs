@@ -3,7 +3,7 @@
 
 use rand_core::Rng;
 
-use super::traits::{ChainState, Kernel, Sampler, StepMoments};
+use super::traits::{ChainSlices, ChainState, Kernel, Sampler, StepMoments};
 use crate::error::{Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
@@ -120,10 +120,36 @@ impl<F: Float> Kernel<F> for OlaKernel<F> {
         mut chains: [ChainState<'_, F, D>; LANES],
         rng: &mut Xoshiro256Lanes,
     ) {
+        // The arrays' fixed length spares the bounds checks of the slice
+        // version: the same operations on the same values.
         for i in 0..D {
             let z = F::standard_normal_lanes(rng);
             for (chain, &zl) in chains.iter_mut().zip(&z) {
                 chain.x[i] = chain.x[i] - self.drift * chain.grad[i] + self.noise * zl;
+            }
+        }
+    }
+
+    #[inline]
+    fn step_slice<R: Rng + ?Sized>(&self, x: &mut [F], _y: &mut [F], grad: &[F], rng: &mut R) {
+        for (xi, &gi) in x.iter_mut().zip(grad) {
+            let z = F::standard_normal(rng);
+            *xi = *xi - self.drift * gi + self.noise * z;
+        }
+    }
+
+    /// [`step_lanes`](Kernel::step_lanes) on slices: the same draws and
+    /// updates.
+    #[inline]
+    fn step_lanes_slice(&self, chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+        let d = chains[0].x.len();
+        let mut parts = chains.map(|c| (c.x, c.grad));
+        for i in 0..d {
+            let z = F::standard_normal_lanes(rng);
+            for ((x, grad), &zl) in parts.iter_mut().zip(&z) {
+                if let (Some(xi), Some(&gi)) = (x.get_mut(i), grad.get(i)) {
+                    *xi = *xi - self.drift * gi + self.noise * zl;
+                }
             }
         }
     }

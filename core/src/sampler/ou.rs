@@ -44,7 +44,7 @@
 
 use rand_core::Rng;
 
-use super::traits::{ChainState, Kernel, StepMoments};
+use super::traits::{ChainSlices, ChainState, Kernel, StepMoments};
 use crate::error::{ALPHA_H, Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
@@ -320,7 +320,44 @@ impl<F: Float> Kernel<F> for OuKernel<F> {
             }
         }
     }
+
+    /// [`step`](Kernel::step)'s draws and updates in blocks of a size
+    /// fixed at compile time (16 coordinates for small points, 64 beyond):
+    /// the stream and the arithmetic do not depend on the blocks.
+    #[inline]
+    fn step_slice<R: Rng + ?Sized>(&self, x: &mut [F], y: &mut [F], grad: &[F], rng: &mut R) {
+        if x.len() <= TINY_BLOCK {
+            self.step_block::<R, TINY_BLOCK>(x, y, grad, rng);
+        } else if x.len() <= SMALL_BLOCK {
+            self.step_block::<R, SMALL_BLOCK>(x, y, grad, rng);
+        } else {
+            for ((xb, yb), gb) in x
+                .chunks_mut(BLOCK)
+                .zip(y.chunks_mut(BLOCK))
+                .zip(grad.chunks(BLOCK))
+            {
+                self.step_block::<R, BLOCK>(xb, yb, gb, rng);
+            }
+        }
+    }
+
+    #[inline]
+    fn step_lanes_slice(&self, mut chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+        let d = chains[0].x.len();
+        if d <= SMALL_BLOCK {
+            self.step_lanes_block_slices::<SMALL_BLOCK>(&mut chains, d, 0, rng);
+        } else {
+            for start in (0..d).step_by(BLOCK) {
+                self.step_lanes_block_slices::<BLOCK>(&mut chains, d, start, rng);
+            }
+        }
+    }
 }
+
+/// The blocks of [`Kernel::step_slice`] for points of at most this many
+/// coordinates: buffers small enough to cost nothing to set up.
+const TINY_BLOCK: usize = 4;
+const SMALL_BLOCK: usize = 16;
 
 /// Coordinates stepped together: all of a block's draws first, then its
 /// update, so that the update's loop has no branch and vectorises (the
@@ -360,6 +397,48 @@ impl<F: Float> OuKernel<F> {
         rng_out: &mut Xoshiro256Lanes,
     ) {
         let n = D.min(start + B) - start;
+        let (z1, z2) = Self::lane_normals::<B>(n, rng_out);
+        for ((chain, z1), z2) in chains.iter_mut().zip(&z1).zip(&z2) {
+            let x = &mut chain.x[start..start + n];
+            let y = &mut chain.y[start..start + n];
+            let grad = &chain.grad[start..start + n];
+            for i in 0..n {
+                self.apply(&mut x[i], &mut y[i], grad[i], z1[i], z2[i]);
+            }
+        }
+    }
+
+    /// [`step_lanes_block`](Self::step_lanes_block) for chains of `d`
+    /// coordinates in slices: the same draws and updates. (Apart, so that
+    /// the fixed-size version indexes arrays.)
+    #[inline]
+    fn step_lanes_block_slices<const B: usize>(
+        &self,
+        chains: &mut [ChainSlices<'_, F>; LANES],
+        d: usize,
+        start: usize,
+        rng_out: &mut Xoshiro256Lanes,
+    ) {
+        let n = d.min(start + B) - start;
+        let (z1, z2) = Self::lane_normals::<B>(n, rng_out);
+        for ((chain, z1), z2) in chains.iter_mut().zip(&z1).zip(&z2) {
+            let x = &mut chain.x[start..start + n];
+            let y = &mut chain.y[start..start + n];
+            let grad = &chain.grad[start..start + n];
+            for i in 0..n {
+                self.apply(&mut x[i], &mut y[i], grad[i], z1[i], z2[i]);
+            }
+        }
+    }
+
+    /// The pairs `(z1, z2)` of `n <= B` coordinates of every lane, drawn
+    /// coordinate by coordinate in lockstep.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn lane_normals<const B: usize>(
+        n: usize,
+        rng_out: &mut Xoshiro256Lanes,
+    ) -> ([[F; B]; LANES], [[F; B]; LANES]) {
         // A local copy: its address never escapes, so the generators stay
         // in vector registers.
         let mut lanes = *rng_out;
@@ -372,13 +451,6 @@ impl<F: Float> OuKernel<F> {
             }
         }
         *rng_out = lanes;
-        for ((chain, z1), z2) in chains.iter_mut().zip(&z1).zip(&z2) {
-            let x = &mut chain.x[start..start + n];
-            let y = &mut chain.y[start..start + n];
-            let grad = &chain.grad[start..start + n];
-            for i in 0..n {
-                self.apply(&mut x[i], &mut y[i], grad[i], z1[i], z2[i]);
-            }
-        }
+        (z1, z2)
     }
 }

@@ -52,6 +52,11 @@ pub trait Kernel<F: Float>: Copy {
         rng: &mut R,
     );
 
+    /// [`step`](Kernel::step) for a dimension known at run time, the
+    /// length of the slices (all three the same): the same draws and the
+    /// same float operations, so the same bits.
+    fn step_slice<R: Rng + ?Sized>(&self, x: &mut [F], y: &mut [F], grad: &[F], rng: &mut R);
+
     /// Advances `L` chains by one step each, chain `l` drawing from lane
     /// `l` of `rng`: bit for bit what [`step`](Kernel::step) gives with
     /// that lane's generator alone. This is the seam for wide hardware:
@@ -70,6 +75,27 @@ pub trait Kernel<F: Float>: Copy {
             self.step(chain.x, chain.y, chain.grad, &mut rng.lane(l));
         }
     }
+
+    /// [`step_lanes`](Kernel::step_lanes) for a dimension known at run time,
+    /// the length of every chain's slices.
+    #[inline]
+    fn step_lanes_slice(&self, chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+        for (l, chain) in chains.into_iter().enumerate() {
+            self.step_slice(chain.x, chain.y, chain.grad, &mut rng.lane(l));
+        }
+    }
+}
+
+/// What [`Kernel::step_lanes_slice`] advances of one chain: its position,
+/// velocity and gradient, slices of the run's dimension.
+#[derive(Debug)]
+pub struct ChainSlices<'a, F> {
+    /// Position `x`.
+    pub x: &'a mut [F],
+    /// Velocity `y`.
+    pub y: &'a mut [F],
+    /// `∇U(x)`.
+    pub grad: &'a [F],
 }
 
 /// What [`Kernel::step_lanes`] advances of one chain: its position and

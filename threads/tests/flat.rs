@@ -1,0 +1,88 @@
+//! The run-time-dimension optimiser on threads: 1, 2, 3 and 7 threads and
+//! any part size give the bits of a serial run, for every sampler, with
+//! chains that diverge.
+
+use hrla::rand_core::SeedableRng;
+use hrla::{
+    AnySampler, Builder, Dyn, FlatChains, Float, Gaussian, Rastrigin, SamplerKind, SlicePotential,
+    Stop,
+};
+use hrla_threads::Threads;
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+const D: usize = 9;
+const CHAINS: usize = 103;
+
+/// Rastrigin, infeasible beyond `x_0 > 1`: some chains diverge.
+struct Cliff;
+
+impl SlicePotential<f64> for Cliff {
+    fn value_and_gradient(&self, x: &[f64], grad: &mut [f64]) -> f64 {
+        let u = Rastrigin.value_and_gradient(x, grad);
+        if x[0] > 1.0 { f64::NAN } else { u }
+    }
+}
+
+/// The run's chains and counters, as bits; `threads` None: serial.
+fn run(kind: SamplerKind, threads: Option<Threads>) -> (Vec<u64>, String) {
+    let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(CHAINS, D)];
+    let (mut iterations, mut diverged) = (vec![0; CHAINS], vec![false; CHAINS]);
+    let mut rngs: Vec<_> = (0..CHAINS)
+        .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
+        .collect();
+    let chains =
+        FlatChains::new(D, &mut floats, &mut iterations, &mut diverged, &mut rngs).unwrap();
+    let mut opt = Builder::new(
+        Cliff,
+        AnySampler::paper(kind, 0.01).unwrap(),
+        2.0,
+        Gaussian::new([0.5; D], 1.0).unwrap(),
+    )
+    .seed(5)
+    .stop(Stop::new().steps(150))
+    .build_flat(Dyn(D), chains)
+    .unwrap();
+    let report = match &threads {
+        Some(t) => opt.run_on(t),
+        None => opt.run(),
+    };
+    let summary = format!(
+        "{report:?} {} {} {}",
+        opt.evaluations(),
+        opt.best_chain(),
+        opt.diverged_chains()
+    );
+    let c = opt.chains();
+    let mut bits: Vec<u64> = c.positions().iter().map(|v| v.to_bits_u64()).collect();
+    bits.extend(c.best_positions().iter().map(|v| v.to_bits()));
+    bits.extend(c.values().iter().map(|v| v.to_bits()));
+    bits.extend((0..CHAINS).map(|i| u64::from(c.is_diverged(i))));
+    (bits, summary)
+}
+
+#[test]
+fn flat_runs_give_the_serial_bits_on_any_threads() {
+    for kind in SamplerKind::ALL {
+        let serial = run(kind, None);
+        assert!(serial.1.contains("Ok("), "{}", serial.1);
+        let diverged: u64 = serial.0[serial.0.len() - CHAINS..].iter().sum();
+        assert!(
+            diverged > 0,
+            "no chain diverged: the test would not cover them"
+        );
+        for threads in [1, 2, 3, 7] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            for part in [None, Some(4), Some(12), Some(5)] {
+                let executor = part.map_or_else(Threads::new, Threads::chains_per_part);
+                let parallel = pool.install(|| run(kind, Some(executor)));
+                assert_eq!(
+                    serial, parallel,
+                    "{kind}: {threads} threads, parts {part:?}"
+                );
+            }
+        }
+    }
+}
