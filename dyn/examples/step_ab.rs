@@ -1,6 +1,7 @@
 //! Times the layer's step loop (what the page and Python run per step):
-//! `step_ab D CHAINS STEPS`, in ns per coordinate-step, for interleaved A/B
-//! runs of two builds.
+//! `step_ab D CHAINS STEPS [per]`, in ns per coordinate-step, for
+//! interleaved A/B runs of two builds; `per`: a box whose sides differ
+//! between coordinates (the kernel's `Bounds`), else one interval.
 use hrla::{AnySampler, AnySchedule, Constant, SamplerKind, Stop};
 use hrla_dyn::{BoxSpec, BuiltinKind, BuiltinSpec, PotentialSpec, Settings, StartSpec};
 use std::time::Instant;
@@ -12,7 +13,7 @@ fn main() {
     let steps: u64 = args[3].parse().unwrap();
     let per: bool = args.get(4).is_some_and(|a| a == "per");
     let boxspec = if per {
-        BoxSpec::PerCoordinate((0..d).map(|i| (-5.12, 5.12 + i as f64 * 0.0)).collect())
+        BoxSpec::PerCoordinate((0..d).map(|i| (-5.12 - i as f64 * 1e-9, 5.12)).collect())
     } else {
         BoxSpec::Uniform {
             lo: -5.12,
