@@ -165,7 +165,7 @@ impl<const D: usize> Potential<f64, D> for UserPotential<D> {
     }
 }
 
-/// A [`BatchFunction`] as the kernel's batch seam, [`BatchPotential`]:
+/// A [`BatchFunction`] as the kernel's batch seam, [`BatchPotential`](hrla::BatchPotential):
 /// the optimiser over flat storage ([`hrla::FlatOptimizer`]) hands it a
 /// whole step's `(n, d)` block of points, and the function is called once
 /// on the rows of the live chains, with no prediction of the step.
