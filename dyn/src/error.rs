@@ -37,8 +37,10 @@ pub enum Error {
         /// The run's dimension.
         dim: usize,
     },
-    /// A box whose intervals differ between coordinates: the kernel's box
-    /// is one interval for every coordinate.
+    /// A box whose intervals differ between coordinates, given to
+    /// [`crate::auto::solve`]: [`hrla::Auto`] scales its probes and
+    /// restarts by one interval for every coordinate (the optimiser and
+    /// the polish take a box per coordinate).
     NonUniformBox,
     /// The chains' storage cannot be allocated.
     Memory {
@@ -123,7 +125,8 @@ impl fmt::Display for Error {
             }
             Self::NonUniformBox => write!(
                 f,
-                "the kernel's box is the same interval [lo, hi] in every coordinate"
+                "Auto's box is the same interval [lo, hi] in every coordinate; \
+                 a box per coordinate runs with a sampler (method=\"hrla\", \"ula\" or \"ola\")"
             ),
             Self::Memory {
                 chains,

@@ -46,7 +46,7 @@ pub use report::{Progress, TERMINATIONS, termination_code, termination_name};
 pub use settings::{
     AnyStart, BoxSpec, PointFunction, PotentialSpec, Settings, StartSpec, Temperature, dimension,
 };
-pub use user::{BatchFunction, UserError};
+pub use user::{BatchFunction, UserBatch, UserError};
 
 /// The L-BFGS memory of the polish and quenches (the kernel's `M`).
 pub const MEMORY: usize = 8;

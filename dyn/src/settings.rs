@@ -111,30 +111,49 @@ impl BoxSpec {
         }
     }
 
-    /// The kernel's box: one [`Interval`] for every coordinate (checked by
-    /// its constructor), or [`Error::NonUniformBox`] when the coordinates'
-    /// intervals differ.
+    /// The box as one [`Interval`] for every coordinate (checked by its
+    /// constructor), for [`hrla::Auto`], whose curvature probes and
+    /// restarts take one interval: [`Error::NonUniformBox`] when the
+    /// coordinates' intervals differ.
     pub fn interval(&self) -> Result<Interval<f64>, Error> {
-        let (lo, hi) = match self {
-            Self::Uniform { lo, hi } => (*lo, *hi),
-            Self::PerCoordinate(b) => {
-                let Some(&(lo, hi)) = b.first() else {
-                    return Err(Error::Length {
-                        what: "the box",
-                        len: 0,
-                        dim: 1,
-                    });
-                };
-                if b.iter()
-                    .any(|&(l, h)| l.to_bits() != lo.to_bits() || h.to_bits() != hi.to_bits())
-                {
-                    return Err(Error::NonUniformBox);
-                }
-                (lo, hi)
-            }
-        };
-        Ok(Interval::new(lo, hi)?)
+        match self.sides()? {
+            Sides::Uniform(i) => Ok(i),
+            Sides::PerCoordinate(_) => Err(Error::NonUniformBox),
+        }
     }
+
+    /// The kernel's box: an [`Interval`] when every coordinate has the
+    /// same sides (pairs that are all equal included), else the kernel's
+    /// [`hrla::Bounds`], each side checked by the kernel. Both reflect
+    /// each coordinate the same way, so equal pairs give an `Interval`'s
+    /// bits either way.
+    fn sides(&self) -> Result<Sides, Error> {
+        let b = match self {
+            Self::Uniform { lo, hi } => return Ok(Sides::Uniform(Interval::new(*lo, *hi)?)),
+            Self::PerCoordinate(b) => b,
+        };
+        let Some(&(lo, hi)) = b.first() else {
+            return Err(Error::Length {
+                what: "the box",
+                len: 0,
+                dim: 1,
+            });
+        };
+        if b.iter()
+            .all(|&(l, h)| l.to_bits() == lo.to_bits() && h.to_bits() == hi.to_bits())
+        {
+            return Ok(Sides::Uniform(Interval::new(lo, hi)?));
+        }
+        let (lo, hi): (Vec<f64>, Vec<f64>) = b.iter().copied().unzip();
+        Ok(Sides::PerCoordinate(hrla::Bounds::new(lo, hi)?))
+    }
+}
+
+/// A checked box: one interval, or one per coordinate.
+#[derive(Clone, Debug)]
+enum Sides {
+    Uniform(Interval<f64>),
+    PerCoordinate(hrla::Bounds<f64, Vec<f64>>),
 }
 
 impl From<Interval<f64>> for BoxSpec {
@@ -197,7 +216,12 @@ impl StartSpec {
                 AnyStart::Gaussian(hrla::Gaussian::new([*centre; D], *std_dev)?)
             }
             Self::Point(x) => AnyStart::Point(hrla::Point::new(array(x)?)?),
-            Self::Box(b) => AnyStart::Interval(b.interval()?),
+            Self::Box(b) => match b.sides()? {
+                Sides::Uniform(i) => AnyStart::Interval(i),
+                Sides::PerCoordinate(b) => {
+                    AnyStart::Bounds(hrla::Bounds::new(array(b.lo())?, array(b.hi())?)?)
+                }
+            },
         })
     }
 }
@@ -211,6 +235,8 @@ pub enum AnyStart<const D: usize> {
     Point(hrla::Point<f64, D>),
     /// Uniform in an [`Interval`] box.
     Interval(Interval<f64>),
+    /// Uniform in a box with its own sides in every coordinate.
+    Bounds(hrla::Bounds<f64, [f64; D]>),
 }
 
 impl<const D: usize> Start<f64, D> for AnyStart<D> {
@@ -219,34 +245,49 @@ impl<const D: usize> Start<f64, D> for AnyStart<D> {
             Self::Gaussian(s) => s.initial_point(chain, rng, x),
             Self::Point(s) => s.initial_point(chain, rng, x),
             Self::Interval(s) => s.initial_point(chain, rng, x),
+            Self::Bounds(s) => s.initial_point(chain, rng, x),
         }
     }
 }
 
-/// Where the chains may go: all of `R^D`, or a box.
-#[derive(Clone, Copy, Debug)]
+/// Where the chains may go: all of `R^D`, a box with the same sides in
+/// every coordinate, or a box with its own sides in each.
+#[derive(Clone, Debug)]
 pub(crate) enum Bounds {
     Unbounded,
     Box(Interval<f64>),
+    PerCoordinate(hrla::Bounds<f64, Vec<f64>>),
 }
 
 impl<const D: usize> Domain<f64, D> for Bounds {
     #[inline]
     fn confine(&self, x: &mut [f64; D], y: &mut [f64; D]) {
-        if let Self::Box(b) = self {
-            b.confine(x, y);
+        match self {
+            Self::Unbounded => {}
+            Self::Box(b) => b.confine(x, y),
+            Self::PerCoordinate(b) => b.confine(x, y),
         }
     }
     #[inline]
     fn project(&self, x: &mut [f64; D]) {
-        if let Self::Box(b) = self {
-            Domain::<f64, D>::project(b, x);
+        match self {
+            Self::Unbounded => {}
+            Self::Box(b) => Domain::<f64, D>::project(b, x),
+            Self::PerCoordinate(b) => Domain::<f64, D>::project(b, x),
         }
     }
     #[inline]
     fn feasible_direction(&self, x: &[f64; D], d: &mut [f64; D]) {
-        if let Self::Box(b) = self {
-            b.feasible_direction(x, d);
+        match self {
+            Self::Unbounded => {}
+            Self::Box(b) => b.feasible_direction(x, d),
+            Self::PerCoordinate(b) => b.feasible_direction(x, d),
+        }
+    }
+    fn dimension(&self) -> Option<usize> {
+        match self {
+            Self::Unbounded | Self::Box(_) => None,
+            Self::PerCoordinate(b) => Domain::<f64, D>::dimension(b),
         }
     }
 }
@@ -359,9 +400,13 @@ impl Settings {
     }
 
     pub(crate) fn bounds(&self) -> Result<Bounds, Error> {
-        self.domain
-            .as_ref()
-            .map_or(Ok(Bounds::Unbounded), |b| Ok(Bounds::Box(b.interval()?)))
+        Ok(
+            match self.domain.as_ref().map(BoxSpec::sides).transpose()? {
+                None => Bounds::Unbounded,
+                Some(Sides::Uniform(i)) => Bounds::Box(i),
+                Some(Sides::PerCoordinate(b)) => Bounds::PerCoordinate(b),
+            },
+        )
     }
 }
 

@@ -164,3 +164,105 @@ impl<const D: usize> Potential<f64, D> for UserPotential<D> {
         })
     }
 }
+
+/// A [`BatchFunction`] as the kernel's batch seam, [`BatchPotential`](hrla::BatchPotential):
+/// the optimiser over flat storage ([`hrla::FlatOptimizer`]) hands it a
+/// whole step's `(n, d)` block of points, and the function is called once
+/// on the rows of the live chains, with no prediction of the step.
+///
+/// The rows of diverged chains (`skip`) are not passed: when every chain
+/// is live the block goes to the function as it is, without a copy;
+/// otherwise the live rows are gathered, and the answers written back to
+/// their chains. After a failure (the function's error, or answers of the
+/// wrong shape), every later evaluation is NaN without a call, so that the
+/// run ends; [`UserBatch::finish`] returns the failure.
+pub struct UserBatch {
+    function: Arc<dyn BatchFunction>,
+    state: Mutex<BatchState>,
+}
+
+#[derive(Default)]
+struct BatchState {
+    /// The live rows, when some chains are skipped.
+    points: Vec<f64>,
+    values: Vec<f64>,
+    grads: Vec<f64>,
+    /// The first failure since the last [`UserBatch::finish`].
+    error: Option<Error>,
+}
+
+impl UserBatch {
+    /// The batch seam for `function`.
+    pub fn new(function: Arc<dyn BatchFunction>) -> Self {
+        Self {
+            function,
+            state: Mutex::new(BatchState::default()),
+        }
+    }
+
+    fn state(&self) -> MutexGuard<'_, BatchState> {
+        // Every field is overwritten before it is read: a panic while the
+        // lock was held leaves nothing to repair.
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The first failure since the last call, if any.
+    pub fn finish(&self) -> Result<(), Error> {
+        self.state().error.take().map_or(Ok(()), Err)
+    }
+}
+
+impl hrla::BatchPotential<f64> for UserBatch {
+    fn values_and_gradients(
+        &self,
+        d: usize,
+        x: &[f64],
+        grad: &mut [f64],
+        value: &mut [f64],
+        skip: &[bool],
+    ) {
+        let mut state = self.state();
+        let live = skip.iter().filter(|&&s| !s).count();
+        if live == 0 {
+            return;
+        }
+        let answered = if state.error.is_some() {
+            Ok(())
+        } else if live == skip.len() {
+            self.function.evaluate(x, d, value, grad)
+        } else {
+            let BatchState {
+                points,
+                values,
+                grads,
+                ..
+            } = &mut *state;
+            points.clear();
+            for (row, _) in x.chunks_exact(d).zip(skip).filter(|(_, s)| !**s) {
+                points.extend_from_slice(row);
+            }
+            values.clear();
+            values.resize(live, 0.0);
+            grads.clear();
+            grads.resize(live * d, 0.0);
+            let answered = self.function.evaluate(points, d, values, grads);
+            let rows = grad.chunks_exact_mut(d).zip(value.iter_mut()).zip(skip);
+            let live_rows = rows.filter(|(_, s)| !**s);
+            for (((g, v), _), (answer, a)) in live_rows.zip(grads.chunks_exact(d).zip(&*values)) {
+                g.copy_from_slice(answer);
+                *v = *a;
+            }
+            answered
+        };
+        if let Err(e) = answered {
+            state.error.get_or_insert(Error::User(e));
+        }
+        if state.error.is_some() {
+            // Every live chain diverges: the step ends the run, and the
+            // engine reports the failure in place of the divergence.
+            for (v, _) in value.iter_mut().zip(skip).filter(|(_, s)| !**s) {
+                *v = f64::NAN;
+            }
+        }
+    }
+}

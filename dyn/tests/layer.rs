@@ -195,14 +195,16 @@ fn what_the_kernel_cannot_run_is_a_typed_error() {
     s.dim = Some(2);
     let e = s.build().err().unwrap();
     assert_eq!(e.to_string(), "dim has dimension 2 but the start has 3");
-    // A box per coordinate: uniform runs, different intervals do not (yet).
+    // A box per coordinate: its pairs' number must be the run's D, each
+    // pair checked by the kernel.
     let mut s = settings(rastrigin());
-    s.domain = Some(BoxSpec::PerCoordinate(vec![(-5.0, 5.0); 10]));
-    assert!(s.build().is_ok());
     let mut sides = vec![(-5.0, 5.0); 10];
-    sides[3] = (0.0, 1.0);
+    sides[3] = (1.0, 0.0);
     s.domain = Some(BoxSpec::PerCoordinate(sides));
-    assert!(matches!(s.build().err(), Some(Error::NonUniformBox)));
+    assert!(matches!(
+        s.build().err(),
+        Some(Error::Kernel(hrla::Error::NotPositive { .. }))
+    ));
     s.domain = Some(BoxSpec::PerCoordinate(vec![(-5.0, 5.0); 3]));
     assert!(matches!(
         s.build().err(),
@@ -223,6 +225,97 @@ fn what_the_kernel_cannot_run_is_a_typed_error() {
 
 /// The layer's `Auto` is the kernel's, bit for bit, and a batched
 /// function there gives the same bits.
+/// Sides that differ by 10^6 between coordinates.
+fn wide_and_narrow() -> Vec<(f64, f64)> {
+    (0..10)
+        .map(|i| {
+            if i % 2 == 0 {
+                (-1e3, 1e3)
+            } else {
+                (0.25, 0.25 + 2e-3)
+            }
+        })
+        .collect()
+}
+
+/// A box per coordinate, as the domain and as the start, runs as the
+/// kernel's [`hrla::Bounds`], bit for bit; every chain stays in its
+/// coordinates' own sides; pairs that are all equal give an [`Interval`]'s
+/// bits.
+#[test]
+fn a_box_per_coordinate_is_the_kernels_bounds() {
+    let sides = wide_and_narrow();
+    let mut s = settings(rastrigin());
+    s.domain = Some(BoxSpec::PerCoordinate(sides.clone()));
+    s.start = StartSpec::Box(BoxSpec::PerCoordinate(sides.clone()));
+    let mut engine = s.build().unwrap();
+    let report = engine.run(0, &mut |_| ControlFlow::Continue(())).unwrap();
+
+    let lo: [f64; 10] = std::array::from_fn(|i| sides[i].0);
+    let hi: [f64; 10] = std::array::from_fn(|i| sides[i].1);
+    let bounds = hrla::Bounds::new(lo, hi).unwrap();
+    let chains: Vec<Chain<f64, 10>> = (0..6).map(|_| Chain::new()).collect();
+    let mut opt = Builder::new(
+        Rastrigin,
+        AnySampler::paper(SamplerKind::Hrla, 0.01).unwrap(),
+        AnySchedule::Constant(Constant::new(4.0).unwrap()),
+        bounds,
+    )
+    .domain(bounds)
+    .seed(7)
+    .stop(Stop::new().steps(200))
+    .build(chains)
+    .unwrap();
+    let expected = opt.run().unwrap();
+    assert_eq!(report.value.to_bits(), expected.value.to_bits());
+    let mine = positions(&*engine);
+    let kernel: Vec<[f64; 10]> = opt.chains().iter().map(|c| *c.x()).collect();
+    assert_eq!(mine, kernel);
+    for x in &mine {
+        for (i, &v) in x.iter().enumerate() {
+            assert!(sides[i].0 <= v && v <= sides[i].1, "x_{i} = {v}");
+        }
+    }
+
+    // Equal pairs: the interval's run.
+    let mut pairs = settings(rastrigin());
+    pairs.domain = Some(BoxSpec::PerCoordinate(vec![(-5.0, 5.0); 10]));
+    pairs.start = StartSpec::Box(BoxSpec::PerCoordinate(vec![(-5.0, 5.0); 10]));
+    let mut uniform = settings(rastrigin());
+    uniform.domain = Some(BoxSpec::Uniform { lo: -5.0, hi: 5.0 });
+    uniform.start = StartSpec::Box(BoxSpec::Uniform { lo: -5.0, hi: 5.0 });
+    let (mut a, mut b) = (pairs.build().unwrap(), uniform.build().unwrap());
+    a.step(50).unwrap();
+    b.step(50).unwrap();
+    assert_eq!(positions(&*a), positions(&*b));
+}
+
+/// Auto takes one interval for every coordinate: a box per coordinate is
+/// its typed refusal, equal pairs run.
+#[test]
+fn auto_refuses_a_box_per_coordinate() {
+    let problem = |domain| Problem {
+        potential: rastrigin(),
+        domain,
+        budget: 2_000,
+        seed: 1,
+        chains: Some(4),
+        dim: None,
+    };
+    let refused = solve(
+        &Auto::default(),
+        &problem(BoxSpec::PerCoordinate(wide_and_narrow())),
+        &mut |_| ControlFlow::Continue(()),
+    );
+    assert!(matches!(refused, Err(Error::NonUniformBox)));
+    let equal = solve(
+        &Auto::default(),
+        &problem(BoxSpec::PerCoordinate(vec![(-5.0, 5.0); 10])),
+        &mut |_| ControlFlow::Continue(()),
+    );
+    assert!(equal.is_ok());
+}
+
 #[test]
 fn auto_is_the_kernels() {
     let mut chains: Vec<Chain<f64, 10>> = (0..8).map(|_| Chain::new()).collect();

@@ -185,9 +185,9 @@ def minimize(
     function ``fun(X) -> (U, G)`` evaluating ``U`` and ``∇U`` on the rows of
     ``X`` (shape ``(N, D)``; ``U`` of shape ``(N,)``, ``G`` of shape
     ``(N, D)``). ``bounds`` is ``(lo, hi)`` (then give ``dim``) or ``D``
-    pairs ``(lo_i, hi_i)``; the chains stay in the box by reflection. The
-    kernel's box is one interval for every coordinate: pairs that differ
-    raise ``ValueError``.
+    pairs ``(lo_i, hi_i)``, each coordinate with its own sides; the chains
+    stay in the box by reflection. :class:`Auto` takes one interval for
+    every coordinate: pairs that differ raise ``ValueError`` there.
 
     ``method="auto"`` (the default; needs ``bounds``) is the kernel's
     :class:`Auto` solver: no setting to tune, ``budget`` evaluations in

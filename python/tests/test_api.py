@@ -207,15 +207,47 @@ def test_the_builtins_are_the_layers_list():
 
 def test_a_box_per_coordinate_is_the_layers_to_check():
     # Equal pairs run as the interval they all are, bit for bit; pairs that
-    # differ are refused by the run-time layer, naming the kernel's limit;
+    # differ run (Auto alone refuses them: its probes take one interval);
     # their number fixes D and must agree with dim=.
     pairs = hrla.minimize(hrla.Rastrigin(), [(-5.12, 5.12)] * 3, method="hrla", budget=3_000, seed=4)
     interval = hrla.minimize(hrla.Rastrigin(), (-5.12, 5.12), dim=3, method="hrla", budget=3_000, seed=4)
     assert pairs.fun == interval.fun and np.array_equal(pairs.x, interval.x)
-    with pytest.raises(ValueError, match="same interval"):
-        hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, [(-1.0, 1.0), (0.0, 2.0)])
-    with pytest.raises(ValueError, match="same interval"):
+    with pytest.raises(ValueError, match="Auto's box is the same interval"):
         hrla.Auto().minimize(hrla.Rastrigin(), [(-1.0, 1.0), (0.0, 2.0)], 10_000)
+    with pytest.raises(ValueError, match="Auto's box is the same interval"):
+        hrla.minimize(hrla.Rastrigin(), [(-1.0, 1.0), (0.0, 2.0)])
+    with pytest.raises(ValueError, match="dim has dimension 3 but the box has 2"):
+        hrla.minimize(hrla.Rastrigin(), [(-1.0, 1.0)] * 2, dim=3, budget=10_000)
+    with pytest.raises(TypeError, match="a box must be"):
+        hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.0]), domain="box")
+    with pytest.raises(hrla.HrlaError, match="hi - lo"):
+        hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, [(-1.0, 1.0), (2.0, 2.0)])
+
+
+@pytest.mark.parametrize("d", [1, 3, 20])
+def test_a_box_per_coordinate_with_different_sides(d):
+    # Sides on scales 10^6 apart (an amplitude, a centre, a width): every
+    # chain stays in its own coordinates' sides, as domain= and as bounds=,
+    # for a built-in and a Python function.
+    lo = np.array([[0.0, 0.0, 0.1][i % 3] for i in range(d)])
+    hi = np.array([[10.0, 1e5, 0.1 + 1e-1][i % 3] for i in range(d)])
+    box = list(zip(lo, hi))
+    centre = (lo + hi) / 2
+
+    def bowl(X):
+        return 0.5 * np.sum((X - centre) ** 2, axis=1), X - centre
+
+    for fun in (hrla.Rastrigin(), bowl):
+        opt = hrla.Optimizer(fun, hrla.Hrla.paper(0.01), 4.0, box, domain=box, chains=5, seed=3)
+        assert np.all(opt.x >= lo) and np.all(opt.x <= hi)
+        opt.step(30)
+        assert opt.dim == d and opt.x.shape == (5, d)
+        assert np.all(opt.x >= lo) and np.all(opt.x <= hi), opt.x
+        assert np.all(opt.best_x >= lo) and np.all(opt.best_x <= hi)
+    r = hrla.minimize(bowl, box, method="hrla", budget=4_000, seed=2, chains=8)
+    assert r.x.shape == (d,) and np.all(r.x >= lo) and np.all(r.x <= hi)
+    # The polish lands on the bowl's centre, inside every side.
+    assert r.fun < 1e-12, r
     with pytest.raises(ValueError, match="dim has dimension 3 but the box has 2"):
         hrla.minimize(hrla.Rastrigin(), [(-1.0, 1.0)] * 2, dim=3, budget=10_000)
     with pytest.raises(TypeError, match="a box must be"):
