@@ -4,8 +4,8 @@
 
 use hrla::rand_core::SeedableRng;
 use hrla::{
-    AnySampler, Builder, Dyn, FlatChains, Float, Gaussian, Rastrigin, SamplerKind, SlicePotential,
-    Stop,
+    AnySampler, Builder, Dyn, FlatChains, FlatSlices, Float, Gaussian, Rastrigin, SamplerKind,
+    SlicePotential, Stop,
 };
 use hrla_threads::Threads;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -25,7 +25,7 @@ impl SlicePotential<f64> for Cliff {
 
 /// The run's chains and counters, as bits; `threads` None: serial.
 fn run(kind: SamplerKind, threads: Option<Threads>) -> (Vec<u64>, String) {
-    let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(CHAINS, D)];
+    let mut floats = vec![0.0; FlatSlices::<f64, Xoshiro256PlusPlus>::floats(CHAINS, D)];
     let (mut iterations, mut diverged) = (vec![0; CHAINS], vec![false; CHAINS]);
     let mut rngs: Vec<_> = (0..CHAINS)
         .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
