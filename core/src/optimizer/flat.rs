@@ -1,5 +1,5 @@
 //! Algorithm 1 for a dimension known at run time: the chains in flat
-//! slices the caller owns ([`FlatChains`]), stepped by the same kernels,
+//! arrays the caller owns or lends ([`FlatChains`]), stepped by the same kernels,
 //! confined by the same reflection and judged by the same rule as
 //! [`Chain`](crate::Chain)s, and evaluated through the batch seam
 //! ([`BatchPotential`]): a whole step's chains in one call, or groups of
