@@ -481,6 +481,22 @@ fn bad_shapes_are_refused() {
             got: 2
         })
     ));
+    // A dimension whose storage size overflows: a typed error, not a
+    // wrapped size or an overflow panic.
+    for d in [usize::MAX / 4, usize::MAX / 2, usize::MAX] {
+        let mut floats = vec![0.0f64; 20];
+        assert!(
+            matches!(
+                FlatChains::new(d, &mut floats, &mut it, &mut dv, &mut rngs),
+                Err(Error::Length {
+                    name: "floats",
+                    expected: usize::MAX,
+                    got: 20
+                })
+            ),
+            "{d}"
+        );
+    }
     let mut storage = vec![0.0f64; 7];
     assert!(matches!(
         LbfgsIn::new(2, 1, &mut storage),
