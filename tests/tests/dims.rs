@@ -498,6 +498,23 @@ fn bad_shapes_are_refused() {
         );
     }
     let mut storage = vec![0.0f64; 7];
+    for (d, m) in [
+        (usize::MAX / 2, 1),
+        (2, usize::MAX / 2),
+        (usize::MAX, usize::MAX),
+    ] {
+        assert!(
+            matches!(
+                LbfgsIn::new(d, m, &mut storage),
+                Err(Error::Length {
+                    name: "L-BFGS storage",
+                    expected: usize::MAX,
+                    got: 7
+                })
+            ),
+            "{d} {m}"
+        );
+    }
     assert!(matches!(
         LbfgsIn::new(2, 1, &mut storage),
         Err(Error::Length { .. })

@@ -92,9 +92,10 @@ pub type FlatSlices<'a, F, R> =
     FlatChains<F, R, &'a mut [F], &'a mut [u64], &'a mut [bool], &'a mut [R]>;
 
 impl<F, R, Fs, Is, Ds, Rs> FlatChains<F, R, Fs, Is, Ds, Rs> {
-    /// The floats that `n` chains of dimension `d` take: `n (4 d + 2)`.
+    /// The floats that `n` chains of dimension `d` take: `n (4 d + 2)`,
+    /// saturating at `usize::MAX`, a length no storage has.
     pub const fn floats(n: usize, d: usize) -> usize {
-        n * (4 * d + 2)
+        n.saturating_mul(d.saturating_mul(4).saturating_add(2))
     }
 
     /// Gives the arrays back: floats, iterations, divergence flags,
@@ -131,18 +132,8 @@ where
         if d == 0 {
             return Err(Error::Zero { name: "dimension" });
         }
-        let got = floats.as_ref().len();
-        let expected = d
-            .checked_mul(4)
-            .and_then(|w| w.checked_add(2))
-            .and_then(|w| w.checked_mul(n))
-            .ok_or(Error::Length {
-                name: "floats",
-                expected: usize::MAX,
-                got,
-            })?;
         for (name, expected, got) in [
-            ("floats", expected, got),
+            ("floats", Self::floats(n, d), floats.as_ref().len()),
             ("iterations", n, iterations.as_ref().len()),
             ("diverged", n, diverged.as_ref().len()),
         ] {
