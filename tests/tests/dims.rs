@@ -897,9 +897,12 @@ fn between_steps_refuses_other_dimensions() {
     ));
     assert_eq!(opt.evaluations(), N as u64);
     assert_eq!(before, bits(opt.chains().positions()));
-    // Nothing borrowed: the optimiser can be kept anywhere, and gives its
-    // arrays back.
-    let kept: Box<dyn std::any::Any> = Box::new(opt);
+    // Nothing borrowed: the optimiser can be kept anywhere (a front end's
+    // engine object, shared between threads), and gives its arrays back.
+    fn keepable<T: Send + Sync + 'static>(t: T) -> T {
+        t
+    }
+    let kept: Box<dyn std::any::Any> = Box::new(keepable(opt));
     let opt = kept
         .downcast::<hrla::FlatOptimizer<
             _,
