@@ -104,7 +104,9 @@
 //!   coordinate) and [`Bounds`] (one per coordinate), each reflecting
 //!   every coordinate into its interval.
 //! - Dimension at run time: [`Dim`] ([`Const`], [`Dyn`]); chains in flat
-//!   storage the caller owns, [`FlatChains`], run by [`FlatOptimizer`]
+//!   storage the caller owns or lends, [`FlatChains`] (over any
+//!   [`FlatStorage`]; [`FlatSlices`] for borrowed slices), run by
+//!   [`FlatOptimizer`]
 //!   ([`Builder::build_flat`]); the slice twins of the traits,
 //!   [`SlicePotential`], [`SliceDomain`], [`SliceStart`] (and
 //!   [`FromSliceFn`]); the batch seam, [`BatchPotential`]; L-BFGS in
@@ -202,7 +204,7 @@
 //! The const-generic API fixes `D` at compile time, which firmware wants.
 //! A host that learns the dimension at run time (a Python or JavaScript
 //! caller, a 17-parameter fit, a 10 000-D problem) builds the same run
-//! over [`FlatChains`], slices it owns, with [`Builder::build_flat`] and a
+//! over [`FlatChains`], arrays it owns or lends, with [`Builder::build_flat`] and a
 //! dimension [`Dyn`]`(d)` (or [`Const`]`<N>`). Both go through the same
 //! per-coordinate code (the kernels' draws and updates, the reflection,
 //! the judgement of a point, L-BFGS), so a run gives the same bits either
@@ -212,15 +214,17 @@
 //! language) evaluates the whole `(n, d)` block at once.
 //!
 //! ```
-//! use hrla::{Bounds, Builder, Dyn, FlatChains, Hrla, LbfgsIn, PolishSettings, Rastrigin, Stop};
+//! use hrla::{Bounds, Builder, Dyn, FlatChains, FlatSlices, Hrla, LbfgsIn, PolishSettings, Rastrigin, Stop};
 //! use rand_core::SeedableRng;
 //! use rand_xoshiro::Xoshiro256PlusPlus;
 //!
 //! let (n, d) = (8, 24);
-//! let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(n, d)];
-//! let (mut iterations, mut diverged) = (vec![0; n], vec![false; n]);
-//! let mut rngs: Vec<_> = (0..n).map(|_| Xoshiro256PlusPlus::seed_from_u64(0)).collect();
-//! let chains = FlatChains::new(d, &mut floats, &mut iterations, &mut diverged, &mut rngs)?;
+//! // Owned arrays: the optimiser below borrows nothing of its caller's
+//! // and can live in a long-lived object. (`&mut` slices work the same.)
+//! let floats = vec![0.0; FlatSlices::<f64, Xoshiro256PlusPlus>::floats(n, d)];
+//! let (iterations, diverged) = (vec![0; n], vec![false; n]);
+//! let rngs: Vec<_> = (0..n).map(|_| Xoshiro256PlusPlus::seed_from_u64(0)).collect();
+//! let chains = FlatChains::new(d, floats, iterations, diverged, rngs)?;
 //! // A box per coordinate: the first half in [-1, 1], the rest in [-5, 5].
 //! let lo: Vec<f64> = (0..d).map(|i| if i < d / 2 { -1.0 } else { -5.0 }).collect();
 //! let hi: Vec<f64> = lo.iter().map(|l| -l).collect();

@@ -284,8 +284,12 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
     /// `2 m d + 2 m + 5 d` (the pairs, their weights, a direction, a trial
     /// point, its gradient, the current gradient, and a point for
     /// [`FlatOptimizer::polish`](crate::FlatOptimizer::polish)).
+    /// Saturates at `usize::MAX`, a length no storage has.
     pub const fn floats(d: usize, m: usize) -> usize {
-        2 * m * d + 2 * m + 5 * d
+        let pairs = m.saturating_mul(d).saturating_mul(2);
+        pairs
+            .saturating_add(m.saturating_mul(2))
+            .saturating_add(d.saturating_mul(5))
     }
 
     /// L-BFGS of memory `m >= 1` in dimension `d >= 1` over `storage`,

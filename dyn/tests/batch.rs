@@ -6,7 +6,8 @@
 use std::sync::{Arc, Mutex};
 
 use hrla::{
-    Builder, Chain, Dyn, FlatChains, FnPotential, Hrla, Interval, Potential, Rastrigin, Stop,
+    Builder, Chain, Dyn, FlatChains, FlatSlices, FnPotential, Hrla, Interval, Potential, Rastrigin,
+    Stop,
 };
 use hrla_dyn::{BatchFunction, Error, UserBatch, UserError};
 use rand_core::SeedableRng;
@@ -96,7 +97,7 @@ struct Storage {
 impl Storage {
     fn new() -> Self {
         Self {
-            floats: vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(N, D)],
+            floats: vec![0.0; FlatSlices::<f64, Xoshiro256PlusPlus>::floats(N, D)],
             iterations: vec![0; N],
             diverged: vec![false; N],
             rngs: (0..N)
@@ -105,13 +106,13 @@ impl Storage {
         }
     }
 
-    fn chains(&mut self) -> FlatChains<'_, f64, Xoshiro256PlusPlus> {
+    fn chains(&mut self) -> FlatSlices<'_, f64, Xoshiro256PlusPlus> {
         FlatChains::new(
             D,
-            &mut self.floats,
-            &mut self.iterations,
-            &mut self.diverged,
-            &mut self.rngs,
+            &mut self.floats[..],
+            &mut self.iterations[..],
+            &mut self.diverged[..],
+            &mut self.rngs[..],
         )
         .unwrap()
     }

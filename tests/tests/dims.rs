@@ -8,8 +8,8 @@ use std::cell::Cell;
 
 use hrla::{
     AnySampler, BatchPotential, Bounds, Builder, Chain, Const, Dim, Dyn, Error, FlatChains,
-    FnPotential, Gaussian, Interval, Lbfgs, LbfgsIn, PolishSettings, Potential, Rastrigin,
-    SamplerKind, SliceDomain, SlicePotential, Stop, Unbounded,
+    FlatSlices, FnPotential, Gaussian, Interval, Lbfgs, LbfgsIn, PolishSettings, Potential,
+    Rastrigin, SamplerKind, SliceDomain, SlicePotential, Stop, Unbounded,
 };
 use hrla::{Domain, Float};
 use rand_xoshiro::rand_core::SeedableRng;
@@ -123,7 +123,7 @@ where
     Dm: Dim,
 {
     let d = dim.value();
-    let mut floats = vec![F::ZERO; FlatChains::<F, R>::floats(N, d)];
+    let mut floats = vec![F::ZERO; FlatSlices::<F, R>::floats(N, d)];
     let (mut iterations, mut diverged) = (vec![0; N], vec![false; N]);
     let mut rngs: Vec<R> = (0..N).map(|_| R::seed_from_u64(0)).collect();
     let chains =
@@ -353,16 +353,22 @@ impl BatchPotential<f64> for Batched {
 
 #[test]
 fn the_batch_seam_is_one_call_per_step() {
-    type Run<'a> = &'a dyn Fn(FlatChains<'_, f64, Xoshiro256PlusPlus>) -> (Vec<u64>, u64);
+    type Run<'a> = &'a dyn Fn(FlatSlices<'_, f64, Xoshiro256PlusPlus>) -> (Vec<u64>, u64);
     let run = |potential: Run<'_>| {
         let d = 23;
-        let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(N, d)];
+        let mut floats = vec![0.0; FlatSlices::<f64, Xoshiro256PlusPlus>::floats(N, d)];
         let (mut iterations, mut diverged) = (vec![0; N], vec![false; N]);
         let mut rngs: Vec<_> = (0..N)
             .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
             .collect();
-        let chains =
-            FlatChains::new(d, &mut floats, &mut iterations, &mut diverged, &mut rngs).unwrap();
+        let chains = FlatChains::new(
+            d,
+            &mut floats[..],
+            &mut iterations[..],
+            &mut diverged[..],
+            &mut rngs[..],
+        )
+        .unwrap();
         potential(chains)
     };
     let sampler = AnySampler::paper(SamplerKind::Hrla, 0.01).unwrap();
@@ -475,7 +481,40 @@ fn bad_shapes_are_refused() {
             got: 2
         })
     ));
+    // A dimension whose storage size overflows: a typed error, not a
+    // wrapped size or an overflow panic.
+    for d in [usize::MAX / 4, usize::MAX / 2, usize::MAX] {
+        let mut floats = vec![0.0f64; 20];
+        assert!(
+            matches!(
+                FlatChains::new(d, &mut floats, &mut it, &mut dv, &mut rngs),
+                Err(Error::Length {
+                    name: "floats",
+                    expected: usize::MAX,
+                    got: 20
+                })
+            ),
+            "{d}"
+        );
+    }
     let mut storage = vec![0.0f64; 7];
+    for (d, m) in [
+        (usize::MAX / 2, 1),
+        (2, usize::MAX / 2),
+        (usize::MAX, usize::MAX),
+    ] {
+        assert!(
+            matches!(
+                LbfgsIn::new(d, m, &mut storage),
+                Err(Error::Length {
+                    name: "L-BFGS storage",
+                    expected: usize::MAX,
+                    got: 7
+                })
+            ),
+            "{d} {m}"
+        );
+    }
     assert!(matches!(
         LbfgsIn::new(2, 1, &mut storage),
         Err(Error::Length { .. })
@@ -521,7 +560,7 @@ fn built_ins_are_the_same_through_slices() {
 fn large_run_time_dimensions_run() {
     for d in [1, 24, 257, 10_000] {
         let n = 4;
-        let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(n, d)];
+        let mut floats = vec![0.0; FlatSlices::<f64, Xoshiro256PlusPlus>::floats(n, d)];
         let (mut iterations, mut diverged) = (vec![0; n], vec![false; n]);
         let mut rngs: Vec<_> = (0..n)
             .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
@@ -559,4 +598,326 @@ fn large_run_time_dimensions_run() {
                 .all(|(i, &v)| v >= lo[i] && v <= hi[i])
         );
     }
+}
+
+/// The sampler every run between steps starts with, and the one
+/// `set_sampler` gives it half-way.
+fn sampler_pair(kind: SamplerKind) -> (AnySampler<f64>, AnySampler<f64>) {
+    (
+        AnySampler::paper(kind, 0.05).unwrap(),
+        AnySampler::paper(kind, 0.02).unwrap(),
+    )
+}
+
+/// Restart points: feasible, and beyond the cliff (`x_0 > 1`: the chain
+/// diverges there).
+const FEASIBLE: [f64; D] = [0.5; D];
+const OVER_THE_CLIFF: [f64; D] = [2.0; D];
+
+/// An evaluation budget that runs out among the quenches (HRLA has spent
+/// 311 evaluations when they begin).
+const BUDGET: u64 = 330;
+
+/// What the runs between steps leave: every outcome of a quench, a
+/// restart and a polish, in order, then the chains as bits.
+#[derive(Debug, PartialEq)]
+struct Between {
+    outcomes: Vec<String>,
+    x: Vec<u64>,
+    y: Vec<u64>,
+    grad: Vec<u64>,
+    value: Vec<u64>,
+    best_x: Vec<u64>,
+    best_value: Vec<u64>,
+    best_iteration: Vec<u64>,
+    diverged: Vec<bool>,
+    counters: (u64, u64, usize, usize),
+    current_best: String,
+    sampler_and_schedule: String,
+}
+
+/// The schedule of these runs: `a` grows, so that a sampler set
+/// half-way takes its kernel at the current temperature.
+fn schedule() -> hrla::Geometric<f64> {
+    hrla::Geometric::new(1.0, 8.0, 400).unwrap()
+}
+
+/// 60 steps, a quench of every chain, restarts (one over the cliff, which
+/// diverges its chain, and its quench, refused), `set_sampler`, 60 steps,
+/// a polish: over `Chain<f64, 17>`s.
+fn between_with_chains(kind: SamplerKind, budget: u64) -> Between {
+    let (first, second) = sampler_pair(kind);
+    let mut chains: Vec<Chain<f64, D>> = (0..N).map(|_| Chain::new()).collect();
+    let start = Gaussian::new([0.5; D], 0.5).unwrap();
+    let mut opt = Builder::new(Cliff, first, schedule(), start)
+        .seed(13)
+        .stop(Stop::new().evaluations(budget))
+        .build(&mut chains)
+        .unwrap();
+    let mut outcomes = Vec::new();
+    let mut lbfgs: Lbfgs<f64, D, 5> = Lbfgs::new();
+    for _ in 0..60 {
+        outcomes.push(format!("{:?}", opt.step()));
+    }
+    outcomes.push(format!("evaluations {}", opt.evaluations()));
+    for c in 0..N {
+        outcomes.push(format!(
+            "{:?}",
+            opt.quench(c, &mut lbfgs, PolishSettings::new(40))
+        ));
+    }
+    for c in 0..N {
+        outcomes.push(format!("{:?}", opt.restart(c, &FEASIBLE)));
+    }
+    outcomes.push(format!("diverged {}", opt.diverged_chains()));
+    outcomes.push(format!("{:?}", opt.restart(3, &OVER_THE_CLIFF)));
+    outcomes.push(format!(
+        "{:?}",
+        opt.quench(3, &mut lbfgs, PolishSettings::new(40))
+    ));
+    outcomes.push(format!("{:?}", opt.restart(N, &FEASIBLE)));
+    outcomes.push(format!("{:?}", opt.set_sampler(second)));
+    outcomes.push(format!("{:?}", opt.kernel()));
+    for _ in 0..60 {
+        outcomes.push(format!("{:?}", opt.step()));
+    }
+    let best = opt.best_chain();
+    outcomes.push(format!(
+        "{:?}",
+        opt.polish(best, &mut lbfgs, PolishSettings::new(40))
+    ));
+    let cs = opt.chains();
+    Between {
+        outcomes,
+        x: cs.iter().flat_map(|c| bits(c.x())).collect(),
+        y: cs.iter().flat_map(|c| bits(c.y())).collect(),
+        grad: cs.iter().flat_map(|c| bits(c.gradient())).collect(),
+        value: cs.iter().flat_map(|c| bits(&[c.value()])).collect(),
+        best_x: cs.iter().flat_map(|c| bits(&c.best().x)).collect(),
+        best_value: cs.iter().flat_map(|c| bits(&[c.best().value])).collect(),
+        best_iteration: cs.iter().map(|c| c.best().iteration).collect(),
+        diverged: cs.iter().map(|c| c.is_diverged()).collect(),
+        counters: (
+            opt.iteration(),
+            opt.evaluations(),
+            opt.diverged_chains(),
+            opt.best_chain(),
+        ),
+        current_best: format!("{:?}", opt.current_best()),
+        sampler_and_schedule: format!("{:?} {:?}", opt.sampler(), opt.schedule()),
+    }
+}
+
+/// The same over flat storage (borrowed or owned) of dimension `Dyn(17)`.
+fn between_flat<Fs, Is, Ds, Rs>(
+    kind: SamplerKind,
+    budget: u64,
+    chains: FlatChains<f64, Xoshiro256PlusPlus, Fs, Is, Ds, Rs>,
+) -> Between
+where
+    Fs: hrla::FlatStorage<f64>,
+    Is: hrla::FlatStorage<u64>,
+    Ds: hrla::FlatStorage<bool>,
+    Rs: hrla::FlatStorage<Xoshiro256PlusPlus>,
+{
+    let (first, second) = sampler_pair(kind);
+    let start = Gaussian::new([0.5; D], 0.5).unwrap();
+    let mut opt = Builder::new(Cliff, first, schedule(), start)
+        .seed(13)
+        .stop(Stop::new().evaluations(budget))
+        .build_flat(Dyn(D), chains)
+        .unwrap();
+    let mut outcomes = Vec::new();
+    let mut storage = vec![0.0; LbfgsIn::<f64>::floats(D, 5)];
+    let mut lbfgs = LbfgsIn::new(D, 5, &mut storage).unwrap();
+    for _ in 0..60 {
+        outcomes.push(format!("{:?}", opt.step()));
+    }
+    outcomes.push(format!("evaluations {}", opt.evaluations()));
+    for c in 0..N {
+        outcomes.push(format!(
+            "{:?}",
+            opt.quench(c, &mut lbfgs, PolishSettings::new(40))
+        ));
+    }
+    for c in 0..N {
+        outcomes.push(format!("{:?}", opt.restart(c, &FEASIBLE)));
+    }
+    outcomes.push(format!("diverged {}", opt.diverged_chains()));
+    outcomes.push(format!("{:?}", opt.restart(3, &OVER_THE_CLIFF)));
+    outcomes.push(format!(
+        "{:?}",
+        opt.quench(3, &mut lbfgs, PolishSettings::new(40))
+    ));
+    outcomes.push(format!("{:?}", opt.restart(N, &FEASIBLE)));
+    outcomes.push(format!("{:?}", opt.set_sampler(second)));
+    outcomes.push(format!("{:?}", opt.kernel()));
+    for _ in 0..60 {
+        outcomes.push(format!("{:?}", opt.step()));
+    }
+    let best = opt.best_chain();
+    outcomes.push(format!(
+        "{:?}",
+        opt.polish(best, &mut lbfgs, PolishSettings::new(40))
+    ));
+    let cs = opt.chains();
+    Between {
+        outcomes,
+        x: bits(cs.positions()),
+        y: (0..N).flat_map(|c| bits(cs.y(c))).collect(),
+        grad: (0..N).flat_map(|c| bits(cs.gradient(c))).collect(),
+        value: bits(cs.values()),
+        best_x: bits(cs.best_positions()),
+        best_value: bits(cs.best_values()),
+        best_iteration: (0..N).map(|c| cs.best(c).iteration).collect(),
+        diverged: (0..N).map(|c| cs.is_diverged(c)).collect(),
+        counters: (
+            opt.iteration(),
+            opt.evaluations(),
+            opt.diverged_chains(),
+            opt.best_chain(),
+        ),
+        current_best: format!("{:?}", opt.current_best()),
+        sampler_and_schedule: format!("{:?} {:?}", opt.sampler(), opt.schedule()),
+    }
+}
+
+/// Owned arrays for `N` chains of dimension `D`.
+type Owned =
+    FlatChains<f64, Xoshiro256PlusPlus, Vec<f64>, Vec<u64>, Vec<bool>, Vec<Xoshiro256PlusPlus>>;
+
+fn owned() -> Owned {
+    FlatChains::new(
+        D,
+        vec![0.0; Owned::floats(N, D)],
+        vec![0; N],
+        vec![false; N],
+        (0..N)
+            .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
+            .collect(),
+    )
+    .unwrap()
+}
+
+/// `quench`, `restart` (to a feasible point, over the cliff, a diverged
+/// chain revived, an index out of range) and `set_sampler` between steps
+/// give the same bits and outcomes at `Dyn(17)` as over `Chain<f64, 17>`,
+/// on borrowed and on owned storage, for every sampler; with an
+/// evaluation budget that runs out among the quenches, the clipped
+/// searches and the refused restarts are the same too.
+#[test]
+fn between_steps_dyn_gives_the_bits_of_const() {
+    for kind in SamplerKind::ALL {
+        for budget in [u64::MAX, BUDGET] {
+            let reference = between_with_chains(kind, budget);
+            let mut floats = vec![0.0; FlatSlices::<f64, Xoshiro256PlusPlus>::floats(N, D)];
+            let (mut iterations, mut diverged) = (vec![0; N], vec![false; N]);
+            let mut rngs: Vec<_> = (0..N)
+                .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
+                .collect();
+            let borrowed =
+                FlatChains::new(D, &mut floats, &mut iterations, &mut diverged, &mut rngs).unwrap();
+            assert_eq!(
+                reference,
+                between_flat(kind, budget, borrowed),
+                "{kind} budget {budget}: borrowed"
+            );
+            assert_eq!(
+                reference,
+                between_flat(kind, budget, owned()),
+                "{kind} budget {budget}: owned"
+            );
+        }
+    }
+}
+
+/// The scenario above covers what it claims: quenches that lower a best,
+/// a quench refused on a diverged chain, a diverged chain revived by a
+/// restart, a restart over the cliff, a refused index; and, with the
+/// budget, quenches clipped to nothing and restarts refused.
+#[test]
+fn between_steps_covers_its_cases() {
+    let free = between_with_chains(SamplerKind::Hrla, u64::MAX);
+    let text = free.outcomes.join("\n");
+    assert!(text.contains("Ok(Polished"), "{text}");
+    assert!(
+        text.contains("the point of a diverged chain"),
+        "a quench of a diverged chain: {text}"
+    );
+    assert!(text.contains("Index"), "{text}");
+    assert!(free.diverged[3], "chain 3 over the cliff");
+    // Chains diverged in the first steps (their quench was refused), and
+    // the restarts at a feasible point revived every one.
+    assert!(
+        free.outcomes[61..61 + N]
+            .iter()
+            .any(|o| o.contains("diverged chain")),
+        "{text}"
+    );
+    assert_eq!(free.outcomes[61 + 2 * N], "diverged 0", "{text}");
+    let budgeted = between_with_chains(SamplerKind::Hrla, BUDGET);
+    let text = budgeted.outcomes.join("\n");
+    assert!(text.contains("evaluations: 0"), "{text}");
+    assert!(text.contains("Ok(false)"), "{text}");
+}
+
+/// The run-time-D checks of the methods between steps: L-BFGS storage of
+/// another dimension and a restart point of another length are typed
+/// errors, and change nothing.
+#[test]
+fn between_steps_refuses_other_dimensions() {
+    let start = Gaussian::new([0.0; D], 1.5).unwrap();
+    let mut opt = Builder::new(
+        Rastrigin,
+        AnySampler::paper(SamplerKind::Hrla, 0.01).unwrap(),
+        2.0,
+        start,
+    )
+    .seed(13)
+    .build_flat(Dyn(D), owned())
+    .unwrap();
+    let before = bits(opt.chains().positions());
+    let mut storage = vec![0.0; LbfgsIn::<f64>::floats(D + 1, 5)];
+    let mut lbfgs = LbfgsIn::new(D + 1, 5, &mut storage).unwrap();
+    assert!(matches!(
+        opt.quench(0, &mut lbfgs, PolishSettings::new(10)),
+        Err(Error::Length {
+            name: "L-BFGS dimension",
+            expected: D,
+            got: 18
+        })
+    ));
+    assert!(matches!(
+        opt.restart(0, &[0.0; D - 1]),
+        Err(Error::Length {
+            name: "x",
+            expected: D,
+            got: 16
+        })
+    ));
+    assert_eq!(opt.evaluations(), N as u64);
+    assert_eq!(before, bits(opt.chains().positions()));
+    // Nothing borrowed: the optimiser can be kept anywhere (a front end's
+    // engine object, shared between threads), and gives its arrays back.
+    fn keepable<T: Send + Sync + 'static>(t: T) -> T {
+        t
+    }
+    let kept: Box<dyn std::any::Any> = Box::new(keepable(opt));
+    let opt = kept
+        .downcast::<hrla::FlatOptimizer<
+            _,
+            Rastrigin,
+            AnySampler<f64>,
+            f64,
+            Dyn,
+            Xoshiro256PlusPlus,
+            Unbounded,
+            Vec<f64>,
+            Vec<u64>,
+            Vec<bool>,
+            Vec<Xoshiro256PlusPlus>,
+        >>()
+        .unwrap();
+    let (floats, ..) = opt.into_chains().into_storage();
+    assert_eq!(bits(&floats[..N * D]), before);
 }

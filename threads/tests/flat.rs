@@ -2,10 +2,12 @@
 //! any part size give the bits of a serial run, for every sampler, with
 //! chains that diverge.
 
+use std::ops::ControlFlow;
+
 use hrla::rand_core::SeedableRng;
 use hrla::{
-    AnySampler, Builder, Dyn, FlatChains, Float, Gaussian, Rastrigin, SamplerKind, SlicePotential,
-    Stop,
+    AnySampler, Builder, Dyn, FlatChains, FlatProgress, FlatSlices, Float, Gaussian, Rastrigin,
+    SamplerKind, SlicePotential, Stop,
 };
 use hrla_threads::Threads;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -23,9 +25,11 @@ impl SlicePotential<f64> for Cliff {
     }
 }
 
-/// The run's chains and counters, as bits; `threads` None: serial.
-fn run(kind: SamplerKind, threads: Option<Threads>) -> (Vec<u64>, String) {
-    let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(CHAINS, D)];
+/// The run's chains and counters, as bits; `threads` None: serial;
+/// `every` Some: with an observer called every `every` steps (and on each
+/// improvement), whose sightings are in the summary.
+fn run(kind: SamplerKind, threads: Option<Threads>, every: Option<u64>) -> (Vec<u64>, String) {
+    let mut floats = vec![0.0; FlatSlices::<f64, Xoshiro256PlusPlus>::floats(CHAINS, D)];
     let (mut iterations, mut diverged) = (vec![0; CHAINS], vec![false; CHAINS]);
     let mut rngs: Vec<_> = (0..CHAINS)
         .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
@@ -42,12 +46,25 @@ fn run(kind: SamplerKind, threads: Option<Threads>) -> (Vec<u64>, String) {
     .stop(Stop::new().steps(150))
     .build_flat(Dyn(D), chains)
     .unwrap();
-    let report = match &threads {
-        Some(t) => opt.run_on(t),
-        None => opt.run(),
+    let mut seen = Vec::new();
+    let observer = |p: &FlatProgress<'_, f64>| {
+        seen.push((
+            p.iteration,
+            p.evaluations,
+            p.best.value.to_bits(),
+            p.improved,
+            p.diverged_chains,
+        ));
+        ControlFlow::Continue(())
+    };
+    let report = match (&threads, every) {
+        (Some(t), None) => opt.run_on(t),
+        (None, None) => opt.run(),
+        (Some(t), Some(every)) => opt.run_with_on(t, every, observer),
+        (None, Some(every)) => opt.run_with(every, observer),
     };
     let summary = format!(
-        "{report:?} {} {} {}",
+        "{report:?} {} {} {} {seen:?}",
         opt.evaluations(),
         opt.best_chain(),
         opt.diverged_chains()
@@ -63,7 +80,7 @@ fn run(kind: SamplerKind, threads: Option<Threads>) -> (Vec<u64>, String) {
 #[test]
 fn flat_runs_give_the_serial_bits_on_any_threads() {
     for kind in SamplerKind::ALL {
-        let serial = run(kind, None);
+        let serial = run(kind, None, None);
         assert!(serial.1.contains("Ok("), "{}", serial.1);
         let diverged: u64 = serial.0[serial.0.len() - CHAINS..].iter().sum();
         assert!(
@@ -77,12 +94,32 @@ fn flat_runs_give_the_serial_bits_on_any_threads() {
                 .unwrap();
             for part in [None, Some(4), Some(12), Some(5)] {
                 let executor = part.map_or_else(Threads::new, Threads::chains_per_part);
-                let parallel = pool.install(|| run(kind, Some(executor)));
+                let parallel = pool.install(|| run(kind, Some(executor), None));
                 assert_eq!(
                     serial, parallel,
                     "{kind}: {threads} threads, parts {part:?}"
                 );
             }
+        }
+    }
+}
+
+/// `run_with_on` gives the serial `run_with`'s bits and calls its observer
+/// at the same steps with the same sightings, on any threads; the observer
+/// is called (every 10 steps at least).
+#[test]
+fn flat_observed_runs_give_the_serial_bits_on_any_threads() {
+    for kind in SamplerKind::ALL {
+        let serial = run(kind, None, Some(10));
+        assert_eq!(serial.0, run(kind, None, None).0, "{kind}: observed");
+        assert!(serial.1.contains("(150, "), "{}", serial.1);
+        for threads in [2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let parallel = pool.install(|| run(kind, Some(Threads::chains_per_part(5)), Some(10)));
+            assert_eq!(serial, parallel, "{kind}: {threads} threads");
         }
     }
 }

@@ -33,7 +33,7 @@ macro_rules! flat_swarm {
     };
     ($f:ty, $d:expr, $kind:expr, $dim:expr) => {{
         let (n, d) = (CHAINS, $d);
-        let floats = vec![0.0 as $f; hrla::FlatChains::<$f, Xoshiro256PlusPlus>::floats(n, d)].leak();
+        let floats = vec![0.0 as $f; hrla::FlatSlices::<$f, Xoshiro256PlusPlus>::floats(n, d)].leak();
         let iterations = vec![0u64; n].leak();
         let diverged = vec![false; n].leak();
         let rngs: &mut [Xoshiro256PlusPlus] =

@@ -85,9 +85,59 @@ impl<F: Float, P: Potential<F, D>, const D: usize> Potential<F, D> for Counted<'
 
 /// Where a local search starts: a chain's best point or its current one.
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Origin {
+pub(crate) enum Origin {
     Best,
     Current,
+}
+
+/// The error of a quench from a diverged chain, with no evaluation:
+/// nowhere feasible to start from, and what made the chain diverge.
+pub(crate) fn diverged_start<F: Float>(x: &[F], grad: &[F], value: F) -> Error {
+    let bad = x.iter().chain(grad).chain([&value]);
+    let value = bad.copied().find(|v| !v.is_finite()).unwrap_or(value);
+    Error::NotFinite {
+        name: "the point of a diverged chain",
+        value: value.to_f64(),
+    }
+}
+
+/// `settings` within `left` evaluations of the run's budget, or, none
+/// left, the outcome of a local search of no evaluation from `value`.
+pub(crate) fn within_budget<F: Float>(
+    settings: PolishSettings<F>,
+    left: u64,
+    value: F,
+) -> Result<PolishSettings<F>, Polished<F>> {
+    match settings.evaluations.min(left) {
+        0 => Err(Polished {
+            value,
+            evaluations: 0,
+            iterations: 0,
+            end: PolishEnd::Budget,
+        }),
+        evaluations => Ok(PolishSettings {
+            evaluations,
+            ..settings
+        }),
+    }
+}
+
+/// A local search's error, an unbounded potential named by its chain.
+pub(crate) fn on_chain(e: Error, chain: usize) -> Error {
+    match e {
+        Error::UnboundedBelow { value, .. } => Error::UnboundedBelow { chain, value },
+        e => e,
+    }
+}
+
+/// The count of diverged chains after a restart took a chain from
+/// diverged `was` to feasible `ok`.
+pub(crate) fn after_restart(diverged: usize, was: bool, ok: bool) -> usize {
+    match (was, ok) {
+        (true, true) => diverged - 1,
+        (false, false) => diverged + 1,
+        _ => diverged,
+    }
 }
 
 /// What a step found out.
@@ -413,30 +463,15 @@ where
             return Err(e);
         }
         if from == Origin::Current && c.diverged {
-            // Nowhere feasible to start from: what made the chain diverge.
-            let bad = c.x.iter().chain(&c.grad).chain([&c.value]);
-            let value = bad.copied().find(|v| !v.is_finite()).unwrap_or(c.value);
-            return Err(Error::NotFinite {
-                name: "the point of a diverged chain",
-                value: value.to_f64(),
-            });
+            return Err(diverged_start(&c.x, &c.grad, c.value));
         }
         let (mut x, value) = match from {
             Origin::Best => (c.best.x, c.best.value),
             Origin::Current => (c.x, c.value),
         };
-        let budget = settings.evaluations.min(self.evaluations_left());
-        if budget == 0 {
-            return Ok(Polished {
-                value,
-                evaluations: 0,
-                iterations: 0,
-                end: PolishEnd::Budget,
-            });
-        }
-        let settings = PolishSettings {
-            evaluations: budget,
-            ..settings
+        let settings = match within_budget(settings, self.evaluations_left(), value) {
+            Ok(settings) => settings,
+            Err(nothing) => return Ok(nothing),
         };
         self.guarded(|opt| {
             // Counted here, so that a polish that fails counts what it
@@ -447,10 +482,7 @@ where
             };
             let done = lbfgs.minimize_in(&counted, &opt.domain, &mut x, settings);
             opt.evaluations += counted.calls.get();
-            let done = done.map_err(|e| match e {
-                Error::UnboundedBelow { value, .. } => Error::UnboundedBelow { chain, value },
-                e => e,
-            })?;
+            let done = done.map_err(|e| on_chain(e, chain))?;
             opt.record(chain, &x, done.value)?;
             Ok(done)
         })
@@ -504,11 +536,7 @@ where
             let ok = verdict == Verdict::Feasible;
             c.diverged = !ok;
             opt.evaluations += 1;
-            match (was_diverged, ok) {
-                (true, true) => opt.diverged -= 1,
-                (false, false) => opt.diverged += 1,
-                _ => {}
-            }
+            opt.diverged = after_restart(opt.diverged, was_diverged, ok);
             if ok {
                 let x = opt.chains.as_ref()[chain].x;
                 opt.record(chain, &x, value)?;

@@ -5,7 +5,7 @@ use rand_core::{Rng, SeedableRng};
 
 use super::algorithm::Optimizer;
 use super::chain::Chain;
-use super::flat::{FlatChains, FlatOptimizer};
+use super::flat::{FlatChains, FlatOptimizer, FlatStorage, Parts};
 use super::stop::Stop;
 use super::stream::chain_seed;
 use super::sweep::{Verdict, judge};
@@ -272,12 +272,12 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
     /// points are evaluated in one batch (redraws one by one).
     ///
     /// ```
-    /// use hrla::{Builder, Dyn, FlatChains, Hrla, Interval, Rastrigin, Stop};
+    /// use hrla::{Builder, Dyn, FlatChains, FlatSlices, Hrla, Interval, Rastrigin, Stop};
     /// use rand_core::SeedableRng;
     /// use rand_xoshiro::Xoshiro256PlusPlus;
     ///
     /// let (n, d) = (16, 21);
-    /// let mut floats = vec![0.0; FlatChains::<f64, Xoshiro256PlusPlus>::floats(n, d)];
+    /// let mut floats = vec![0.0; FlatSlices::<f64, Xoshiro256PlusPlus>::floats(n, d)];
     /// let (mut iterations, mut diverged) = (vec![0; n], vec![false; n]);
     /// let mut rngs: Vec<_> = (0..n).map(|_| Xoshiro256PlusPlus::seed_from_u64(0)).collect();
     /// let chains = FlatChains::new(d, &mut floats, &mut iterations, &mut diverged, &mut rngs)?;
@@ -296,17 +296,21 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
     /// [`Error::Length`] for storage, a box, a start or a potential of
     /// another dimension than `dim`.
     #[allow(clippy::type_complexity)] // the optimiser's own parameters, all inferred
-    pub fn build_flat<'a, Dm, R>(
+    pub fn build_flat<Dm, R, Fs, Is, Ds, Rs>(
         mut self,
         dim: Dm,
-        chains: FlatChains<'a, F, R>,
-    ) -> Result<FlatOptimizer<'a, F, P, S, C, Dm, R, B>, Error>
+        chains: FlatChains<F, R, Fs, Is, Ds, Rs>,
+    ) -> Result<FlatOptimizer<F, P, S, C, Dm, R, B, Fs, Is, Ds, Rs>, Error>
     where
         Dm: Dim,
         P: BatchPotential<F>,
         B: SliceDomain<F>,
         St: SliceStart<F>,
         R: Rng + SeedableRng + 'static,
+        Fs: FlatStorage<F>,
+        Is: FlatStorage<u64>,
+        Ds: FlatStorage<bool>,
+        Rs: FlatStorage<R>,
     {
         let mut chains = chains;
         let (n, d) = (chains.len(), dim.value());
@@ -330,7 +334,7 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
         let kernel = self.sampler.at(self.schedule.inverse_temperature(0))?;
         let mut spare = self.stop.evaluations.map_or(u64::MAX, |b| b - n as u64);
         let mut evaluations = n as u64;
-        let FlatChains {
+        let Parts {
             x,
             y,
             grad,
@@ -341,7 +345,7 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
             diverged,
             rng,
             ..
-        } = &mut chains;
+        } = chains.parts();
         for (c, ((x, y), rng)) in x
             .chunks_exact_mut(d)
             .zip(y.chunks_exact_mut(d))

@@ -26,7 +26,7 @@ pub trait Executor {
 
     /// [`fold_parts`](Executor::fold_parts) for items that are not a
     /// slice but split like one ([`Split`]), such as chains in flat
-    /// storage ([`FlatChains`](crate::FlatChains)): the same contract.
+    /// storage ([`FlatChains`](crate::FlatChains)' fields): the same contract.
     /// The default runs everything on the calling thread, as one part.
     fn fold_split<T, A, Part, Then>(&self, items: T, part: Part, _then: Then) -> Option<A>
     where

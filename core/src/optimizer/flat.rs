@@ -1,5 +1,5 @@
 //! Algorithm 1 for a dimension known at run time: the chains in flat
-//! slices the caller owns ([`FlatChains`]), stepped by the same kernels,
+//! arrays the caller owns or lends ([`FlatChains`]), stepped by the same kernels,
 //! confined by the same reflection and judged by the same rule as
 //! [`Chain`](crate::Chain)s, and evaluated through the batch seam
 //! ([`BatchPotential`]): a whole step's chains in one call, or groups of
@@ -26,6 +26,7 @@ use core::ops::ControlFlow;
 use rand_core::Rng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
+use super::algorithm::{Origin, after_restart, diverged_start, on_chain, within_budget};
 use super::executor::{Executor, Split};
 use super::report::Report;
 use super::stop::{Stop, Termination};
@@ -36,33 +37,226 @@ use crate::error::{Error, floor};
 use crate::float::Float;
 use crate::lanes;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
-use crate::polish::{LbfgsIn, PolishEnd, PolishSettings, Polished};
+use crate::polish::{LbfgsIn, PolishSettings, Polished};
 use crate::potential::{BatchPotential, SlicePotential};
 use crate::sampler::{ChainSlices, Kernel, Sampler};
 use crate::schedule::Schedule;
 
+/// Storage of `T`s that [`FlatChains`] reads and writes: any
+/// `AsRef<[T]> + AsMut<[T]>`, such as `&mut [T]` or `[T; N]` on firmware,
+/// `Vec<T>` or `Box<[T]>` on a host.
+pub trait FlatStorage<T>: AsRef<[T]> + AsMut<[T]> {}
+
+impl<T, S: AsRef<[T]> + AsMut<[T]> + ?Sized> FlatStorage<T> for S {}
+
 /// `n` chains of dimension `d` in storage the caller owns: the positions,
 /// velocities, gradients and best points (`n d` floats each, chain-major),
-/// the values and best values (`n` each) in one float slice; the best
+/// the values and best values (`n` each) in one float array `Fs`; the best
 /// points' iterations, the divergence flags and the generators in three
-/// more.
+/// more (`Is`, `Ds`, `Rs`). Each is any [`FlatStorage`]: borrowed slices
+/// ([`FlatSlices`]) where the caller keeps the arrays, owned vectors where
+/// the chains (and the [`FlatOptimizer`] that holds them) must live on
+/// their own.
 ///
 /// ```
-/// use hrla::FlatChains;
+/// use hrla::{FlatChains, FlatSlices};
 /// use rand_xoshiro::Xoshiro256PlusPlus;
 /// use rand_core::SeedableRng;
 ///
 /// let (n, d) = (32, 17);
-/// let mut floats = vec![0.0f64; FlatChains::<f64, Xoshiro256PlusPlus>::floats(n, d)];
+/// // Borrowed: the caller keeps the arrays.
+/// let mut floats = vec![0.0f64; FlatSlices::<f64, Xoshiro256PlusPlus>::floats(n, d)];
 /// let mut iterations = vec![0u64; n];
 /// let mut diverged = vec![false; n];
 /// let mut rngs: Vec<_> = (0..n).map(|_| Xoshiro256PlusPlus::seed_from_u64(0)).collect();
 /// let chains = FlatChains::new(d, &mut floats, &mut iterations, &mut diverged, &mut rngs)?;
 /// assert_eq!((chains.len(), chains.dim()), (n, d));
+/// // Owned: the chains hold their arrays, and give them back.
+/// let chains = FlatChains::new(d, floats, iterations, diverged, rngs)?;
+/// let (floats, ..) = chains.into_storage();
+/// assert_eq!(floats.len(), n * (4 * d + 2));
 /// # Ok::<(), hrla::Error>(())
 /// ```
 #[derive(Debug)]
-pub struct FlatChains<'a, F, R> {
+pub struct FlatChains<F, R, Fs, Is, Ds, Rs> {
+    d: usize,
+    floats: Fs,
+    iterations: Is,
+    diverged: Ds,
+    rngs: Rs,
+    item: PhantomData<fn() -> (F, R)>,
+}
+
+/// [`FlatChains`] over slices the caller keeps.
+pub type FlatSlices<'a, F, R> =
+    FlatChains<F, R, &'a mut [F], &'a mut [u64], &'a mut [bool], &'a mut [R]>;
+
+impl<F, R, Fs, Is, Ds, Rs> FlatChains<F, R, Fs, Is, Ds, Rs> {
+    /// The floats that `n` chains of dimension `d` take: `n (4 d + 2)`,
+    /// saturating at `usize::MAX`, a length no storage has.
+    pub const fn floats(n: usize, d: usize) -> usize {
+        n.saturating_mul(d.saturating_mul(4).saturating_add(2))
+    }
+
+    /// Gives the arrays back: floats, iterations, divergence flags,
+    /// generators.
+    pub fn into_storage(self) -> (Fs, Is, Ds, Rs) {
+        (self.floats, self.iterations, self.diverged, self.rngs)
+    }
+}
+
+impl<F, R, Fs, Is, Ds, Rs> FlatChains<F, R, Fs, Is, Ds, Rs>
+where
+    F: Float,
+    Fs: FlatStorage<F>,
+    Is: FlatStorage<u64>,
+    Ds: FlatStorage<bool>,
+    Rs: FlatStorage<R>,
+{
+    /// `rngs.len()` chains of dimension `d >= 1` over `floats` (length
+    /// [`floats(n, d)`](FlatChains::floats)), `iterations` and `diverged`
+    /// (length `n` each). Their contents are overwritten when a run is
+    /// built. Errors: [`Error::Zero`] for no chain or `d = 0`,
+    /// [`Error::Length`] for an array of the wrong length.
+    pub fn new(
+        d: usize,
+        floats: Fs,
+        iterations: Is,
+        diverged: Ds,
+        rngs: Rs,
+    ) -> Result<Self, Error> {
+        let n = rngs.as_ref().len();
+        if n == 0 {
+            return Err(Error::Zero { name: "chains" });
+        }
+        if d == 0 {
+            return Err(Error::Zero { name: "dimension" });
+        }
+        for (name, expected, got) in [
+            ("floats", Self::floats(n, d), floats.as_ref().len()),
+            ("iterations", n, iterations.as_ref().len()),
+            ("diverged", n, diverged.as_ref().len()),
+        ] {
+            if got != expected {
+                return Err(Error::Length {
+                    name,
+                    expected,
+                    got,
+                });
+            }
+        }
+        Ok(Self {
+            d,
+            floats,
+            iterations,
+            diverged,
+            rngs,
+            item: PhantomData,
+        })
+    }
+
+    /// The number of chains.
+    pub fn len(&self) -> usize {
+        self.rngs.as_ref().len()
+    }
+
+    /// Never: storage holds at least one chain.
+    pub fn is_empty(&self) -> bool {
+        self.rngs.as_ref().is_empty()
+    }
+
+    /// The dimension.
+    pub fn dim(&self) -> usize {
+        self.d
+    }
+
+    /// The `n d` floats from field `k` of the layout (0: positions, 1:
+    /// velocities, 2: gradients, 3: best points).
+    fn block(&self, k: usize) -> &[F] {
+        let nd = self.len() * self.d;
+        &self.floats.as_ref()[k * nd..(k + 1) * nd]
+    }
+
+    fn span(&self, c: usize) -> core::ops::Range<usize> {
+        c * self.d..(c + 1) * self.d
+    }
+
+    /// Chain `c`'s position `x_k`.
+    pub fn x(&self, c: usize) -> &[F] {
+        &self.positions()[self.span(c)]
+    }
+    /// Chain `c`'s velocity `y_k`.
+    pub fn y(&self, c: usize) -> &[F] {
+        &self.block(1)[self.span(c)]
+    }
+    /// `∇U` at chain `c`'s position.
+    pub fn gradient(&self, c: usize) -> &[F] {
+        &self.block(2)[self.span(c)]
+    }
+    /// `U` at chain `c`'s position.
+    pub fn value(&self, c: usize) -> F {
+        self.values()[c]
+    }
+    /// Chain `c`'s running best.
+    pub fn best(&self, c: usize) -> BestRef<'_, F> {
+        BestRef {
+            x: &self.best_positions()[self.span(c)],
+            value: self.best_values()[c],
+            iteration: self.iterations.as_ref()[c],
+        }
+    }
+    /// Whether chain `c` has diverged (see [`Chain::is_diverged`](crate::Chain::is_diverged)).
+    pub fn is_diverged(&self, c: usize) -> bool {
+        self.diverged.as_ref()[c]
+    }
+    /// Chain `c`'s generator.
+    pub fn rng(&self, c: usize) -> &R {
+        &self.rngs.as_ref()[c]
+    }
+    /// Every chain's position, chain-major (`n d` floats).
+    pub fn positions(&self) -> &[F] {
+        self.block(0)
+    }
+    /// Every chain's value.
+    pub fn values(&self) -> &[F] {
+        let (n, nd) = (self.len(), self.len() * self.d);
+        &self.floats.as_ref()[4 * nd..4 * nd + n]
+    }
+    /// Every chain's best point, chain-major (`n d` floats).
+    pub fn best_positions(&self) -> &[F] {
+        self.block(3)
+    }
+    /// Every chain's best value.
+    pub fn best_values(&self) -> &[F] {
+        let (n, nd) = (self.len(), self.len() * self.d);
+        &self.floats.as_ref()[4 * nd + n..]
+    }
+
+    /// The arrays cut into the fields of the layout, to be written.
+    pub(crate) fn parts(&mut self) -> Parts<'_, F, R> {
+        let (d, n) = (self.d, self.len());
+        let (x, rest) = self.floats.as_mut().split_at_mut(n * d);
+        let (y, rest) = rest.split_at_mut(n * d);
+        let (grad, rest) = rest.split_at_mut(n * d);
+        let (best_x, rest) = rest.split_at_mut(n * d);
+        let (value, best_value) = rest.split_at_mut(n);
+        Parts {
+            d,
+            x,
+            y,
+            grad,
+            best_x,
+            value,
+            best_value,
+            best_iteration: self.iterations.as_mut(),
+            diverged: self.diverged.as_mut(),
+            rng: self.rngs.as_mut(),
+        }
+    }
+}
+
+/// [`FlatChains`]' arrays cut into their fields: what a step writes.
+pub(crate) struct Parts<'a, F, R> {
     pub(crate) d: usize,
     pub(crate) x: &'a mut [F],
     pub(crate) y: &'a mut [F],
@@ -75,140 +269,15 @@ pub struct FlatChains<'a, F, R> {
     pub(crate) rng: &'a mut [R],
 }
 
-impl<'a, F: Float, R> FlatChains<'a, F, R> {
-    /// The floats that `n` chains of dimension `d` take: `n (4 d + 2)`.
-    pub const fn floats(n: usize, d: usize) -> usize {
-        n * (4 * d + 2)
-    }
-
-    /// `rngs.len()` chains of dimension `d >= 1` over `floats` (length
-    /// [`floats(n, d)`](FlatChains::floats)), `iterations` and `diverged`
-    /// (length `n` each). Their contents are overwritten when a run is
-    /// built. Errors: [`Error::Zero`] for no chain or `d = 0`,
-    /// [`Error::Length`] for a slice of the wrong length.
-    pub fn new(
-        d: usize,
-        floats: &'a mut [F],
-        iterations: &'a mut [u64],
-        diverged: &'a mut [bool],
-        rngs: &'a mut [R],
-    ) -> Result<Self, Error> {
-        let n = rngs.len();
-        if n == 0 {
-            return Err(Error::Zero { name: "chains" });
-        }
-        if d == 0 {
-            return Err(Error::Zero { name: "dimension" });
-        }
-        let expected = n.checked_mul(4 * d + 2).ok_or(Error::Length {
-            name: "floats",
-            expected: usize::MAX,
-            got: floats.len(),
-        })?;
-        for (name, expected, got) in [
-            ("floats", expected, floats.len()),
-            ("iterations", n, iterations.len()),
-            ("diverged", n, diverged.len()),
-        ] {
-            if got != expected {
-                return Err(Error::Length {
-                    name,
-                    expected,
-                    got,
-                });
-            }
-        }
-        let (x, rest) = floats.split_at_mut(n * d);
-        let (y, rest) = rest.split_at_mut(n * d);
-        let (grad, rest) = rest.split_at_mut(n * d);
-        let (best_x, rest) = rest.split_at_mut(n * d);
-        let (value, best_value) = rest.split_at_mut(n);
-        Ok(Self {
-            d,
-            x,
-            y,
-            grad,
-            best_x,
-            value,
-            best_value,
-            best_iteration: iterations,
-            diverged,
-            rng: rngs,
-        })
-    }
-
-    /// The number of chains.
-    pub fn len(&self) -> usize {
+impl<F, R> Parts<'_, F, R> {
+    fn len(&self) -> usize {
         self.rng.len()
-    }
-
-    /// Never: storage holds at least one chain.
-    pub fn is_empty(&self) -> bool {
-        self.rng.is_empty()
-    }
-
-    /// The dimension.
-    pub fn dim(&self) -> usize {
-        self.d
-    }
-
-    fn span(&self, c: usize) -> core::ops::Range<usize> {
-        c * self.d..(c + 1) * self.d
-    }
-
-    /// Chain `c`'s position `x_k`.
-    pub fn x(&self, c: usize) -> &[F] {
-        &self.x[self.span(c)]
-    }
-    /// Chain `c`'s velocity `y_k`.
-    pub fn y(&self, c: usize) -> &[F] {
-        &self.y[self.span(c)]
-    }
-    /// `∇U` at chain `c`'s position.
-    pub fn gradient(&self, c: usize) -> &[F] {
-        &self.grad[self.span(c)]
-    }
-    /// `U` at chain `c`'s position.
-    pub fn value(&self, c: usize) -> F {
-        self.value[c]
-    }
-    /// Chain `c`'s running best.
-    pub fn best(&self, c: usize) -> BestRef<'_, F> {
-        BestRef {
-            x: &self.best_x[self.span(c)],
-            value: self.best_value[c],
-            iteration: self.best_iteration[c],
-        }
-    }
-    /// Whether chain `c` has diverged (see [`Chain::is_diverged`](crate::Chain::is_diverged)).
-    pub fn is_diverged(&self, c: usize) -> bool {
-        self.diverged[c]
-    }
-    /// Chain `c`'s generator.
-    pub fn rng(&self, c: usize) -> &R {
-        &self.rng[c]
-    }
-    /// Every chain's position, chain-major (`n d` floats).
-    pub fn positions(&self) -> &[F] {
-        self.x
-    }
-    /// Every chain's value.
-    pub fn values(&self) -> &[F] {
-        self.value
-    }
-    /// Every chain's best point, chain-major (`n d` floats).
-    pub fn best_positions(&self) -> &[F] {
-        self.best_x
-    }
-    /// Every chain's best value.
-    pub fn best_values(&self) -> &[F] {
-        self.best_value
     }
 }
 
 /// Consecutive chains, split as a slice splits: the parts of a step on an
 /// [`Executor`](crate::Executor)'s threads.
-impl<F: Float + Send, R: Send> Split for FlatChains<'_, F, R> {
+impl<F: Float + Send, R: Send> Split for Parts<'_, F, R> {
     fn len(&self) -> usize {
         self.rng.len()
     }
@@ -247,24 +316,6 @@ impl<F: Float + Send, R: Send> Split for FlatChains<'_, F, R> {
     }
 }
 
-impl<F, R> FlatChains<'_, F, R> {
-    /// The same chains, borrowed for a shorter time.
-    fn reborrow(&mut self) -> FlatChains<'_, F, R> {
-        FlatChains {
-            d: self.d,
-            x: &mut *self.x,
-            y: &mut *self.y,
-            grad: &mut *self.grad,
-            best_x: &mut *self.best_x,
-            value: &mut *self.value,
-            best_value: &mut *self.best_value,
-            best_iteration: &mut *self.best_iteration,
-            diverged: &mut *self.diverged,
-            rng: &mut *self.rng,
-        }
-    }
-}
-
 /// A chain's best point, in [`FlatChains`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BestRef<'a, F> {
@@ -296,20 +347,23 @@ pub struct FlatProgress<'a, F> {
 /// [`Optimizer`](crate::Optimizer) over [`FlatChains`], for a dimension
 /// `Dm` known at compile time ([`Const`](crate::Const)) or at run time
 /// ([`Dyn`](crate::Dyn)). Built by
-/// [`Builder::build_flat`](crate::Builder::build_flat).
+/// [`Builder::build_flat`](crate::Builder::build_flat). It holds the
+/// chains, so it borrows what they borrow: over [`FlatSlices`] it lives
+/// as long as the slices, over owned arrays (`Vec`s on a host) as long as
+/// its owner wants.
 ///
 /// Each step moves the live chains, then evaluates their new points through
 /// [`BatchPotential::values_and_gradients`]: all of them in one call, or in
 /// groups of the size the potential asks for
 /// ([`BatchPotential::chains_per_call`]).
 #[derive(Debug)]
-pub struct FlatOptimizer<'a, F: Float, P, S: Sampler<F>, C, Dm, R, B> {
+pub struct FlatOptimizer<F: Float, P, S: Sampler<F>, C, Dm, R, B, Fs, Is, Ds, Rs> {
     potential: P,
     domain: B,
     sampler: S,
     kernel: S::Kernel,
     schedule: C,
-    chains: FlatChains<'a, F, R>,
+    chains: FlatChains<F, R, Fs, Is, Ds, Rs>,
     dim: Dm,
     best: usize,
     iteration: u64,
@@ -320,10 +374,9 @@ pub struct FlatOptimizer<'a, F: Float, P, S: Sampler<F>, C, Dm, R, B> {
     stall_value: F,
     stall_since: u64,
     failed: Option<Error>,
-    rng: PhantomData<fn() -> R>,
 }
 
-impl<'a, F, P, S, C, Dm, R, B> FlatOptimizer<'a, F, P, S, C, Dm, R, B>
+impl<F, P, S, C, Dm, R, B, Fs, Is, Ds, Rs> FlatOptimizer<F, P, S, C, Dm, R, B, Fs, Is, Ds, Rs>
 where
     F: Float,
     P: BatchPotential<F>,
@@ -332,6 +385,10 @@ where
     Dm: Dim,
     R: Rng + 'static,
     B: SliceDomain<F>,
+    Fs: FlatStorage<F>,
+    Is: FlatStorage<u64>,
+    Ds: FlatStorage<bool>,
+    Rs: FlatStorage<R>,
 {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn assemble(
@@ -340,14 +397,14 @@ where
         sampler: S,
         kernel: S::Kernel,
         schedule: C,
-        chains: FlatChains<'a, F, R>,
+        chains: FlatChains<F, R, Fs, Is, Ds, Rs>,
         dim: Dm,
         best: usize,
         evaluations: u64,
         stride: u64,
         stop: Stop<F>,
     ) -> Self {
-        let stall_value = chains.best_value[best];
+        let stall_value = chains.best_values()[best];
         Self {
             potential,
             domain,
@@ -365,7 +422,6 @@ where
             stall_value,
             stall_since: 0,
             failed: None,
-            rng: PhantomData,
         }
     }
 
@@ -398,14 +454,14 @@ where
     /// `step_chains`.
     fn advance_by<T>(&mut self, step_chains: T) -> Result<bool, Error>
     where
-        T: FnOnce(&FlatContext<'_, S::Kernel, P, B>, FlatChains<'_, F, R>) -> Sweep<F>,
+        T: FnOnce(&FlatContext<'_, S::Kernel, P, B>, Parts<'_, F, R>) -> Sweep<F>,
     {
         self.guarded(|opt| opt.advance_live(step_chains))
     }
 
     fn advance_live<T>(&mut self, step_chains: T) -> Result<bool, Error>
     where
-        T: FnOnce(&FlatContext<'_, S::Kernel, P, B>, FlatChains<'_, F, R>) -> Sweep<F>,
+        T: FnOnce(&FlatContext<'_, S::Kernel, P, B>, Parts<'_, F, R>) -> Sweep<F>,
     {
         let n = self.chains.len();
         let a = self.schedule.inverse_temperature(self.iteration);
@@ -413,7 +469,7 @@ where
             self.kernel = self.sampler.at(a)?;
         }
         let k = self.iteration + 1;
-        let before = self.chains.best_value[self.best];
+        let before = self.chains.best_values()[self.best];
         let cx = FlatContext {
             kernel: &self.kernel,
             potential: &self.potential,
@@ -422,7 +478,7 @@ where
             k,
             record: k.is_multiple_of(self.stride),
         };
-        let found = step_chains(&cx, self.chains.reborrow());
+        let found = step_chains(&cx, self.chains.parts());
         self.evaluations += found.evaluated;
         self.diverged += found.diverged;
         self.iteration = k;
@@ -453,7 +509,7 @@ where
     pub fn termination(&self) -> Option<Termination> {
         let live = (self.chains.len() - self.diverged) as u64;
         self.stop.holds(
-            self.chains.best_value[self.best],
+            self.chains.best_values()[self.best],
             self.iteration,
             self.evaluations,
             live,
@@ -470,9 +526,24 @@ where
     }
 
     /// As [`Optimizer::run_with`](crate::Optimizer::run_with).
-    pub fn run_with<O>(&mut self, every: u64, mut observer: O) -> Result<Report<F>, Error>
+    pub fn run_with<O>(&mut self, every: u64, observer: O) -> Result<Report<F>, Error>
     where
         O: FnMut(&FlatProgress<'_, F>) -> ControlFlow<()>,
+    {
+        self.run_by(every, observer, &|cx, chains| sweep_flat(cx, chains, 0))
+    }
+
+    /// The loop of [`run_with`](FlatOptimizer::run_with), the chains of
+    /// each step stepped by `step_chains`.
+    fn run_by<O, T>(
+        &mut self,
+        every: u64,
+        mut observer: O,
+        step_chains: &T,
+    ) -> Result<Report<F>, Error>
+    where
+        O: FnMut(&FlatProgress<'_, F>) -> ControlFlow<()>,
+        T: Fn(&FlatContext<'_, S::Kernel, P, B>, Parts<'_, F, R>) -> Sweep<F>,
     {
         loop {
             if let Some(e) = self.failed {
@@ -481,7 +552,7 @@ where
             if let Some(termination) = self.termination() {
                 return Ok(self.report(termination));
             }
-            let improved = self.advance()?;
+            let improved = self.advance_by(step_chains)?;
             if improved || (every > 0 && self.iteration.is_multiple_of(every)) {
                 let progress = FlatProgress {
                     iteration: self.iteration,
@@ -520,18 +591,35 @@ where
         lbfgs: &mut LbfgsIn<'_, F>,
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
-        let n = self.chains.len();
-        if chain >= n {
-            return Err(Error::Index {
-                name: "chain",
-                index: chain,
-                len: n,
-            });
-        }
+        self.local_search(chain, Origin::Best, lbfgs, settings)
+    }
+
+    /// As [`Optimizer::quench`](crate::Optimizer::quench): L-BFGS from a
+    /// copy of chain `chain`'s current position, in caller storage of the
+    /// run's dimension ([`Error::Length`] otherwise).
+    pub fn quench(
+        &mut self,
+        chain: usize,
+        lbfgs: &mut LbfgsIn<'_, F>,
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
+        self.local_search(chain, Origin::Current, lbfgs, settings)
+    }
+
+    /// L-BFGS from chain `chain`'s best or current point, within what is
+    /// left of the evaluation budget; records the result when lower.
+    fn local_search(
+        &mut self,
+        chain: usize,
+        from: Origin,
+        lbfgs: &mut LbfgsIn<'_, F>,
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
+        self.chain_at(chain)?;
         if let Some(e) = self.failed {
             return Err(e);
         }
-        let d = self.chains.d;
+        let d = self.chains.dim();
         if lbfgs.dimension() != d {
             return Err(Error::Length {
                 name: "L-BFGS dimension",
@@ -539,59 +627,150 @@ where
                 got: lbfgs.dimension(),
             });
         }
-        let value = self.chains.best_value[chain];
-        let left = self
-            .stop
-            .evaluations
-            .map_or(u64::MAX, |b| b.saturating_sub(self.evaluations));
-        let budget = settings.evaluations.min(left);
-        if budget == 0 {
-            return Ok(Polished {
-                value,
-                evaluations: 0,
-                iterations: 0,
-                end: PolishEnd::Budget,
-            });
+        let c = &self.chains;
+        if from == Origin::Current && c.is_diverged(chain) {
+            return Err(diverged_start(
+                c.x(chain),
+                c.gradient(chain),
+                c.value(chain),
+            ));
         }
-        let settings = PolishSettings {
-            evaluations: budget,
-            ..settings
+        let value = match from {
+            Origin::Best => c.best_values()[chain],
+            Origin::Current => c.value(chain),
+        };
+        let settings = match within_budget(settings, self.evaluations_left(), value) {
+            Ok(settings) => settings,
+            Err(nothing) => return Ok(nothing),
         };
         self.guarded(|opt| {
-            let span = opt.chains.span(chain);
-            // Counted here, so that a polish that fails counts what it
+            // Counted here, so that a search that fails counts what it
             // spent too.
             let counted = Counted {
                 potential: &opt.potential,
                 calls: Cell::new(0),
             };
-            let (done, x) = lbfgs.minimize_from(
-                &counted,
-                &opt.domain,
-                &opt.chains.best_x[span.clone()],
-                settings,
-            );
+            let start = match from {
+                Origin::Best => opt.chains.best(chain).x,
+                Origin::Current => opt.chains.x(chain),
+            };
+            let (done, x) = lbfgs.minimize_from(&counted, &opt.domain, start, settings);
             opt.evaluations += counted.calls.get();
-            let done = done.map_err(|e| match e {
-                Error::UnboundedBelow { value, .. } => Error::UnboundedBelow { chain, value },
-                e => e,
-            })?;
-            if done.value < floor() {
-                return Err(Error::UnboundedBelow {
-                    chain,
-                    value: done.value.to_f64(),
-                });
-            }
-            if done.value < opt.chains.best_value[chain] {
-                opt.chains.best_x[span].copy_from_slice(x);
-                opt.chains.best_value[chain] = done.value;
-                opt.chains.best_iteration[chain] = opt.iteration;
-                if done.value < opt.chains.best_value[opt.best] {
-                    opt.best = chain;
-                }
-            }
+            let done = done.map_err(|e| on_chain(e, chain))?;
+            opt.record(chain, Some(x), done.value)?;
             Ok(done)
         })
+    }
+
+    /// As [`Optimizer::restart`](crate::Optimizer::restart), with `x` of
+    /// the run's dimension ([`Error::Length`] otherwise). The point is
+    /// evaluated through the batch seam, as a batch of one.
+    pub fn restart(&mut self, chain: usize, x: &[F]) -> Result<bool, Error> {
+        self.chain_at(chain)?;
+        let d = self.chains.dim();
+        if x.len() != d {
+            return Err(Error::Length {
+                name: "x",
+                expected: d,
+                got: x.len(),
+            });
+        }
+        if let Some(e) = self.failed {
+            return Err(e);
+        }
+        if self.evaluations_left() == 0 {
+            return Ok(false);
+        }
+        self.guarded(|opt| {
+            let p = opt.chains.parts();
+            let span = chain * d..(chain + 1) * d;
+            let was_diverged = p.diverged[chain];
+            let (xc, yc) = (&mut p.x[span.clone()], &mut p.y[span.clone()]);
+            xc.copy_from_slice(x);
+            yc.fill(F::ZERO);
+            opt.domain.confine(xc, yc);
+            opt.potential.values_and_gradients(
+                d,
+                xc,
+                &mut p.grad[span.clone()],
+                &mut p.value[chain..=chain],
+                &[false],
+            );
+            let value = p.value[chain];
+            let verdict = judge(&p.x[span.clone()], value, &p.grad[span], floor());
+            let ok = verdict == Verdict::Feasible;
+            p.diverged[chain] = !ok;
+            opt.evaluations += 1;
+            opt.diverged = after_restart(opt.diverged, was_diverged, ok);
+            if ok {
+                opt.record(chain, None, value)?;
+            } else if verdict == Verdict::Unbounded {
+                return Err(Error::UnboundedBelow {
+                    chain,
+                    value: value.to_f64(),
+                });
+            }
+            Ok(true)
+        })
+    }
+
+    /// Chain `chain`, or [`Error::Index`].
+    fn chain_at(&self, chain: usize) -> Result<usize, Error> {
+        let n = self.chains.len();
+        if chain < n {
+            Ok(chain)
+        } else {
+            Err(Error::Index {
+                name: "chain",
+                index: chain,
+                len: n,
+            })
+        }
+    }
+
+    /// What is left of the evaluation budget (`u64::MAX` without one).
+    fn evaluations_left(&self) -> u64 {
+        self.stop
+            .evaluations
+            .map_or(u64::MAX, |b| b.saturating_sub(self.evaluations))
+    }
+
+    /// Makes `value` at `x` (`None`: the chain's position) chain `chain`'s
+    /// best when lower, at the current iteration, and the global best when
+    /// lowest: the path of every value found outside a step. A value below
+    /// the floor is refused.
+    fn record(&mut self, chain: usize, x: Option<&[F]>, value: F) -> Result<(), Error> {
+        if value < floor() {
+            return Err(Error::UnboundedBelow {
+                chain,
+                value: value.to_f64(),
+            });
+        }
+        let (k, global) = (self.iteration, self.chains.best_values()[self.best]);
+        let p = self.chains.parts();
+        if value < p.best_value[chain] {
+            let span = chain * p.d..(chain + 1) * p.d;
+            p.best_x[span.clone()].copy_from_slice(x.unwrap_or(&p.x[span]));
+            p.best_value[chain] = value;
+            p.best_iteration[chain] = k;
+            if value < global {
+                self.best = chain;
+            }
+        }
+        Ok(())
+    }
+
+    /// As [`Optimizer::set_sampler`](crate::Optimizer::set_sampler).
+    pub fn set_sampler(&mut self, sampler: S) -> Result<(), Error> {
+        let a = self.schedule.inverse_temperature(self.iteration);
+        self.kernel = sampler.at(a)?;
+        self.sampler = sampler;
+        Ok(())
+    }
+
+    /// As [`Optimizer::schedule_mut`](crate::Optimizer::schedule_mut).
+    pub fn schedule_mut(&mut self) -> &mut C {
+        &mut self.schedule
     }
 
     /// The chain that holds the global running best.
@@ -604,13 +783,25 @@ where
         self.chains.best(self.best)
     }
 
+    /// As [`Optimizer::current_best`](crate::Optimizer::current_best).
+    pub fn current_best(&self) -> Option<(usize, F)> {
+        let c = &self.chains;
+        let mut best: Option<(usize, F)> = None;
+        for (i, &value) in c.values().iter().enumerate() {
+            if !c.is_diverged(i) && best.is_none_or(|(_, v)| value < v) {
+                best = Some((i, value));
+            }
+        }
+        best
+    }
+
     /// The chains.
-    pub fn chains(&self) -> &FlatChains<'a, F, R> {
+    pub fn chains(&self) -> &FlatChains<F, R, Fs, Is, Ds, Rs> {
         &self.chains
     }
 
     /// Gives the chain storage back.
-    pub fn into_chains(self) -> FlatChains<'a, F, R> {
+    pub fn into_chains(self) -> FlatChains<F, R, Fs, Is, Ds, Rs> {
         self.chains
     }
 
@@ -639,9 +830,24 @@ where
         &self.potential
     }
 
+    /// The domain of the chains.
+    pub fn domain(&self) -> &B {
+        &self.domain
+    }
+
+    /// The sampler.
+    pub fn sampler(&self) -> &S {
+        &self.sampler
+    }
+
     /// The sampler's kernel at the inverse temperature of the last step.
     pub fn kernel(&self) -> &S::Kernel {
         &self.kernel
+    }
+
+    /// The schedule.
+    pub fn schedule(&self) -> &C {
+        &self.schedule
     }
 
     /// The stopping rules.
@@ -654,7 +860,7 @@ where
 /// threads if the executor has them, with the same bits as
 /// [`step`](FlatOptimizer::step) and [`run`](FlatOptimizer::run) for any
 /// executor. Each part evaluates its own chains through the batch seam.
-impl<F, P, S, C, Dm, R, B> FlatOptimizer<'_, F, P, S, C, Dm, R, B>
+impl<F, P, S, C, Dm, R, B, Fs, Is, Ds, Rs> FlatOptimizer<F, P, S, C, Dm, R, B, Fs, Is, Ds, Rs>
 where
     F: Float + Send,
     P: BatchPotential<F> + Sync,
@@ -664,6 +870,10 @@ where
     Dm: Dim,
     R: Rng + Send + 'static,
     B: SliceDomain<F> + Sync,
+    Fs: FlatStorage<F>,
+    Is: FlatStorage<u64>,
+    Ds: FlatStorage<bool>,
+    Rs: FlatStorage<R>,
 {
     /// [`step`](FlatOptimizer::step), the chains stepped by `executor`.
     pub fn step_on<E: Executor>(&mut self, executor: &E) -> Result<(), Error> {
@@ -677,15 +887,24 @@ where
         if self.stop.is_empty() {
             return Err(Error::NoStoppingRule);
         }
-        loop {
-            if let Some(e) = self.failed {
-                return Err(e);
-            }
-            if let Some(termination) = self.termination() {
-                return Ok(self.report(termination));
-            }
-            self.advance_by(|cx, chains| in_parts(executor, cx, chains))?;
-        }
+        self.run_with_on(executor, 0, |_| ControlFlow::Continue(()))
+    }
+
+    /// [`run_with`](FlatOptimizer::run_with), the chains of every step
+    /// stepped by `executor`; the observer runs on the calling thread.
+    pub fn run_with_on<E, O>(
+        &mut self,
+        executor: &E,
+        every: u64,
+        observer: O,
+    ) -> Result<Report<F>, Error>
+    where
+        E: Executor,
+        O: FnMut(&FlatProgress<'_, F>) -> ControlFlow<()>,
+    {
+        self.run_by(every, observer, &|cx, chains| {
+            in_parts(executor, cx, chains)
+        })
     }
 }
 
@@ -693,7 +912,7 @@ where
 fn in_parts<E, F, K, P, B, R>(
     executor: &E,
     cx: &FlatContext<'_, K, P, B>,
-    chains: FlatChains<'_, F, R>,
+    chains: Parts<'_, F, R>,
 ) -> Sweep<F>
 where
     E: Executor,
@@ -747,7 +966,7 @@ impl<F: Float, P: BatchPotential<F>> SlicePotential<F> for Counted<'_, P> {
 /// evaluated in one batch and judged in chain order.
 fn sweep_flat<F, K, P, B, R>(
     cx: &FlatContext<'_, K, P, B>,
-    mut chains: FlatChains<'_, F, R>,
+    mut chains: Parts<'_, F, R>,
     offset: usize,
 ) -> Sweep<F>
 where
@@ -797,7 +1016,7 @@ where
 #[inline(always)]
 fn evaluate_group<F, K, P, B, R>(
     cx: &FlatContext<'_, K, P, B>,
-    chains: &mut FlatChains<'_, F, R>,
+    chains: &mut Parts<'_, F, R>,
     group: core::ops::Range<usize>,
     offset: usize,
     found: &mut Sweep<F>,
@@ -864,7 +1083,7 @@ fn evaluate_group<F, K, P, B, R>(
 #[inline(always)]
 fn step_one<F: Float, K: Kernel<F>, R: Rng>(
     kernel: &K,
-    chains: &mut FlatChains<'_, F, R>,
+    chains: &mut Parts<'_, F, R>,
     c: usize,
     d: usize,
 ) {
@@ -882,7 +1101,7 @@ fn step_one<F: Float, K: Kernel<F>, R: Rng>(
 /// Steps the live chains `c..c + LANES` in lockstep; `false` (nothing
 /// stepped) if their generators are not xoshiro256++.
 #[inline]
-fn step_group<F, K, R>(kernel: &K, chains: &mut FlatChains<'_, F, R>, c: usize, d: usize) -> bool
+fn step_group<F, K, R>(kernel: &K, chains: &mut Parts<'_, F, R>, c: usize, d: usize) -> bool
 where
     F: Float,
     K: Kernel<F>,

@@ -23,7 +23,7 @@ pub use algorithm::Optimizer;
 pub use builder::{Builder, START_TRIES};
 pub use chain::{Best, Chain};
 pub use executor::{Executor, Serial, Split};
-pub use flat::{BestRef, FlatChains, FlatOptimizer, FlatProgress};
+pub use flat::{BestRef, FlatChains, FlatOptimizer, FlatProgress, FlatSlices, FlatStorage};
 pub use report::{Progress, Report};
 pub use stop::{Stop, Termination};
 pub use stream::{chain_seed, splitmix64};
