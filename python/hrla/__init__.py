@@ -221,6 +221,9 @@ def minimize(
             x=np.asarray(s.x), fun=s.value, nfev=s.evaluations, nit=s.rounds, termination=s.termination,
             diverged_chains=s.diverged_chains, chains=s.chains, message=s.message,
             method="auto", seed=seed, step=s.step, inverse_temperature=s.inverse_temperature,
+            # Auto's chains always hold a feasible basin: an infeasible
+            # last proposal is rejected, not a failure.
+            holds_basins=True,
         )
     if method not in _SAMPLERS:
         raise ValueError(f"unknown method {method!r}; expected one of: auto hrla ula ola")
@@ -261,12 +264,14 @@ def minimize(
 
 
 def _result(*, fun: float, nfev: int, termination: str, diverged_chains: int, chains: int,
-            **rest: Any) -> OptimizeResult:
+            holds_basins: bool = False, **rest: Any) -> OptimizeResult:
     """An :class:`OptimizeResult` whose ``success`` and ``status`` follow
-    from the termination and the value."""
+    from the termination and the value (and, for the samplers, from whether
+    any chain is still alive)."""
+    alive = holds_basins or diverged_chains < chains
     return OptimizeResult(
         fun=fun, nfev=nfev, njev=nfev,
-        success=termination != "Observer" and diverged_chains < chains and bool(np.isfinite(fun)),
+        success=termination != "Observer" and alive and bool(np.isfinite(fun)),
         status=TERMINATIONS.index(termination), termination=termination,
         all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
         **rest,

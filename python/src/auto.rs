@@ -56,11 +56,11 @@ pub struct PySolution {
     pub chains: usize,
     /// Why it ended: `"Evaluations"` (the budget is spent).
     pub termination: &'static str,
-    /// Chains diverged at the end (each restarts after its round, so
-    /// these diverged in the last one).
+    /// Chains whose last proposal met a point where `U` or its gradient
+    /// is not finite (rejected: the chain stayed in its feasible basin).
     pub diverged_chains: usize,
-    /// Whether every chain had diverged at the end: `x` is then the last
-    /// feasible best found before, and the run found nowhere feasible to go.
+    /// Whether every chain's last proposal was infeasible; not a failure,
+    /// since `x` is feasible and polished either way.
     pub all_diverged: bool,
     /// The kernel's sentence for the solution.
     pub message: String,

@@ -525,7 +525,7 @@ fn a_solution_says_how_it_ended() {
     let text = found.to_string();
     assert!(
         text.starts_with("evaluation budget spent: best U = ")
-            && text.ends_with("0 of 8 chains diverged"),
+            && text.ends_with("the last proposal of 0 of 8 chains met an infeasible point"),
         "{text}"
     );
     let dead = hrla::Solution {
@@ -534,7 +534,8 @@ fn a_solution_says_how_it_ended() {
     };
     assert!(dead.all_diverged());
     assert!(
-        dead.to_string().contains("8 of 8 chains diverged (all"),
+        dead.to_string()
+            .contains("8 of 8 chains met an infeasible point"),
         "{dead}"
     );
 }

@@ -177,8 +177,11 @@ pub struct Solution<F, const D: usize> {
 }
 
 impl<F, const D: usize> Solution<F, D> {
-    /// Whether every chain's last proposal met an infeasible point: the
-    /// best point is then the lowest feasible point found before.
+    /// Whether every chain's last proposal met an infeasible point. Not a
+    /// failure: a rejected proposal leaves its chain in its feasible
+    /// basin, and the best point is feasible and polished either way (a
+    /// run that finds no feasible point at all is an error, not a
+    /// solution).
     pub fn all_diverged(&self) -> bool {
         self.diverged_chains == self.chains
     }
@@ -189,7 +192,7 @@ impl<F: Float, const D: usize> fmt::Display for Solution<F, D> {
         write!(
             f,
             "{}: best U = {} after {} evaluations in {} rounds (h = {}, a = {}); \
-             {} of {} chains diverged",
+             the last proposal of {} of {} chains met an infeasible point",
             self.termination,
             self.value,
             self.evaluations,
@@ -199,9 +202,6 @@ impl<F: Float, const D: usize> fmt::Display for Solution<F, D> {
             self.diverged_chains,
             self.chains,
         )?;
-        if self.all_diverged() {
-            f.write_str(" (all: the best is the last feasible point found)")?;
-        }
         Ok(())
     }
 }
