@@ -176,7 +176,10 @@ fn a_failing_function_is_its_own_error() {
         panic!("the function's error must end the run");
     };
     assert!(e.downcast_ref::<Refused>().is_some());
-    assert_eq!(engine.iteration(), 4);
+    // One call for the initial points, one per step: the sixth call is the
+    // fifth step's, which moved the chains and then failed.
+    assert_eq!(engine.iteration(), 5);
+    assert_eq!(f.0.load(Ordering::Relaxed), 6);
     let f = Arc::new(Failing(AtomicUsize::new(0), 0));
     assert!(matches!(
         settings(PotentialSpec::User(f)).build().err(),
@@ -188,7 +191,12 @@ fn a_failing_function_is_its_own_error() {
 fn what_the_kernel_cannot_run_is_a_typed_error() {
     let mut s = settings(rastrigin());
     s.dim = Some(17);
-    assert!(matches!(s.build().err(), Some(Error::Dimension(17))));
+    assert_eq!(s.build().unwrap().dim(), 17);
+    s.dim = Some(0);
+    assert!(matches!(
+        s.build().err(),
+        Some(Error::Kernel(hrla::Error::Zero { .. }))
+    ));
     s.dim = None;
     assert!(matches!(s.build().err(), Some(Error::NoDimension)));
     s.start = StartSpec::Point(vec![0.0; 3]);
