@@ -9,6 +9,7 @@ use hrla::{
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 
+use crate::dims::with_dim;
 use crate::error::RanAway;
 use crate::settings::{Bounds, Pot};
 use crate::{Error, MEMORY, Progress, Settings};
@@ -41,22 +42,21 @@ pub struct Layout {
     pub best_value: usize,
 }
 
-/// The bytes of one chain in dimension `d` (its floats, iteration count,
-/// divergence flag and generator), or [`Error::Memory`] when the size
-/// overflows the address space.
+/// The bytes of one kernel chain of the const-generic path
+/// ([`hrla::Chain`]) in dimension `d`, for a front end that runs those
+/// (and [`hrla::Auto`]'s storage), or [`Error::Dimension`] for a `d` not
+/// compiled in.
 pub fn storage_bytes(d: usize) -> Result<usize, Error> {
-    let floats = Chains::floats(1, d);
-    floats
-        .checked_mul(size_of::<f64>())
-        .and_then(|b| b.checked_add(size_of::<u64>() + size_of::<bool>()))
-        .and_then(|b| b.checked_add(size_of::<Xoshiro256PlusPlus>()))
-        .filter(|&b| b <= isize::MAX as usize)
-        .ok_or(Error::Memory {
-            chains: 1,
-            dim: d,
-            bytes: usize::MAX,
-            address_space: true,
-        })
+    with_dim!(d, D => Ok(size_of::<hrla::Chain<f64, D>>()))
+}
+
+/// The bytes of one chain of the engine's flat storage in dimension `d`
+/// (its floats, iteration count, divergence flag and generator),
+/// saturating at `usize::MAX`.
+fn flat_bytes(d: usize) -> usize {
+    Chains::floats(1, d)
+        .saturating_mul(size_of::<f64>())
+        .saturating_add(size_of::<u64>() + size_of::<bool>() + size_of::<Rng>())
 }
 
 /// A `Vec` of `len` copies of `value`, or [`Error::Memory`] for `n` chains
@@ -66,7 +66,7 @@ fn filled<T: Clone>(len: usize, value: T, n: usize, d: usize) -> Result<Vec<T>, 
     let refuse = |address_space| Error::Memory {
         chains: n,
         dim: d,
-        bytes: storage_bytes(d).unwrap_or(usize::MAX),
+        bytes: flat_bytes(d),
         address_space,
     };
     match len.checked_mul(size_of::<T>()) {
