@@ -3,11 +3,14 @@
 
 use std::ops::ControlFlow;
 
-use hrla::{Auto, AutoProgress, Lbfgs, Termination};
+use std::sync::Arc;
+
+use hrla::{Auto, AutoProgress, Chain, Lbfgs, Potential, Termination};
 
 use crate::dims::with_dim;
-use crate::engine::storage;
-use crate::{BoxSpec, Error, MEMORY, PotentialSpec, Progress, dimension};
+use crate::potential::Builtin;
+use crate::user::UserPotential;
+use crate::{BoxSpec, Error, MEMORY, PointFunction, PotentialSpec, Progress, dimension};
 
 /// What [`solve`] found: the kernel's [`hrla::Solution`] whatever the
 /// dimension.
@@ -74,7 +77,7 @@ pub fn solve(
         .unwrap_or_else(|| Auto::<f64>::chains_for(problem.budget));
     with_dim!(d, D => {
         let domain = problem.domain.interval()?;
-        let pot = problem.potential.build::<D>()?;
+        let pot = AutoPot::<D>::new(&problem.potential)?;
         let mut chains = storage::<D>(n)?;
         let mut lbfgs: Box<Lbfgs<f64, D, MEMORY>> = Box::default();
         let observe = |p: &AutoProgress<'_, f64, D>| {
@@ -120,4 +123,67 @@ pub fn solve(
 /// with its runtime held.
 pub fn is_user(potential: &PotentialSpec) -> bool {
     matches!(potential, PotentialSpec::User(_))
+}
+
+/// The potential in dimension `D`, for [`Auto`], which is typed by its
+/// dimension; a user's function is called one point at a time.
+enum AutoPot<const D: usize> {
+    Builtin(Builtin<D>),
+    User(UserPotential<D>),
+    Native(Arc<dyn PointFunction>),
+}
+
+impl<const D: usize> AutoPot<D> {
+    fn new(spec: &PotentialSpec) -> Result<Self, Error> {
+        Ok(match spec {
+            PotentialSpec::Builtin(b) => Self::Builtin(b.build::<D>()?),
+            PotentialSpec::User(f) => Self::User(UserPotential::new(f.clone())),
+            PotentialSpec::Native(f) => Self::Native(f.clone()),
+        })
+    }
+
+    /// The user function's first error since the last call, if any.
+    fn finish(&self) -> Result<(), Error> {
+        match self {
+            Self::User(p) => p.finish(),
+            Self::Builtin(_) | Self::Native(_) => Ok(()),
+        }
+    }
+
+    /// Whether a user function failed since the last [`finish`](Self::finish).
+    fn failed(&self) -> bool {
+        matches!(self, Self::User(p) if p.failed())
+    }
+}
+
+impl<const D: usize> Potential<f64, D> for AutoPot<D> {
+    #[inline]
+    fn value_and_gradient(&self, x: &[f64; D], grad: &mut [f64; D]) -> f64 {
+        match self {
+            Self::Builtin(p) => p.value_and_gradient(x, grad),
+            Self::User(p) => p.value_and_gradient(x, grad),
+            Self::Native(p) => p.value_and_gradient(x, grad),
+        }
+    }
+}
+
+/// Storage for `n` chains of dimension `D`, or [`Error::Memory`]: the size
+/// is checked and reserved before anything is written, so a huge count
+/// allocates nothing.
+fn storage<const D: usize>(n: usize) -> Result<Vec<Chain<f64, D>>, Error> {
+    let bytes = size_of::<Chain<f64, D>>();
+    let refuse = |address_space| Error::Memory {
+        chains: n,
+        dim: D,
+        bytes,
+        address_space,
+    };
+    match n.checked_mul(bytes) {
+        Some(total) if total <= isize::MAX as usize => {}
+        _ => return Err(refuse(true)),
+    }
+    let mut chains = Vec::new();
+    chains.try_reserve_exact(n).map_err(|_| refuse(false))?;
+    chains.extend((0..n).map(|_| Chain::new()));
+    Ok(chains)
 }

@@ -1,7 +1,7 @@
-//! The dimensions compiled in: the kernel's `D` is a const generic, so each
-//! supported `D` is one instantiation of the optimiser, the polish and
-//! [`hrla::Auto`], chosen at run time by `with_dim!`. This is the only
-//! table of them: every front end asks the layer with a run-time `d`.
+//! The dimensions compiled in for what the kernel types by its dimension:
+//! [`hrla::Auto`] and the built-ins' known minima, one instantiation per
+//! supported `D`, chosen at run time by `with_dim!`. This is the only
+//! table of them (the [`Engine`](crate::Engine) runs any `d`).
 
 use crate::Error;
 

@@ -1,13 +1,12 @@
-//! One run loop for every front end: the kernel's optimiser in one of the
-//! compiled dimensions, behind the object-safe [`Engine`].
+//! One run loop for every front end: the kernel's optimiser over flat
+//! storage at a run-time dimension, behind the object-safe [`Engine`].
 
 use std::ops::ControlFlow;
 
 use hrla::{
-    AnyKernel, AnySampler, AnySchedule, Builder, Chain, Domain, Kernel, Lbfgs, Optimizer,
-    PolishSettings, Polished, Report, Sampler, Schedule, Start, Termination, chain_seed,
+    AnyKernel, AnySampler, AnySchedule, Builder, Dyn, FlatChains, FlatOptimizer, Kernel, LbfgsIn,
+    PolishSettings, Polished, Report, Sampler, Schedule, Termination,
 };
-use rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::dims::with_dim;
@@ -16,91 +15,68 @@ use crate::settings::{Bounds, Pot};
 use crate::{Error, MEMORY, Progress, Settings};
 
 /// Where the fields of the chains are, for a front end that shows them
-/// without a copy (numpy views): the address of the first chain, and each
-/// field's offset from a chain's start and the stride between chains, in
-/// units of `f64`. Fixed for the engine's life: the chains are never moved
-/// or resized.
+/// without a copy (numpy views): each field of every chain is one
+/// contiguous block, `(n, d)` row-major for the points, `(n,)` for the
+/// values. `base` is the address of the positions; each field is given by
+/// its offset from `base`, in units of `f64`. Fixed for the engine's life:
+/// the storage is never moved or resized.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Layout {
-    /// The address of the first chain (0 when there is none).
+    /// The address of the positions (`x` of the first chain).
     pub base: usize,
     /// The number of chains.
     pub n: usize,
     /// The dimension.
     pub d: usize,
-    /// The distance from one chain to the next.
-    pub stride: usize,
-    /// The position `x`.
+    /// The positions `x`, `(n, d)`.
     pub x: usize,
-    /// The velocity `y`.
+    /// The velocities `y`, `(n, d)`.
     pub y: usize,
-    /// The gradient at `x`.
+    /// The gradients at `x`, `(n, d)`.
     pub gradient: usize,
-    /// The chain's best point.
+    /// The chains' best points, `(n, d)`.
     pub best_x: usize,
-    /// The chain's best value.
+    /// The values at `x`, `(n,)`.
+    pub value: usize,
+    /// The chains' best values, `(n,)`.
     pub best_value: usize,
 }
 
-fn layout_of<const D: usize, R>(chains: &[Chain<f64, D, R>]) -> Layout {
-    // A chain holds f64 fields, so it is aligned to (and a multiple of) 8
-    // bytes, and every f64 field lies a whole number of f64s from its start.
-    const { assert!(size_of::<Chain<f64, 1>>().is_multiple_of(size_of::<f64>())) };
-    let stride = size_of::<Chain<f64, D, R>>() / size_of::<f64>();
-    let Some(first) = chains.first() else {
-        return Layout {
-            base: 0,
-            n: 0,
-            d: D,
-            stride,
-            x: 0,
-            y: 0,
-            gradient: 0,
-            best_x: 0,
-            best_value: 0,
-        };
-    };
-    // Measured from the fields' addresses: Rust does not fix a struct's
-    // field order.
-    let start = std::ptr::from_ref(first) as usize;
-    let offset = |p: *const f64| (p as usize - start) / size_of::<f64>();
-    Layout {
-        base: start,
-        n: chains.len(),
-        d: D,
-        stride,
-        x: offset(first.x().as_ptr()),
-        y: offset(first.y().as_ptr()),
-        gradient: offset(first.gradient().as_ptr()),
-        best_x: offset(first.best().x.as_ptr()),
-        best_value: offset(&first.best().value),
-    }
-}
-
-/// The bytes of one chain in dimension `d`, or [`Error::Dimension`].
+/// The bytes of one kernel chain of the const-generic path
+/// ([`hrla::Chain`]) in dimension `d`, for a front end that runs those
+/// (and [`hrla::Auto`]'s storage), or [`Error::Dimension`] for a `d` not
+/// compiled in.
 pub fn storage_bytes(d: usize) -> Result<usize, Error> {
-    with_dim!(d, D => Ok(size_of::<Chain<f64, D>>()))
+    with_dim!(d, D => Ok(size_of::<hrla::Chain<f64, D>>()))
 }
 
-/// Storage for `n` chains of dimension `D`, or [`Error::Memory`]: the size
-/// is checked and reserved before anything is written, so a huge count
-/// allocates nothing.
-pub(crate) fn storage<const D: usize>(n: usize) -> Result<Vec<Chain<f64, D>>, Error> {
-    let bytes = size_of::<Chain<f64, D>>();
+/// The bytes of one chain of the engine's flat storage in dimension `d`
+/// (its floats, iteration count, divergence flag and generator),
+/// saturating at `usize::MAX`.
+fn flat_bytes(d: usize) -> usize {
+    Chains::floats(1, d)
+        .saturating_mul(size_of::<f64>())
+        .saturating_add(size_of::<u64>() + size_of::<bool>() + size_of::<Rng>())
+}
+
+/// A `Vec` of `len` copies of `value`, or [`Error::Memory`] for `n` chains
+/// of dimension `d`: the size is checked and reserved before anything is
+/// written, so a huge count allocates nothing.
+fn filled<T: Clone>(len: usize, value: T, n: usize, d: usize) -> Result<Vec<T>, Error> {
     let refuse = |address_space| Error::Memory {
         chains: n,
-        dim: D,
-        bytes,
+        dim: d,
+        bytes: flat_bytes(d),
         address_space,
     };
-    match n.checked_mul(bytes) {
+    match len.checked_mul(size_of::<T>()) {
         Some(total) if total <= isize::MAX as usize => {}
         _ => return Err(refuse(true)),
     }
-    let mut chains = Vec::new();
-    chains.try_reserve_exact(n).map_err(|_| refuse(false))?;
-    chains.extend((0..n).map(|_| Chain::new()));
-    Ok(chains)
+    let mut v = Vec::new();
+    v.try_reserve_exact(len).map_err(|_| refuse(false))?;
+    v.resize(len, value);
+    Ok(v)
 }
 
 /// A run, whatever its dimension: what every front end drives.
@@ -191,28 +167,34 @@ impl Settings {
     /// evaluated: the kernel's checks, and the layer's of the dimension
     /// ([`Settings::dimension`]) and the storage.
     pub fn build(&self) -> Result<Box<dyn Engine>, Error> {
-        let d = self.dimension()?;
-        with_dim!(d, D => Ok(Box::new(Run::<D>::build(self)?) as Box<dyn Engine>))
+        Ok(Box::new(Run::build(self)?))
     }
 }
 
-type Opt<const D: usize> = Optimizer<
+type Rng = Xoshiro256PlusPlus;
+type Chains = FlatChains<f64, Rng, Vec<f64>, Vec<u64>, Vec<bool>, Vec<Rng>>;
+type Opt = FlatOptimizer<
     f64,
-    Pot<D>,
+    Pot,
     AnySampler<f64>,
     AnySchedule<f64>,
-    Vec<Chain<f64, D>>,
-    D,
-    Xoshiro256PlusPlus,
+    Dyn,
+    Rng,
     Bounds,
+    Vec<f64>,
+    Vec<u64>,
+    Vec<bool>,
+    Vec<Rng>,
 >;
 
-struct Run<const D: usize> {
-    opt: Opt<D>,
+struct Run {
+    opt: Opt,
     /// The error that ended the run, returned by every later call.
     failed: Option<Failure>,
     /// The escape radius, squared ([`Settings::escape`]).
     escape2: Option<f64>,
+    /// The polish's L-BFGS storage, made at the first polish.
+    lbfgs: Vec<f64>,
 }
 
 /// What ends a run for good.
@@ -231,46 +213,55 @@ impl From<Failure> for Error {
     }
 }
 
-impl<const D: usize> Run<D> {
+impl Run {
     fn build(s: &Settings) -> Result<Self, Error> {
+        let d = s.dimension()?;
+        let n = s.chains;
         let escape2 = s.escape2()?;
         let domain = s.bounds()?;
-        let potential = s.potential.build::<D>()?;
-        let mut start = s.start.build::<D>()?;
-        let chains = storage::<D>(s.chains)?;
-        if let (Pot::User(p), true) = (&potential, s.chains > 0) {
-            // The initial points, as the builder will draw them. A chain
-            // holds its position, so `chains * D` floats fit in less than
-            // the storage just allocated: the product cannot overflow.
-            let mut points = Vec::new();
-            points
-                .try_reserve_exact(s.chains * D)
-                .map_err(|_| Error::Memory {
-                    chains: s.chains,
-                    dim: D,
-                    bytes: D * size_of::<f64>(),
-                    address_space: false,
-                })?;
-            for c in 0..s.chains {
-                let mut rng = Xoshiro256PlusPlus::seed_from_u64(chain_seed(s.seed, c as u64));
-                let (mut x, mut y) = ([0.0; D], [0.0; D]);
-                let mut draw = start;
-                draw.initial_point(c, &mut rng, &mut x);
-                domain.confine(&mut x, &mut y);
-                points.extend_from_slice(&x);
-            }
-            p.load(points)?;
-        }
+        let potential = s.potential.build(d)?;
+        let user = match &potential {
+            Pot::User(u) => Some(u.clone()),
+            Pot::Builtin(_) | Pot::Native(_) => None,
+        };
+        let mut start = s.start.at(d)?;
+        // The kernel refuses no chains or no dimension with its own error;
+        // the storage is then empty.
+        let floats = if n == 0 || d == 0 {
+            0
+        } else {
+            Chains::floats(n, d)
+        };
+        let chains = FlatChains::new(
+            d,
+            filled(floats, 0.0, n, d)?,
+            filled(n, 0, n, d)?,
+            filled(n, false, n, d)?,
+            // Placeholders: the builder seeds every chain's generator.
+            filled(n, <Rng as rand_core::SeedableRng>::seed_from_u64(0), n, d)?,
+        )?;
         let opt = Builder::new(potential, s.sampler, s.schedule, &mut start)
             .domain(domain)
             .seed(s.seed)
             .stride(s.stride)
             .stop(s.stop)
-            .build(chains)?;
+            .build_flat(Dyn(d), chains);
+        let opt = match opt {
+            Ok(opt) => opt,
+            // A user's failure makes every point infeasible, and the build
+            // then fails: the user's error is the cause.
+            Err(e) => {
+                if let Some(u) = user {
+                    u.finish()?;
+                }
+                return Err(e.into());
+            }
+        };
         let run = Self {
             opt,
             failed: None,
             escape2,
+            lbfgs: Vec::new(),
         };
         run.opt.potential().finish()?;
         Ok(run)
@@ -280,42 +271,7 @@ impl<const D: usize> Run<D> {
         matches!(self.opt.potential(), Pot::User(_))
     }
 
-    /// For a user's function: the next positions of the live chains, by
-    /// the step the optimiser is about to take, evaluated in one call.
-    fn prepare(&self) -> Result<(), Error> {
-        let Pot::User(p) = self.opt.potential() else {
-            return Ok(());
-        };
-        if self.failed.is_some() {
-            return Ok(());
-        }
-        let a = self
-            .opt
-            .schedule()
-            .inverse_temperature(self.opt.iteration());
-        let fresh;
-        let step = if a == self.opt.kernel().inverse_temperature() {
-            self.opt.kernel()
-        } else {
-            // The optimiser's step will refuse the same `a` the same way.
-            fresh = self.opt.sampler().at(a)?;
-            &fresh
-        };
-        let mut points = Vec::with_capacity(self.opt.chains().len() * D);
-        for chain in self.opt.chains().iter().filter(|c| !c.is_diverged()) {
-            let (mut x, mut y, mut rng) = (*chain.x(), *chain.y(), chain.rng().clone());
-            step.step(&mut x, &mut y, chain.gradient(), &mut rng);
-            self.opt.domain().confine(&mut x, &mut y);
-            points.extend_from_slice(&x);
-        }
-        if points.is_empty() {
-            return Ok(());
-        }
-        p.load(points)
-    }
-
     fn step_once(&mut self) -> Result<(), Error> {
-        self.prepare()?;
         let stepped = self.opt.step();
         let stepped = self.keep(stepped);
         self.opt.potential().finish()?;
@@ -333,12 +289,12 @@ impl<const D: usize> Run<D> {
         let chains = self.opt.chains();
         let mut farthest2 = 0.0_f64;
         let mut diverged = 0;
-        for chain in chains {
-            if chain.is_diverged() {
+        for c in 0..chains.len() {
+            if chains.is_diverged(c) {
                 diverged += 1;
                 continue;
             }
-            let d2 = chain.x().iter().fold(0.0, |s, v| s + v * v);
+            let d2 = chains.x(c).iter().fold(0.0, |s, v| s + v * v);
             // A NaN distance is not beyond the radius: such a chain is not away.
             if d2.is_nan() || d2 <= r2 {
                 return Ok(());
@@ -394,13 +350,13 @@ impl<const D: usize> Run<D> {
             iteration: self.opt.iteration(),
             evaluations: self.opt.evaluations(),
             value: self.opt.best().value,
-            dim: D,
+            dim: self.opt.chains().dim(),
             chains: self.opt.chains().len(),
         }
     }
 }
 
-impl<const D: usize> Engine for Run<D> {
+impl Engine for Run {
     fn step(&mut self, steps: u64) -> Result<(), Error> {
         self.check()?;
         if self.is_user() || self.escape2.is_some() {
@@ -421,13 +377,13 @@ impl<const D: usize> Engine for Run<D> {
         }
         self.check()?;
         if !self.is_user() && self.escape2.is_none() {
-            let chains = self.opt.chains().len();
+            let (chains, dim) = (self.opt.chains().len(), self.opt.chains().dim());
             let report = self.opt.run_with(every, |p| {
                 observer(&Progress {
                     iteration: p.iteration,
                     evaluations: p.evaluations,
                     value: p.best.value,
-                    dim: D,
+                    dim,
                     chains,
                 })
             });
@@ -455,31 +411,46 @@ impl<const D: usize> Engine for Run<D> {
     }
 
     fn layout(&self) -> Layout {
-        layout_of(self.opt.chains())
+        let c = self.opt.chains();
+        let base = c.positions().as_ptr();
+        // Every field lies in the one `floats` array, after the positions.
+        let offset = |p: *const f64| (p as usize - base as usize) / size_of::<f64>();
+        Layout {
+            base: base as usize,
+            n: c.len(),
+            d: c.dim(),
+            x: 0,
+            y: offset(c.y(0).as_ptr()),
+            gradient: offset(c.gradient(0).as_ptr()),
+            best_x: offset(c.best_positions().as_ptr()),
+            value: offset(c.values().as_ptr()),
+            best_value: offset(c.best_values().as_ptr()),
+        }
     }
 
     fn values(&self) -> Vec<f64> {
-        self.opt.chains().iter().map(|c| c.value()).collect()
+        self.opt.chains().values().to_vec()
     }
 
     fn positions(&self) -> Vec<f64> {
-        self.opt.chains().iter().flat_map(|c| *c.x()).collect()
+        self.opt.chains().positions().to_vec()
     }
 
     fn velocities(&self) -> Vec<f64> {
-        self.opt.chains().iter().flat_map(|c| *c.y()).collect()
+        let c = self.opt.chains();
+        (0..c.len()).flat_map(|i| c.y(i).iter().copied()).collect()
     }
 
     fn gradients(&self) -> Vec<f64> {
-        self.opt
-            .chains()
-            .iter()
-            .flat_map(|c| *c.gradient())
+        let c = self.opt.chains();
+        (0..c.len())
+            .flat_map(|i| c.gradient(i).iter().copied())
             .collect()
     }
 
     fn generators(&self) -> Vec<Xoshiro256PlusPlus> {
-        self.opt.chains().iter().map(|c| c.rng().clone()).collect()
+        let c = self.opt.chains();
+        (0..c.len()).map(|i| c.rng(i).clone()).collect()
     }
 
     fn next_kernel(&self) -> Result<AnyKernel<f64>, Error> {
@@ -491,7 +462,8 @@ impl<const D: usize> Engine for Run<D> {
     }
 
     fn diverged(&self) -> Vec<bool> {
-        self.opt.chains().iter().map(|c| c.is_diverged()).collect()
+        let c = self.opt.chains();
+        (0..c.len()).map(|i| c.is_diverged(i)).collect()
     }
 
     fn best(&self) -> (Vec<f64>, f64, u64) {
@@ -530,7 +502,12 @@ impl<const D: usize> Engine for Run<D> {
         quench: bool,
     ) -> Result<Polished<f64>, Error> {
         self.check()?;
-        let mut lbfgs: Box<Lbfgs<f64, D, MEMORY>> = Box::default();
+        let d = self.opt.chains().dim();
+        let floats = LbfgsIn::<f64>::floats(d, MEMORY);
+        if self.lbfgs.len() != floats {
+            self.lbfgs = filled(floats, 0.0, 1, d)?;
+        }
+        let mut lbfgs = LbfgsIn::new(d, MEMORY, &mut self.lbfgs)?;
         let done = if quench {
             self.opt.quench(chain, &mut lbfgs, settings)
         } else {
@@ -542,20 +519,23 @@ impl<const D: usize> Engine for Run<D> {
     }
 
     fn restart(&mut self, chain: usize, x: &[f64]) -> Result<bool, Error> {
-        let x: [f64; D] = x.try_into().map_err(|_| Error::Length {
-            what: "x",
-            len: x.len(),
-            dim: D,
-        })?;
+        let d = self.opt.chains().dim();
+        if x.len() != d {
+            return Err(Error::Length {
+                what: "x",
+                len: x.len(),
+                dim: d,
+            });
+        }
         self.check()?;
-        let done = self.opt.restart(chain, &x);
+        let done = self.opt.restart(chain, x);
         let done = self.keep(done);
         self.opt.potential().finish()?;
         done
     }
 
     fn dim(&self) -> usize {
-        D
+        self.opt.chains().dim()
     }
 
     fn len(&self) -> usize {

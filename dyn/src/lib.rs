@@ -21,11 +21,15 @@
 //! - [`termination_name`], [`termination_code`]: the one mapping of why a
 //!   run ended.
 //!
-//! The dimension is a run-time `usize` everywhere in this API. Inside, the
-//! kernel's `D` is a const generic, and [`dims`] holds the one table of the
-//! dimensions compiled in ([`dims::SUPPORTED`]); any other is
+//! The dimension is a run-time `usize` everywhere in this API. The
+//! [`Engine`] runs the kernel's optimiser over flat storage at
+//! [`hrla::Dyn`]`(d)`, any `d >= 1`, with the bits of the const-generic
+//! path. [`hrla::Auto`] and the built-ins' known minima are typed by
+//! their dimension in the kernel: [`dims`] holds the one table of the
+//! dimensions compiled in for them ([`dims::SUPPORTED`]); any other is
 //! [`Error::Dimension`]. A user's function is called on batches
-//! ([`BatchFunction`]: points `n x d` in, values and gradients out).
+//! ([`BatchFunction`]: points `n x d` in, values and gradients out), once
+//! per step through the kernel's batch seam.
 
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]

@@ -11,7 +11,7 @@
 use core::fmt;
 use core::str::FromStr;
 
-use hrla::{KnownMinimum, Potential, Quadratic};
+use hrla::{KnownMinimum, Potential, Quadratic, SlicePotential};
 
 use crate::Error;
 use crate::dims::with_dim;
@@ -117,8 +117,8 @@ macro_rules! define_builtins {
             #[inline]
             fn value_and_gradient(&self, x: &[f64; D], grad: &mut [f64; D]) -> f64 {
                 match self {
-                    $( Self::$variant(p) => p.value_and_gradient(x, grad), )+
-                    Self::Quadratic(p) => p.value_and_gradient(x, grad),
+                    $( Self::$variant(p) => Potential::<f64, D>::value_and_gradient(p, x, grad), )+
+                    Self::Quadratic(p) => Potential::<f64, D>::value_and_gradient(p, x, grad),
                 }
             }
         }
@@ -135,6 +135,55 @@ macro_rules! define_builtins {
                 match self {
                     $( Self::$variant(p) => p.global_minimiser(), )+
                     Self::Quadratic(p) => p.global_minimiser(),
+                }
+            }
+        }
+
+        /// A built-in potential at a run-time dimension: each arm the
+        /// kernel's own slice implementation, the quadratic restated over
+        /// a `Vec` centre with the kernel's arithmetic (the same bits).
+        #[derive(Clone, Debug, PartialEq)]
+        pub(crate) enum DynBuiltin {
+            $( $variant(hrla::$variant), )+
+            Quadratic { stiffness: f64, centre: Vec<f64> },
+        }
+
+        impl SlicePotential<f64> for DynBuiltin {
+            #[inline]
+            fn value_and_gradient(&self, x: &[f64], grad: &mut [f64]) -> f64 {
+                match self {
+                    $( Self::$variant(p) => SlicePotential::value_and_gradient(p, x, grad), )+
+                    Self::Quadratic { stiffness, centre } => {
+                        // As `hrla::Quadratic`: the sum of (k r) r.
+                        let mut kr2 = 0.0;
+                        for ((gi, &xi), &mi) in grad.iter_mut().zip(x).zip(centre) {
+                            let r = xi - mi;
+                            *gi = stiffness * r;
+                            kr2 += *gi * r;
+                        }
+                        0.5 * kr2
+                    }
+                }
+            }
+
+            fn dimension(&self) -> Option<usize> {
+                match self {
+                    Self::Quadratic { centre, .. } => Some(centre.len()),
+                    _ => None,
+                }
+            }
+        }
+
+        impl DynBuiltin {
+            /// The built-in `kind` in dimension `d` with its parameters by
+            /// name (the quadratic: stiffness 1, centred at the origin).
+            fn named(kind: BuiltinKind, d: usize) -> Self {
+                match kind {
+                    $( BuiltinKind::$variant => Self::$variant(hrla::$variant), )+
+                    BuiltinKind::Quadratic => Self::Quadratic {
+                        stiffness: 1.0,
+                        centre: vec![0.0; d],
+                    },
                 }
             }
         }
@@ -257,23 +306,53 @@ impl BuiltinSpec {
     /// Checks the parameters with the kernel's constructor, in the
     /// dimension the spec fixes (1 when it fixes none).
     pub fn check(&self) -> Result<(), Error> {
-        with_dim!(self.dimension().unwrap_or(1), D => self.build::<D>().map(drop))
+        self.at(self.dimension().unwrap_or(1)).map(drop)
+    }
+
+    /// The potential in dimension `d`, its parameters checked as the
+    /// kernel's constructor checks them.
+    pub(crate) fn at(&self, d: usize) -> Result<DynBuiltin, Error> {
+        Ok(match self {
+            Self::Named(kind) => DynBuiltin::named(*kind, d),
+            Self::Quadratic { stiffness, centre } => {
+                if centre.len() != d {
+                    return Err(Error::Length {
+                        what: "the quadratic's centre",
+                        len: centre.len(),
+                        dim: d,
+                    });
+                }
+                // The kernel's checks of the stiffness, then of the centre.
+                Quadratic::<f64, 1>::new(*stiffness, [0.0])?;
+                if let Some(&value) = centre.iter().find(|m| !m.is_finite()) {
+                    return Err(hrla::Error::NotFinite {
+                        name: "centre",
+                        value,
+                    }
+                    .into());
+                }
+                DynBuiltin::Quadratic {
+                    stiffness: *stiffness,
+                    centre: centre.clone(),
+                }
+            }
+        })
     }
 
     /// `U` and `∇U` at the rows of `points` (`n x d`, row-major): `n`
     /// values and `n x d` gradients.
     pub fn evaluate(&self, d: usize, points: &[f64]) -> Result<(Vec<f64>, Vec<f64>), Error> {
-        with_dim!(d, D => {
-            let p = self.build::<D>()?;
-            let mut values = Vec::with_capacity(points.len() / D);
-            let mut grads = vec![0.0; points.len() / D * D];
-            for (row, g) in points.chunks_exact(D).zip(grads.chunks_exact_mut(D)) {
-                let x: &[f64; D] = row.try_into().expect("rows of D");
-                let g: &mut [f64; D] = g.try_into().expect("rows of D");
-                values.push(p.value_and_gradient(x, g));
-            }
-            Ok((values, grads))
-        })
+        if d == 0 {
+            return Err(hrla::Error::Zero { name: "dimension" }.into());
+        }
+        let p = self.at(d)?;
+        let n = points.len() / d;
+        let mut values = Vec::with_capacity(n);
+        let mut grads = vec![0.0; n * d];
+        for (row, g) in points.chunks_exact(d).zip(grads.chunks_exact_mut(d)) {
+            values.push(SlicePotential::value_and_gradient(&p, row, g));
+        }
+        Ok((values, grads))
     }
 
     /// The global minimum `U*` and a global minimiser `x*` in dimension `d`.
@@ -324,7 +403,7 @@ mod tests {
         let x = [0.3, -1.7, 2.9];
         let (mut g1, mut g2) = ([0.0; 3], [0.0; 3]);
         let u1 = Builtin::<3>::named(BuiltinKind::Levy).value_and_gradient(&x, &mut g1);
-        let u2 = hrla::Levy.value_and_gradient(&x, &mut g2);
+        let u2 = hrla::Potential::value_and_gradient(&hrla::Levy, &x, &mut g2);
         assert_eq!(u1.to_bits(), u2.to_bits());
         assert_eq!(g1, g2);
         let (v, g) = BuiltinSpec::Named(BuiltinKind::Levy)

@@ -4,12 +4,13 @@ use std::sync::Arc;
 
 use hrla::rand_core::Rng;
 use hrla::{
-    AnySampler, AnySchedule, Constant, Domain, Geometric, Interval, Linear, Potential, Start, Stop,
+    AnySampler, AnySchedule, BatchPotential, Constant, Geometric, Interval, Linear, SliceDomain,
+    SlicePotential, SliceStart, StandardNormal, Start, Stop,
 };
 
 use crate::Error;
-use crate::potential::{Builtin, BuiltinSpec};
-use crate::user::{BatchFunction, UserPotential};
+use crate::potential::{BuiltinSpec, DynBuiltin};
+use crate::user::{BatchFunction, UserBatch};
 
 /// The potential of a run: a built-in, or a user's function.
 #[derive(Clone)]
@@ -45,45 +46,71 @@ impl PotentialSpec {
         }
     }
 
-    pub(crate) fn build<const D: usize>(&self) -> Result<Pot<D>, Error> {
+    pub(crate) fn build(&self, d: usize) -> Result<Pot, Error> {
         Ok(match self {
-            Self::Builtin(b) => Pot::Builtin(b.build::<D>()?),
-            Self::User(f) => Pot::User(UserPotential::new(f.clone())),
+            Self::Builtin(b) => Pot::Builtin(b.at(d)?),
+            Self::User(f) => Pot::User(UserBatch::new(f.clone())),
             Self::Native(f) => Pot::Native(f.clone()),
         })
     }
 }
 
-/// The potential of a run in dimension `D`.
-pub(crate) enum Pot<const D: usize> {
-    Builtin(Builtin<D>),
-    User(UserPotential<D>),
+/// The potential of a run, as the kernel's batch seam: a built-in and a
+/// Rust function one point at a time (the kernel's grouping), a user's
+/// function once per step on every live chain.
+pub(crate) enum Pot {
+    Builtin(DynBuiltin),
+    User(UserBatch),
     Native(Arc<dyn PointFunction>),
 }
 
-impl<const D: usize> Potential<f64, D> for Pot<D> {
+impl BatchPotential<f64> for Pot {
     #[inline]
-    fn value_and_gradient(&self, x: &[f64; D], grad: &mut [f64; D]) -> f64 {
+    fn values_and_gradients(
+        &self,
+        d: usize,
+        x: &[f64],
+        grad: &mut [f64],
+        value: &mut [f64],
+        skip: &[bool],
+    ) {
         match self {
-            Self::Builtin(p) => p.value_and_gradient(x, grad),
-            Self::User(p) => p.value_and_gradient(x, grad),
-            Self::Native(p) => p.value_and_gradient(x, grad),
+            Self::Builtin(p) => p.values_and_gradients(d, x, grad, value, skip),
+            Self::User(p) => p.values_and_gradients(d, x, grad, value, skip),
+            Self::Native(p) => {
+                let points = x.chunks_exact(d).zip(grad.chunks_exact_mut(d));
+                for (((x, grad), value), &skip) in points.zip(value.iter_mut()).zip(skip) {
+                    if !skip {
+                        *value = p.value_and_gradient(x, grad);
+                    }
+                }
+            }
+        }
+    }
+
+    fn batch_dimension(&self) -> Option<usize> {
+        match self {
+            Self::Builtin(p) => SlicePotential::dimension(p),
+            Self::User(_) => None,
+            Self::Native(p) => p.dimension(),
+        }
+    }
+
+    fn chains_per_call(&self) -> Option<usize> {
+        match self {
+            Self::User(_) => None,
+            Self::Builtin(_) | Self::Native(_) => Some(hrla::LANES),
         }
     }
 }
 
-impl<const D: usize> Pot<D> {
+impl Pot {
     /// The user function's first error since the last call, if any.
     pub(crate) fn finish(&self) -> Result<(), Error> {
         match self {
             Self::User(p) => p.finish(),
             Self::Builtin(_) | Self::Native(_) => Ok(()),
         }
-    }
-
-    /// Whether a user function failed since the last [`finish`](Self::finish).
-    pub(crate) fn failed(&self) -> bool {
-        matches!(self, Self::User(p) if p.failed())
     }
 }
 
@@ -199,27 +226,36 @@ impl StartSpec {
         }
     }
 
-    /// The kernel's start in dimension `D` (checked by its constructor).
-    pub fn build<const D: usize>(&self) -> Result<AnyStart<D>, Error> {
-        let array = |v: &[f64]| -> Result<[f64; D], Error> {
-            v.try_into().map_err(|_| Error::Length {
-                what: "the start",
-                len: v.len(),
-                dim: D,
-            })
+    /// The start in dimension `d`, checked as the kernel's constructors
+    /// check theirs.
+    pub(crate) fn at(&self, d: usize) -> Result<DynStart, Error> {
+        let length = |v: &[f64]| -> Result<(), Error> {
+            if v.len() == d {
+                Ok(())
+            } else {
+                Err(Error::Length {
+                    what: "the start",
+                    len: v.len(),
+                    dim: d,
+                })
+            }
         };
         Ok(match self {
             Self::Gaussian { mean, std_dev } => {
-                AnyStart::Gaussian(hrla::Gaussian::new(array(mean)?, *std_dev)?)
+                length(mean)?;
+                DynStart::gaussian(mean.clone(), *std_dev)?
             }
-            Self::Isotropic { centre, std_dev } => {
-                AnyStart::Gaussian(hrla::Gaussian::new([*centre; D], *std_dev)?)
+            Self::Isotropic { centre, std_dev } => DynStart::gaussian(vec![*centre; d], *std_dev)?,
+            Self::Point(x) => {
+                length(x)?;
+                finite_all("initial point", x)?;
+                DynStart::Point(x.clone())
             }
-            Self::Point(x) => AnyStart::Point(hrla::Point::new(array(x)?)?),
             Self::Box(b) => match b.sides()? {
-                Sides::Uniform(i) => AnyStart::Interval(i),
+                Sides::Uniform(i) => DynStart::Interval(i),
                 Sides::PerCoordinate(b) => {
-                    AnyStart::Bounds(hrla::Bounds::new(array(b.lo())?, array(b.hi())?)?)
+                    length(b.lo())?;
+                    DynStart::Bounds(b)
                 }
             },
         })
@@ -242,10 +278,68 @@ pub enum AnyStart<const D: usize> {
 impl<const D: usize> Start<f64, D> for AnyStart<D> {
     fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64; D]) {
         match self {
-            Self::Gaussian(s) => s.initial_point(chain, rng, x),
-            Self::Point(s) => s.initial_point(chain, rng, x),
-            Self::Interval(s) => s.initial_point(chain, rng, x),
-            Self::Bounds(s) => s.initial_point(chain, rng, x),
+            Self::Gaussian(s) => Start::<f64, D>::initial_point(s, chain, rng, x),
+            Self::Point(s) => Start::<f64, D>::initial_point(s, chain, rng, x),
+            Self::Interval(s) => Start::<f64, D>::initial_point(s, chain, rng, x),
+            Self::Bounds(s) => Start::<f64, D>::initial_point(s, chain, rng, x),
+        }
+    }
+}
+
+/// [`hrla::Error::NotFinite`] for the first non-finite entry of `v`.
+fn finite_all(name: &'static str, v: &[f64]) -> Result<(), hrla::Error> {
+    match v.iter().find(|v| !v.is_finite()) {
+        Some(&value) => Err(hrla::Error::NotFinite { name, value }),
+        None => Ok(()),
+    }
+}
+
+/// The kernel's starts at a run-time dimension: [`hrla::Gaussian`] and
+/// [`hrla::Point`] hold arrays of their `D`, so those two are restated
+/// over `Vec`s here, drawing exactly as the kernel's do (the same normals,
+/// coordinate after coordinate, from the chain's generator).
+#[derive(Clone, Debug)]
+pub(crate) enum DynStart {
+    Gaussian { mean: Vec<f64>, std_dev: f64 },
+    Point(Vec<f64>),
+    Interval(Interval<f64>),
+    Bounds(hrla::Bounds<f64, Vec<f64>>),
+}
+
+impl DynStart {
+    /// Checked as [`hrla::Gaussian::new`] checks.
+    fn gaussian(mean: Vec<f64>, std_dev: f64) -> Result<Self, hrla::Error> {
+        finite_all("mean", &mean)?;
+        if !(std_dev.is_finite() && std_dev >= 0.0) {
+            return Err(hrla::Error::Negative {
+                name: "std_dev",
+                value: std_dev,
+            });
+        }
+        Ok(Self::Gaussian { mean, std_dev })
+    }
+}
+
+impl SliceStart<f64> for DynStart {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64]) {
+        match self {
+            Self::Gaussian { mean, std_dev } => {
+                for (xi, &m) in x.iter_mut().zip(mean.iter()) {
+                    *xi = m + *std_dev * <f64 as StandardNormal>::standard_normal(rng);
+                }
+            }
+            Self::Point(p) => x.copy_from_slice(p),
+            Self::Interval(s) => SliceStart::initial_point(s, chain, rng, x),
+            Self::Bounds(s) => SliceStart::initial_point(s, chain, rng, x),
+        }
+    }
+
+    fn dimension(&self) -> Option<usize> {
+        match self {
+            Self::Gaussian { mean, .. } => Some(mean.len()),
+            Self::Point(p) => Some(p.len()),
+            Self::Interval(_) => None,
+            Self::Bounds(b) => SliceStart::dimension(b),
         }
     }
 }
@@ -259,9 +353,9 @@ pub(crate) enum Bounds {
     PerCoordinate(hrla::Bounds<f64, Vec<f64>>),
 }
 
-impl<const D: usize> Domain<f64, D> for Bounds {
+impl SliceDomain<f64> for Bounds {
     #[inline]
-    fn confine(&self, x: &mut [f64; D], y: &mut [f64; D]) {
+    fn confine(&self, x: &mut [f64], y: &mut [f64]) {
         match self {
             Self::Unbounded => {}
             Self::Box(b) => b.confine(x, y),
@@ -269,25 +363,25 @@ impl<const D: usize> Domain<f64, D> for Bounds {
         }
     }
     #[inline]
-    fn project(&self, x: &mut [f64; D]) {
+    fn project(&self, x: &mut [f64]) {
         match self {
             Self::Unbounded => {}
-            Self::Box(b) => Domain::<f64, D>::project(b, x),
-            Self::PerCoordinate(b) => Domain::<f64, D>::project(b, x),
+            Self::Box(b) => SliceDomain::project(b, x),
+            Self::PerCoordinate(b) => SliceDomain::project(b, x),
         }
     }
     #[inline]
-    fn feasible_direction(&self, x: &[f64; D], d: &mut [f64; D]) {
+    fn feasible_direction(&self, x: &[f64], d: &mut [f64]) {
         match self {
             Self::Unbounded => {}
-            Self::Box(b) => b.feasible_direction(x, d),
-            Self::PerCoordinate(b) => b.feasible_direction(x, d),
+            Self::Box(b) => SliceDomain::feasible_direction(b, x, d),
+            Self::PerCoordinate(b) => SliceDomain::feasible_direction(b, x, d),
         }
     }
     fn dimension(&self) -> Option<usize> {
         match self {
             Self::Unbounded | Self::Box(_) => None,
-            Self::PerCoordinate(b) => Domain::<f64, D>::dimension(b),
+            Self::PerCoordinate(b) => SliceDomain::dimension(b),
         }
     }
 }

@@ -1,18 +1,9 @@
 //! A user's potential: a function evaluated on batches of points.
 //!
-//! The kernel's optimiser evaluates `U` once per live chain, right after
-//! that chain's step. A user's function is instead called once per step for
-//! all live chains: before each step the engine computes every live
-//! chain's next position with the same kernel step, confinement and a copy
-//! of the chain's generator (so the same bits as the step itself), calls
-//! the function once on the `n x d` batch of them, and the optimiser's step
-//! then reads the answers back in chain order ([`UserPotential`] in batch
-//! mode, which answers a point from the batch only when it is, bit for
-//! bit, the next point it was given, and checks at the end that every
-//! answer was read). Outside steps (initial points excepted, which are
-//! batched the same way, an infeasible one's redraws called alone) — the
-//! polish, quenches, restarts, [`hrla::Auto`] — the function is called
-//! with one row at a time.
+//! The optimiser over flat storage hands a step's points to the kernel's
+//! batch seam as one `(n, d)` block; [`UserBatch`] calls the function once
+//! on the rows of the live chains. [`hrla::Auto`], typed by its dimension,
+//! evaluates one point at a time through [`UserPotential`].
 
 use std::sync::{Arc, Mutex, MutexGuard};
 
@@ -38,41 +29,13 @@ pub trait BatchFunction: Send + Sync {
     ) -> Result<(), UserError>;
 }
 
-/// A [`BatchFunction`] as the kernel's [`Potential`] in dimension `D`.
+/// A [`BatchFunction`] as the kernel's [`Potential`] in dimension `D`,
+/// called on one point at a time: for [`hrla::Auto`], whose dimension is
+/// a type. After a failure every later evaluation is NaN without a call;
+/// [`UserPotential::finish`] returns the failure.
 pub struct UserPotential<const D: usize> {
     function: Arc<dyn BatchFunction>,
-    state: Mutex<State>,
-}
-
-#[derive(Default)]
-struct State {
-    /// The batch the next evaluations read, in order.
-    batch: Option<Answers>,
-    /// The first failure since the last [`UserPotential::finish`]: later
-    /// evaluations return NaN without calling the function.
-    error: Option<Error>,
-}
-
-/// The answers of one batched call, read in order.
-struct Answers {
-    points: Vec<f64>,
-    values: Vec<f64>,
-    grads: Vec<f64>,
-    next: usize,
-}
-
-/// One call of `function` on the rows of `points`.
-fn call(
-    function: &dyn BatchFunction,
-    points: &[f64],
-    d: usize,
-) -> Result<(Vec<f64>, Vec<f64>), Error> {
-    let n = points.len() / d;
-    let (mut values, mut grads) = (vec![0.0; n], vec![0.0; n * d]);
-    function
-        .evaluate(points, d, &mut values, &mut grads)
-        .map_err(Error::User)?;
-    Ok((values, grads))
+    error: Mutex<Option<Error>>,
 }
 
 impl<const D: usize> UserPotential<D> {
@@ -80,88 +43,42 @@ impl<const D: usize> UserPotential<D> {
     pub fn new(function: Arc<dyn BatchFunction>) -> Self {
         Self {
             function,
-            state: Mutex::new(State::default()),
+            error: Mutex::new(None),
         }
     }
 
-    fn state(&self) -> MutexGuard<'_, State> {
-        // A panic while the lock was held cannot leave the state invalid
-        // (every field is replaced whole).
-        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    fn error(&self) -> MutexGuard<'_, Option<Error>> {
+        // The one field is replaced whole: a panic while the lock was held
+        // cannot leave it invalid.
+        self.error.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Calls the function once on the rows of `points` (`n x D`) and
-    /// keeps the answers for the next `n` evaluations, which must be at
-    /// those points, in that order.
-    pub fn load(&self, points: Vec<f64>) -> Result<(), Error> {
-        let (values, grads) = call(&*self.function, &points, D)?;
-        self.state().batch = Some(Answers {
-            points,
-            values,
-            grads,
-            next: 0,
-        });
-        Ok(())
-    }
-
-    /// Whether an evaluation failed since the last [`finish`](Self::finish)
-    /// (the evaluations since return NaN without calling the function).
+    /// Whether an evaluation failed since the last [`finish`](Self::finish).
     pub fn failed(&self) -> bool {
-        self.state().error.is_some()
+        self.error().is_some()
     }
 
-    /// Ends batch mode, checking that every answer was read; then returns
-    /// the first error of any evaluation since the last call.
+    /// The first error of any evaluation since the last call.
     pub fn finish(&self) -> Result<(), Error> {
-        let mut state = self.state();
-        if let Some(b) = state.batch.take()
-            && b.next != b.values.len()
-            && state.error.is_none()
-        {
-            state.error = Some(Error::Internal(format!(
-                "hrla internal error: the step read {} of the {} batched answers",
-                b.next,
-                b.values.len()
-            )));
-        }
-        state.error.take().map_or(Ok(()), Err)
+        self.error().take().map_or(Ok(()), Err)
     }
 }
 
 impl<const D: usize> Potential<f64, D> for UserPotential<D> {
     fn value_and_gradient(&self, x: &[f64; D], grad: &mut [f64; D]) -> f64 {
-        let mut state = self.state();
-        if state.error.is_some() {
+        if self.failed() {
             *grad = [f64::NAN; D];
             return f64::NAN;
         }
-        if let Some(b) = state.batch.as_mut() {
-            let row = b.next;
-            let at = row * D..(row + 1) * D;
-            let batched = b
-                .points
-                .get(at.clone())
-                .is_some_and(|p| p.iter().zip(x).all(|(a, b)| a.to_bits() == b.to_bits()));
-            if batched {
-                b.next += 1;
-                grad.copy_from_slice(&b.grads[at]);
-                return b.values[row];
+        let mut value = [0.0];
+        match self.function.evaluate(x, D, &mut value, grad) {
+            Ok(()) => value[0],
+            Err(e) => {
+                self.error().get_or_insert(Error::User(e));
+                *grad = [f64::NAN; D];
+                f64::NAN
             }
-            // A point the batch did not foresee: the redraw of an
-            // infeasible initial point, which the builder evaluates
-            // before the next chain's. Called alone, answered exactly.
         }
-        drop(state);
-        let answer = call(&*self.function, x, D).map(|(v, g)| {
-            grad.copy_from_slice(&g);
-            v[0]
-        });
-        state = self.state();
-        answer.unwrap_or_else(|e| {
-            state.error = Some(e);
-            *grad = [f64::NAN; D];
-            f64::NAN
-        })
     }
 }
 
@@ -175,10 +92,12 @@ impl<const D: usize> Potential<f64, D> for UserPotential<D> {
 /// otherwise the live rows are gathered, and the answers written back to
 /// their chains. After a failure (the function's error, or answers of the
 /// wrong shape), every later evaluation is NaN without a call, so that the
-/// run ends; [`UserBatch::finish`] returns the failure.
+/// run ends; [`UserBatch::finish`] returns the failure. A clone shares
+/// the function and its state (a failure seen by one is seen by all).
+#[derive(Clone)]
 pub struct UserBatch {
     function: Arc<dyn BatchFunction>,
-    state: Mutex<BatchState>,
+    state: Arc<Mutex<BatchState>>,
 }
 
 #[derive(Default)]
@@ -196,7 +115,7 @@ impl UserBatch {
     pub fn new(function: Arc<dyn BatchFunction>) -> Self {
         Self {
             function,
-            state: Mutex::new(BatchState::default()),
+            state: Arc::new(Mutex::new(BatchState::default())),
         }
     }
 

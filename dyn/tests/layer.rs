@@ -176,7 +176,10 @@ fn a_failing_function_is_its_own_error() {
         panic!("the function's error must end the run");
     };
     assert!(e.downcast_ref::<Refused>().is_some());
-    assert_eq!(engine.iteration(), 4);
+    // One call for the initial points, one per step: the sixth call is the
+    // fifth step's, which moved the chains and then failed.
+    assert_eq!(engine.iteration(), 5);
+    assert_eq!(f.0.load(Ordering::Relaxed), 6);
     let f = Arc::new(Failing(AtomicUsize::new(0), 0));
     assert!(matches!(
         settings(PotentialSpec::User(f)).build().err(),
@@ -188,7 +191,12 @@ fn a_failing_function_is_its_own_error() {
 fn what_the_kernel_cannot_run_is_a_typed_error() {
     let mut s = settings(rastrigin());
     s.dim = Some(17);
-    assert!(matches!(s.build().err(), Some(Error::Dimension(17))));
+    assert_eq!(s.build().unwrap().dim(), 17);
+    s.dim = Some(0);
+    assert!(matches!(
+        s.build().err(),
+        Some(Error::Kernel(hrla::Error::Zero { .. }))
+    ));
     s.dim = None;
     assert!(matches!(s.build().err(), Some(Error::NoDimension)));
     s.start = StartSpec::Point(vec![0.0; 3]);
@@ -411,4 +419,69 @@ fn every_chain_beyond_the_escape_radius_fails_the_run() {
     assert!(s.build().unwrap().step(at + 10).is_ok());
     s.escape = Some(-1.0);
     assert!(matches!(s.build().err(), Some(Error::Kernel(_))));
+}
+
+/// At a dimension outside the compiled table, the engine's run-time starts
+/// (a Gaussian, a point) and quadratic give the kernel's const-generic
+/// bits: the same draws, the same values, the same positions.
+#[test]
+fn a_run_at_d17_is_the_kernels_const_run() {
+    const D: usize = 17;
+    let centre: [f64; D] = std::array::from_fn(|i| 0.25 * i as f64 - 1.0);
+    let mean: [f64; D] = std::array::from_fn(|i| 3.0 - 0.5 * i as f64);
+    let point: [f64; D] = std::array::from_fn(|i| 0.1 * i as f64);
+    let quadratic = BuiltinSpec::Quadratic {
+        stiffness: 2.5,
+        centre: centre.to_vec(),
+    };
+    let cases = [
+        (
+            rastrigin(),
+            StartSpec::Gaussian {
+                mean: mean.to_vec(),
+                std_dev: 1.5,
+            },
+        ),
+        (
+            PotentialSpec::Builtin(quadratic),
+            StartSpec::Point(point.to_vec()),
+        ),
+    ];
+    for (i, (potential, start)) in cases.into_iter().enumerate() {
+        let mut s = settings(potential);
+        s.start = start;
+        s.dim = Some(D);
+        let mut engine = s.build().unwrap();
+        let ours = engine.run(0, &mut |_| ControlFlow::Continue(())).unwrap();
+
+        let chains: Vec<Chain<f64, D>> = (0..6).map(|_| Chain::new()).collect();
+        let (sampler, schedule, stop) = (
+            AnySampler::paper(SamplerKind::Hrla, 0.01).unwrap(),
+            AnySchedule::Constant(Constant::new(4.0).unwrap()),
+            Stop::new().steps(200),
+        );
+        let (expected, x): (hrla::Report<f64>, Vec<f64>) = if i == 0 {
+            let start = Gaussian::new(mean, 1.5).unwrap();
+            let mut opt = Builder::new(Rastrigin, sampler, schedule, start)
+                .seed(7)
+                .stop(stop)
+                .build(chains)
+                .unwrap();
+            let r = opt.run().unwrap();
+            (r, opt.chains().iter().flat_map(|c| *c.x()).collect())
+        } else {
+            let potential = hrla::Quadratic::new(2.5, centre).unwrap();
+            let start = hrla::Point::new(point).unwrap();
+            let mut opt = Builder::new(potential, sampler, schedule, start)
+                .seed(7)
+                .stop(stop)
+                .build(chains)
+                .unwrap();
+            let r = opt.run().unwrap();
+            (r, opt.chains().iter().flat_map(|c| *c.x()).collect())
+        };
+        assert_eq!(ours, expected, "case {i}");
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&engine.positions()), bits(&x), "case {i}");
+    }
 }

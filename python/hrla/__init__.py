@@ -23,9 +23,11 @@ exactly: every coordinate moves to a Gaussian with, for ``u = alpha h``,
 Every number is computed by the Rust kernel ``hrla`` (this package binds it
 with PyO3): the same names as its Rust API and, for a seed, the same bits.
 Each chain ``c`` draws from its own ``Xoshiro256PlusPlus`` seeded with
-``chain_seed(seed, c)``. Floats are ``float64``. The dimension ``D`` is a
-compile-time constant in the kernel: ``DIMENSIONS`` lists those compiled in
-(1 to 16, 20, 32, 50, 100); any other raises ``DimensionError``.
+``chain_seed(seed, c)``. Floats are ``float64``. ``Optimizer`` and
+``minimize``'s sampler methods run any dimension ``D >= 1``. ``Auto`` and
+the built-ins' ``global_minimum`` are typed by ``D`` in the kernel:
+``DIMENSIONS`` lists those compiled in for them (1 to 16, 20, 32, 50,
+100); any other raises ``DimensionError`` there.
 
 Two kinds of potential:
 

@@ -4,7 +4,7 @@
 //! HrlaError (ValueError)           the kernel refused its input, or the run failed
 //! ├── DivergedError                every chain diverged
 //! ├── UnboundedBelowError          U fell below -sqrt(MAX)
-//! ├── DimensionError               a D that is not compiled in
+//! ├── DimensionError               a D not compiled in for Auto or a known minimum
 //! ├── BusyError (also RuntimeError)      the optimiser is running
 //! └── InternalError (also RuntimeError)  a bug in hrla (a caught panic)
 //! ```

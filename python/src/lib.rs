@@ -5,7 +5,8 @@
 //! results, so every number a run computes is the kernel's, with the same
 //! names ([`hrla::Builder`]'s pieces, [`hrla::Optimizer`], [`hrla::Auto`],
 //! [`hrla::Lbfgs`]'s polish) and, for the same seed, the same bits. The
-//! dimensions are the layer's ([`hrla_dyn::dims::SUPPORTED`]); others raise
+//! optimiser runs any dimension; `Auto` and the known minima take those
+//! of the layer's table ([`hrla_dyn::dims::SUPPORTED`]), others raise
 //! `DimensionError`. Floats are `f64`.
 //!
 //! Potentials come in two kinds: the kernel's built-ins, which run with the
