@@ -10,7 +10,7 @@ use super::{Auto, AutoProgress, Sampling, Solution};
 use crate::domain::{Domain, Interval};
 use crate::error::{Error, floor};
 use crate::float::Float;
-use crate::optimizer::{Best, Chain, START_TRIES, Termination, chain_seed};
+use crate::optimizer::{Best, Chain, Termination, chain_seed, draw_start};
 use crate::optimizer::{Verdict, judge};
 use crate::polish::{Lbfgs, PolishEnd, PolishSettings};
 use crate::potential::traits::Potential;
@@ -92,35 +92,14 @@ where
             chain.rng = R::seed_from_u64(chain_seed(seed, c as u64));
             chain.y = [F::ZERO; D];
             chain.diverged = false;
-            let mut tries = 0;
-            loop {
-                start.initial_point(c, &mut chain.rng, &mut chain.x);
-                let value = potential.value_and_gradient(&chain.x, &mut chain.grad);
-                evaluations += 1;
-                tries += 1;
-                match judge(&chain.x, value, &chain.grad, floor()) {
-                    Verdict::Feasible => {
-                        chain.value = value;
-                        break;
-                    }
-                    Verdict::Unbounded => {
-                        return Err(Error::UnboundedBelow {
-                            chain: c,
-                            value: value.to_f64(),
-                        });
-                    }
-                    Verdict::Infeasible(what) => {
-                        if tries >= START_TRIES || spare == 0 {
-                            return Err(Error::NonFiniteStart {
-                                chain: c,
-                                what,
-                                tries,
-                            });
-                        }
-                        spare -= 1;
-                    }
-                }
-            }
+            draw_start(
+                c,
+                chain,
+                potential,
+                &mut spare,
+                &mut evaluations,
+                |rng, x, _| start.initial_point(c, rng, x),
+            )?;
             chain.best = Best {
                 x: chain.x,
                 value: chain.value,

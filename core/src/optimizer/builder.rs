@@ -208,37 +208,19 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
         let mut evaluations = 0;
         for (c, chain) in chains.as_mut().iter_mut().enumerate() {
             chain.rng = R::seed_from_u64(chain_seed(self.seed, c as u64));
-            let mut tries = 0;
-            loop {
-                self.start.initial_point(c, &mut chain.rng, &mut chain.x);
-                chain.y = [F::ZERO; D];
-                self.domain.confine(&mut chain.x, &mut chain.y);
-                let value = self.potential.value_and_gradient(&chain.x, &mut chain.grad);
-                evaluations += 1;
-                tries += 1;
-                match judge(&chain.x, value, &chain.grad, floor()) {
-                    Verdict::Feasible => {
-                        chain.value = value;
-                        break;
-                    }
-                    Verdict::Unbounded => {
-                        return Err(Error::UnboundedBelow {
-                            chain: c,
-                            value: value.to_f64(),
-                        });
-                    }
-                    Verdict::Infeasible(what) => {
-                        if tries >= START_TRIES || spare == 0 {
-                            return Err(Error::NonFiniteStart {
-                                chain: c,
-                                what,
-                                tries,
-                            });
-                        }
-                        spare -= 1;
-                    }
-                }
-            }
+            let (start, domain) = (&mut self.start, &self.domain);
+            draw_start(
+                c,
+                chain,
+                &self.potential,
+                &mut spare,
+                &mut evaluations,
+                |rng, x, y| {
+                    start.initial_point(c, rng, x);
+                    *y = [F::ZERO; D];
+                    domain.confine(x, y);
+                },
+            )?;
             chain.best.x = chain.x;
             chain.best.value = chain.value;
             chain.best.iteration = 0;
@@ -420,5 +402,53 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
             self.stride,
             self.stop,
         ))
+    }
+}
+
+/// Draws chain `c`'s initial point with `place` (which writes `x` and `y`
+/// from the chain's generator) and evaluates it, drawing again where the
+/// point is infeasible: up to [`START_TRIES`] points, each counted in
+/// `evaluations`, the redraws within `spare`. A point below the floor is
+/// [`Error::UnboundedBelow`], no feasible point [`Error::NonFiniteStart`].
+pub(crate) fn draw_start<F, P, R, const D: usize>(
+    c: usize,
+    chain: &mut Chain<F, D, R>,
+    potential: &P,
+    spare: &mut u64,
+    evaluations: &mut u64,
+    mut place: impl FnMut(&mut R, &mut [F; D], &mut [F; D]),
+) -> Result<(), Error>
+where
+    F: Float,
+    P: Potential<F, D> + ?Sized,
+{
+    let mut tries = 0;
+    loop {
+        place(&mut chain.rng, &mut chain.x, &mut chain.y);
+        let value = potential.value_and_gradient(&chain.x, &mut chain.grad);
+        *evaluations += 1;
+        tries += 1;
+        match judge(&chain.x, value, &chain.grad, floor()) {
+            Verdict::Feasible => {
+                chain.value = value;
+                return Ok(());
+            }
+            Verdict::Unbounded => {
+                return Err(Error::UnboundedBelow {
+                    chain: c,
+                    value: value.to_f64(),
+                });
+            }
+            Verdict::Infeasible(what) => {
+                if tries >= START_TRIES || *spare == 0 {
+                    return Err(Error::NonFiniteStart {
+                        chain: c,
+                        what,
+                        tries,
+                    });
+                }
+                *spare -= 1;
+            }
+        }
     }
 }
