@@ -184,8 +184,7 @@ def minimize(
     ``X`` (shape ``(N, D)``; ``U`` of shape ``(N,)``, ``G`` of shape
     ``(N, D)``). ``bounds`` is ``(lo, hi)`` (then give ``dim``) or ``D``
     pairs ``(lo_i, hi_i)``, each coordinate with its own sides; the chains
-    stay in the box by reflection. :class:`Auto` takes one interval for
-    every coordinate: pairs that differ raise ``ValueError`` there.
+    stay in the box by reflection.
 
     ``method="auto"`` (the default; needs ``bounds``) is the kernel's
     :class:`Auto` solver: no setting to tune, ``budget`` evaluations in
