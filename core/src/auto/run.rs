@@ -9,7 +9,7 @@ use rand_core::{Rng, SeedableRng};
 
 use super::measure::{self, A_RANGE};
 use super::moves;
-use super::{Auto, Sampling};
+use super::settings::{Auto, Sampling};
 use crate::domain::Sides;
 use crate::error::{Error, floor};
 use crate::float::Float;
