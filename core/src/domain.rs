@@ -77,6 +77,29 @@ impl<F: Float, B: SliceDomain<F> + ?Sized> SliceDomain<F> for &B {
     }
 }
 
+/// A box read side by side: `[lo_i, hi_i]` in coordinate `i`, each finite.
+/// [`Auto`](crate::Auto) scales by it what it does per coordinate: its
+/// curvature probes, its restarts (uniform in the box) and the cap on its
+/// step. [`Interval`] (every side the same) and [`Bounds`] implement it.
+pub trait Sides<F: Float>: SliceDomain<F> {
+    /// The ends `(lo_i, hi_i)` of coordinate `i` (below the dimension).
+    fn side(&self, i: usize) -> (F, F);
+
+    /// A point uniform in the box: `lo_i + (hi_i - lo_i) u`, one
+    /// `next_u64` per coordinate, as [`Interval`]'s and [`Bounds`]'
+    /// [`Start`]s draw it.
+    fn uniform<R: Rng + ?Sized>(&self, rng: &mut R, x: &mut [F]) {
+        uniform_each(rng, x, |i| self.side(i).0, |i| self.side(i).1);
+    }
+}
+
+impl<F: Float, B: Sides<F> + ?Sized> Sides<F> for &B {
+    #[inline(always)]
+    fn side(&self, i: usize) -> (F, F) {
+        (**self).side(i)
+    }
+}
+
 /// All of `R^D`: no constraint (the default).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Unbounded;
@@ -319,6 +342,13 @@ impl<F: Float> SliceDomain<F> for Interval<F> {
     }
 }
 
+impl<F: Float> Sides<F> for Interval<F> {
+    #[inline(always)]
+    fn side(&self, _i: usize) -> (F, F) {
+        (self.lo, self.hi)
+    }
+}
+
 impl<F: Float, const D: usize> Start<F, D> for Interval<F> {
     /// Uniform in the box: `lo + (hi - lo) u`, `u` from the top 53 (f64) or
     /// 24 (f32) bits of one `next_u64` per coordinate.
@@ -446,6 +476,14 @@ impl<F: Float, S: AsRef<[F]>> SliceDomain<F> for Bounds<F, S> {
 
     fn dimension(&self) -> Option<usize> {
         Some(self.lo.as_ref().len())
+    }
+}
+
+impl<F: Float, S: AsRef<[F]>> Sides<F> for Bounds<F, S> {
+    #[inline(always)]
+    fn side(&self, i: usize) -> (F, F) {
+        let (lo, hi) = self.sides();
+        (lo[i], hi[i])
     }
 }
 

@@ -290,9 +290,12 @@ mod schedule;
 mod start;
 mod ziggurat_tables;
 
-pub use auto::{Auto, AutoProgress, MAX_STEPS, Parts, Sampling, Solution, Tempering};
+pub use auto::{
+    Auto, AutoProgress, AutoStorage, FlatAutoProgress, FlatSolution, MAX_STEPS, Parts, Sampling,
+    Solution, Tempering,
+};
 pub use dim::{Const, Dim, Dyn};
-pub use domain::{Bounds, Domain, Interval, SliceDomain, Unbounded};
+pub use domain::{Bounds, Domain, Interval, Sides, SliceDomain, Unbounded};
 pub use error::Error;
 pub use float::Float;
 pub use lockstep::{LANES, Lane, Xoshiro256Lanes};

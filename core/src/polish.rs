@@ -231,6 +231,31 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
         x: &mut [F; D],
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
+        self.minimize_slices(
+            &Arrays::<_, D>(potential),
+            &Arrays::<_, D>(domain),
+            x,
+            settings,
+        )
+    }
+
+    /// [`minimize_in`](Lbfgs::minimize_in) through the slice traits, for
+    /// the code that runs at any dimension over this storage (`x` of
+    /// length `D`, which its callers guarantee).
+    pub(crate) fn minimize_slices<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &mut [F],
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
+        if x.len() != D {
+            return Err(Error::Length {
+                name: "x",
+                expected: D,
+                got: x.len(),
+            });
+        }
         let mut alpha = [F::ZERO; M];
         let mut grad = [F::ZERO; D];
         let mut memory = Memory {
@@ -247,12 +272,7 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
             m: M,
             d: D,
         };
-        memory.minimize_in(
-            &Arrays::<_, D>(potential),
-            &Arrays::<_, D>(domain),
-            x,
-            settings,
-        )
+        memory.minimize_in(potential, domain, x, settings)
     }
 }
 
@@ -392,7 +412,7 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
 }
 
 /// A potential or a domain on `[F; D]` seen through slices of length `D`.
-struct Arrays<'a, T: ?Sized, const D: usize>(&'a T);
+pub(crate) struct Arrays<'a, T: ?Sized, const D: usize>(pub(crate) &'a T);
 
 impl<F: Float, P: Potential<F, D> + ?Sized, const D: usize> SlicePotential<F> for Arrays<'_, P, D> {
     #[inline]

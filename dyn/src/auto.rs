@@ -1,16 +1,14 @@
 //! The kernel's default solver, [`hrla::Auto`], on the layer's settings:
-//! any compiled dimension, a built-in or a user's function, a box.
+//! any dimension, a built-in or a user's function (called on batches
+//! through the kernel's batch seam), a box with a side per coordinate.
 
 use std::ops::ControlFlow;
 
-use std::sync::Arc;
+use hrla::rand_core::SeedableRng;
+use hrla::{Auto, AutoStorage, FlatAutoProgress, Termination};
+use rand_xoshiro::Xoshiro256PlusPlus;
 
-use hrla::{Auto, AutoProgress, Chain, Lbfgs, Potential, Termination};
-
-use crate::dims::with_dim;
-use crate::potential::Builtin;
-use crate::user::UserPotential;
-use crate::{BoxSpec, Error, MEMORY, PointFunction, PotentialSpec, Progress, dimension};
+use crate::{BoxSpec, Error, MEMORY, PotentialSpec, Progress, dimension};
 
 /// What [`solve`] found: the kernel's [`hrla::Solution`] whatever the
 /// dimension.
@@ -57,9 +55,11 @@ pub struct Problem {
     pub dim: Option<usize>,
 }
 
-/// Minimises `problem` with `auto`. `observer` sees the run after every
-/// step of the chains, quench and restart (`iteration` counts rounds) and
-/// ends it by returning `Break`: the solution is then the best so far,
+/// Minimises `problem` with `auto` at the problem's dimension, any
+/// `d >= 1`, in a box with the same sides in every coordinate or its own
+/// in each. `observer` sees the run after every step of the chains,
+/// quench and restart (`iteration` counts rounds) and ends it by
+/// returning `Break`: the solution is then the best so far,
 /// [`Termination::Observer`]. A user's function that fails ends the run
 /// at once with its error.
 pub fn solve(
@@ -75,47 +75,44 @@ pub fn solve(
     let n = problem
         .chains
         .unwrap_or_else(|| Auto::<f64>::chains_for(problem.budget));
-    with_dim!(d, D => {
-        let domain = problem.domain.interval()?;
-        let pot = AutoPot::<D>::new(&problem.potential)?;
-        let mut chains = storage::<D>(n)?;
-        let mut lbfgs: Box<Lbfgs<f64, D, MEMORY>> = Box::default();
-        let observe = |p: &AutoProgress<'_, f64, D>| {
-            if pot.failed() {
-                return ControlFlow::Break(());
-            }
-            observer(&Progress {
-                iteration: p.rounds,
-                evaluations: p.evaluations,
-                value: p.value,
-                dim: D,
-                chains: n,
-            })
-        };
-        let found = auto.minimize_with(
-            &pot,
-            domain,
-            problem.budget,
-            problem.seed,
-            &mut chains,
-            &mut lbfgs,
-            observe,
-        );
-        pot.finish()?;
-        let s = found?;
-        Ok(Solution {
-            x: s.x.to_vec(),
-            value: s.value,
-            evaluations: s.evaluations,
-            rounds: s.rounds,
-            step: s.step,
-            inverse_temperature: s.inverse_temperature,
-            chains: s.chains,
-            termination: s.termination,
-            diverged_chains: s.diverged_chains,
-            all_diverged: s.all_diverged(),
-            message: s.to_string(),
+    let domain = problem.domain.sides()?;
+    let pot = problem.potential.build(d)?;
+    let mut storage = Storage::new(n, d)?;
+    let mut lent = storage.lend()?;
+    let observe = |p: &FlatAutoProgress<'_, f64>| {
+        if pot.failed() {
+            return ControlFlow::Break(());
+        }
+        observer(&Progress {
+            iteration: p.rounds,
+            evaluations: p.evaluations,
+            value: p.value,
+            dim: d,
+            chains: n,
         })
+    };
+    let found = auto.minimize_flat_with(
+        &pot,
+        &domain,
+        problem.budget,
+        problem.seed,
+        &mut lent,
+        observe,
+    );
+    pot.finish()?;
+    let s = found?;
+    Ok(Solution {
+        x: s.x.to_vec(),
+        value: s.value,
+        evaluations: s.evaluations,
+        rounds: s.rounds,
+        step: s.step,
+        inverse_temperature: s.inverse_temperature,
+        chains: s.chains,
+        termination: s.termination,
+        diverged_chains: s.diverged_chains,
+        all_diverged: s.all_diverged(),
+        message: s.to_string(),
     })
 }
 
@@ -125,65 +122,60 @@ pub fn is_user(potential: &PotentialSpec) -> bool {
     matches!(potential, PotentialSpec::User(_))
 }
 
-/// The potential in dimension `D`, for [`Auto`], which is typed by its
-/// dimension; a user's function is called one point at a time.
-enum AutoPot<const D: usize> {
-    Builtin(Builtin<D>),
-    User(UserPotential<D>),
-    Native(Arc<dyn PointFunction>),
+/// The arrays [`AutoStorage`] borrows, owned for one run.
+struct Storage {
+    d: usize,
+    floats: Vec<f64>,
+    diverged: Vec<bool>,
+    rngs: Vec<Xoshiro256PlusPlus>,
 }
 
-impl<const D: usize> AutoPot<D> {
-    fn new(spec: &PotentialSpec) -> Result<Self, Error> {
-        Ok(match spec {
-            PotentialSpec::Builtin(b) => Self::Builtin(b.build::<D>()?),
-            PotentialSpec::User(f) => Self::User(UserPotential::new(f.clone())),
-            PotentialSpec::Native(f) => Self::Native(f.clone()),
-        })
-    }
-
-    /// The user function's first error since the last call, if any.
-    fn finish(&self) -> Result<(), Error> {
-        match self {
-            Self::User(p) => p.finish(),
-            Self::Builtin(_) | Self::Native(_) => Ok(()),
+impl Storage {
+    /// Storage for `n` chains of dimension `d`, or [`Error::Memory`]: the
+    /// size is checked and reserved before anything is written, so a huge
+    /// count allocates nothing.
+    fn new(n: usize, d: usize) -> Result<Self, Error> {
+        let floats = AutoStorage::<f64, Xoshiro256PlusPlus>::floats(n, d, MEMORY);
+        let bytes = n
+            .checked_mul(size_of::<bool>() + size_of::<Xoshiro256PlusPlus>())
+            .and_then(|b| floats.checked_mul(size_of::<f64>())?.checked_add(b));
+        let refuse = |address_space| Error::Memory {
+            chains: n,
+            dim: d,
+            bytes: bytes.map_or(usize::MAX, |b| b / n.max(1)),
+            address_space,
+        };
+        match bytes {
+            Some(total) if total <= isize::MAX as usize => {}
+            _ => return Err(refuse(true)),
         }
+        let mut storage = Self {
+            d,
+            floats: Vec::new(),
+            diverged: Vec::new(),
+            rngs: Vec::new(),
+        };
+        storage
+            .floats
+            .try_reserve_exact(floats)
+            .and_then(|()| storage.diverged.try_reserve_exact(n))
+            .and_then(|()| storage.rngs.try_reserve_exact(n))
+            .map_err(|_| refuse(false))?;
+        storage.floats.resize(floats, 0.0);
+        storage.diverged.resize(n, false);
+        storage
+            .rngs
+            .extend((0..n).map(|_| Xoshiro256PlusPlus::seed_from_u64(0)));
+        Ok(storage)
     }
 
-    /// Whether a user function failed since the last [`finish`](Self::finish).
-    fn failed(&self) -> bool {
-        matches!(self, Self::User(p) if p.failed())
+    fn lend(&mut self) -> Result<AutoStorage<'_, f64, Xoshiro256PlusPlus>, Error> {
+        Ok(AutoStorage::new(
+            self.d,
+            MEMORY,
+            &mut self.floats,
+            &mut self.diverged,
+            &mut self.rngs,
+        )?)
     }
-}
-
-impl<const D: usize> Potential<f64, D> for AutoPot<D> {
-    #[inline]
-    fn value_and_gradient(&self, x: &[f64; D], grad: &mut [f64; D]) -> f64 {
-        match self {
-            Self::Builtin(p) => p.value_and_gradient(x, grad),
-            Self::User(p) => p.value_and_gradient(x, grad),
-            Self::Native(p) => p.value_and_gradient(x, grad),
-        }
-    }
-}
-
-/// Storage for `n` chains of dimension `D`, or [`Error::Memory`]: the size
-/// is checked and reserved before anything is written, so a huge count
-/// allocates nothing.
-fn storage<const D: usize>(n: usize) -> Result<Vec<Chain<f64, D>>, Error> {
-    let bytes = size_of::<Chain<f64, D>>();
-    let refuse = |address_space| Error::Memory {
-        chains: n,
-        dim: D,
-        bytes,
-        address_space,
-    };
-    match n.checked_mul(bytes) {
-        Some(total) if total <= isize::MAX as usize => {}
-        _ => return Err(refuse(true)),
-    }
-    let mut chains = Vec::new();
-    chains.try_reserve_exact(n).map_err(|_| refuse(false))?;
-    chains.extend((0..n).map(|_| Chain::new()));
-    Ok(chains)
 }

@@ -9,7 +9,6 @@ use hrla::{
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-use crate::dims::with_dim;
 use crate::error::RanAway;
 use crate::settings::{Bounds, Pot};
 use crate::{Error, MEMORY, Progress, Settings};
@@ -43,11 +42,20 @@ pub struct Layout {
 }
 
 /// The bytes of one kernel chain of the const-generic path
-/// ([`hrla::Chain`]) in dimension `d`, for a front end that runs those
-/// (and [`hrla::Auto`]'s storage), or [`Error::Dimension`] for a `d` not
-/// compiled in.
+/// ([`hrla::Chain`]`<f64, d>`), for a front end that runs those: its fixed
+/// fields and four vectors of `d` floats (the layout adds no padding that
+/// depends on `d`: tested against `size_of` for several `d`), or
+/// [`Error::Memory`] for a size past the address space.
 pub fn storage_bytes(d: usize) -> Result<usize, Error> {
-    with_dim!(d, D => Ok(size_of::<hrla::Chain<f64, D>>()))
+    d.checked_mul(4 * size_of::<f64>())
+        .and_then(|v| v.checked_add(size_of::<hrla::Chain<f64, 0>>()))
+        .filter(|&b| b <= isize::MAX as usize)
+        .ok_or(Error::Memory {
+            chains: 1,
+            dim: d,
+            bytes: usize::MAX,
+            address_space: true,
+        })
 }
 
 /// The bytes of one chain of the engine's flat storage in dimension `d`
@@ -544,5 +552,27 @@ impl Engine for Run {
 
     fn is_user(&self) -> bool {
         Run::is_user(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn storage_bytes_is_the_size_of_a_chain() {
+        fn at<const D: usize>() {
+            assert_eq!(storage_bytes(D).unwrap(), size_of::<hrla::Chain<f64, D>>());
+        }
+        at::<0>();
+        at::<1>();
+        at::<2>();
+        at::<5>();
+        at::<17>();
+        at::<100>();
+        assert!(matches!(
+            storage_bytes(usize::MAX),
+            Err(Error::Memory { .. })
+        ));
     }
 }

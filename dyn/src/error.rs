@@ -13,8 +13,6 @@ pub enum Error {
     /// The kernel refused its input, or the run failed there
     /// ([`hrla::Error::AllDiverged`], [`hrla::Error::UnboundedBelow`], ...).
     Kernel(hrla::Error),
-    /// A dimension that is not compiled in ([`crate::dims::SUPPORTED`]).
-    Dimension(usize),
     /// Two sources fix different dimensions.
     DimensionMismatch {
         /// The first source that fixed one.
@@ -37,11 +35,6 @@ pub enum Error {
         /// The run's dimension.
         dim: usize,
     },
-    /// A box whose intervals differ between coordinates, given to
-    /// [`crate::auto::solve`]: [`hrla::Auto`] scales its probes and
-    /// restarts by one interval for every coordinate (the optimiser and
-    /// the polish take a box per coordinate).
-    NonUniformBox,
     /// The chains' storage cannot be allocated.
     Memory {
         /// Chains asked for.
@@ -102,11 +95,6 @@ impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::Kernel(e) => write!(f, "{e}"),
-            Self::Dimension(d) => write!(
-                f,
-                "dimension {d} is not compiled in; supported: {:?} (the kernel's D is a const generic)",
-                crate::dims::SUPPORTED
-            ),
             Self::DimensionMismatch {
                 first,
                 first_dim,
@@ -123,11 +111,6 @@ impl fmt::Display for Error {
             Self::Length { what, len, dim } => {
                 write!(f, "{what} has {len} coordinates, the run {dim}")
             }
-            Self::NonUniformBox => write!(
-                f,
-                "Auto's box is the same interval [lo, hi] in every coordinate; \
-                 a box per coordinate runs with a sampler (method=\"hrla\", \"ula\" or \"ola\")"
-            ),
             Self::Memory {
                 chains,
                 dim,

@@ -21,21 +21,17 @@
 //! - [`termination_name`], [`termination_code`]: the one mapping of why a
 //!   run ended.
 //!
-//! The dimension is a run-time `usize` everywhere in this API. The
-//! [`Engine`] runs the kernel's optimiser over flat storage at
-//! [`hrla::Dyn`]`(d)`, any `d >= 1`, with the bits of the const-generic
-//! path. [`hrla::Auto`] and the built-ins' known minima are typed by
-//! their dimension in the kernel: [`dims`] holds the one table of the
-//! dimensions compiled in for them ([`dims::SUPPORTED`]); any other is
-//! [`Error::Dimension`]. A user's function is called on batches
-//! ([`BatchFunction`]: points `n x d` in, values and gradients out), once
-//! per step through the kernel's batch seam.
+//! The dimension is a run-time `usize` everywhere in this API, any
+//! `d >= 1`: the [`Engine`] runs the kernel's optimiser over flat storage
+//! at [`hrla::Dyn`]`(d)`, and [`auto::solve`] the kernel's [`hrla::Auto`]
+//! over storage it lends, each with the bits of the const-generic path.
+//! A user's function is called on batches ([`BatchFunction`]: points
+//! `n x d` in, values and gradients out) through the kernel's batch seam.
 
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
 pub mod auto;
-pub mod dims;
 mod engine;
 mod error;
 mod potential;

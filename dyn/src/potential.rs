@@ -14,7 +14,6 @@ use core::str::FromStr;
 use hrla::{KnownMinimum, Potential, Quadratic, SlicePotential};
 
 use crate::Error;
-use crate::dims::with_dim;
 
 /// Calls `$callback! { ... }` with the list of the kernel's parameter-free
 /// built-in potentials, in the order the page lists them: for each, its
@@ -355,12 +354,24 @@ impl BuiltinSpec {
         Ok((values, grads))
     }
 
-    /// The global minimum `U*` and a global minimiser `x*` in dimension `d`.
+    /// The global minimum `U*` and a global minimiser `x*` in dimension
+    /// `d >= 1`. Every built-in's minimiser repeats one coordinate (the
+    /// quadratic's is its centre) and its minimum is `d` times the
+    /// one-dimensional one, so both come from the kernel's known minimum
+    /// at `D = 1` (the bits of the kernel's at `D = d`: tested).
     pub fn minimum(&self, d: usize) -> Result<(f64, Vec<f64>), Error> {
-        with_dim!(d, D => {
-            let p = self.build::<D>()?;
-            Ok((p.global_minimum(), p.global_minimiser().to_vec()))
-        })
+        if d == 0 {
+            return Err(hrla::Error::Zero { name: "dimension" }.into());
+        }
+        if let Self::Quadratic { centre, .. } = self {
+            self.at(d)?;
+            return Ok((0.0, centre.clone()));
+        }
+        let p = self.build::<1>()?;
+        Ok((
+            p.global_minimum() * d as f64,
+            vec![p.global_minimiser()[0]; d],
+        ))
     }
 }
 
@@ -397,6 +408,36 @@ mod tests {
         assert_eq!(BuiltinKind::ALL.len(), 6);
     }
 
+    /// The known minima at a run-time `d` are the kernel's at `D = d`, bit
+    /// for bit, in every dimension the kernel's tests use.
+    #[test]
+    fn minima_at_any_dimension_are_the_kernels() {
+        fn at<const D: usize>() {
+            for kind in BuiltinKind::ALL {
+                let spec = match kind {
+                    BuiltinKind::Quadratic => BuiltinSpec::Quadratic {
+                        stiffness: 2.0,
+                        centre: (0..D).map(|i| i as f64 - 1.5).collect(),
+                    },
+                    _ => BuiltinSpec::Named(kind),
+                };
+                let p = spec.build::<D>().unwrap();
+                let (u, x) = spec.minimum(D).unwrap();
+                assert_eq!(u.to_bits(), p.global_minimum().to_bits(), "{kind} {D}");
+                assert_eq!(x, p.global_minimiser().to_vec(), "{kind} {D}");
+            }
+        }
+        at::<1>();
+        at::<2>();
+        at::<3>();
+        at::<7>();
+        at::<17>();
+        at::<20>();
+        at::<50>();
+        at::<100>();
+        at::<257>();
+    }
+
     /// The layer's evaluation is the kernel's, bit for bit.
     #[test]
     fn a_builtin_is_the_kernels_potential() {
@@ -430,8 +471,8 @@ mod tests {
             "the quadratic's centre has 2 coordinates, the run 3"
         );
         assert!(matches!(
-            BuiltinSpec::Named(BuiltinKind::Ackley).minimum(17),
-            Err(Error::Dimension(17))
+            BuiltinSpec::Named(BuiltinKind::Ackley).minimum(0),
+            Err(Error::Kernel(hrla::Error::Zero { .. }))
         ));
         assert_eq!(q.to_string(), "Quadratic(1, [0.0, 0.0])");
         assert_eq!(

@@ -105,6 +105,11 @@ impl BatchPotential<f64> for Pot {
 }
 
 impl Pot {
+    /// Whether a user function failed since the last [`finish`](Self::finish).
+    pub(crate) fn failed(&self) -> bool {
+        matches!(self, Self::User(p) if p.failed())
+    }
+
     /// The user function's first error since the last call, if any.
     pub(crate) fn finish(&self) -> Result<(), Error> {
         match self {
@@ -138,23 +143,12 @@ impl BoxSpec {
         }
     }
 
-    /// The box as one [`Interval`] for every coordinate (checked by its
-    /// constructor), for [`hrla::Auto`], whose curvature probes and
-    /// restarts take one interval: [`Error::NonUniformBox`] when the
-    /// coordinates' intervals differ.
-    pub fn interval(&self) -> Result<Interval<f64>, Error> {
-        match self.sides()? {
-            Sides::Uniform(i) => Ok(i),
-            Sides::PerCoordinate(_) => Err(Error::NonUniformBox),
-        }
-    }
-
     /// The kernel's box: an [`Interval`] when every coordinate has the
     /// same sides (pairs that are all equal included), else the kernel's
     /// [`hrla::Bounds`], each side checked by the kernel. Both reflect
     /// each coordinate the same way, so equal pairs give an `Interval`'s
     /// bits either way.
-    fn sides(&self) -> Result<Sides, Error> {
+    pub(crate) fn sides(&self) -> Result<Sides, Error> {
         let b = match self {
             Self::Uniform { lo, hi } => return Ok(Sides::Uniform(Interval::new(*lo, *hi)?)),
             Self::PerCoordinate(b) => b,
@@ -178,9 +172,48 @@ impl BoxSpec {
 
 /// A checked box: one interval, or one per coordinate.
 #[derive(Clone, Debug)]
-enum Sides {
+pub(crate) enum Sides {
     Uniform(Interval<f64>),
     PerCoordinate(hrla::Bounds<f64, Vec<f64>>),
+}
+
+impl SliceDomain<f64> for Sides {
+    #[inline]
+    fn confine(&self, x: &mut [f64], y: &mut [f64]) {
+        match self {
+            Self::Uniform(b) => b.confine(x, y),
+            Self::PerCoordinate(b) => b.confine(x, y),
+        }
+    }
+    #[inline]
+    fn project(&self, x: &mut [f64]) {
+        match self {
+            Self::Uniform(b) => SliceDomain::project(b, x),
+            Self::PerCoordinate(b) => SliceDomain::project(b, x),
+        }
+    }
+    fn feasible_direction(&self, x: &[f64], d: &mut [f64]) {
+        match self {
+            Self::Uniform(b) => SliceDomain::feasible_direction(b, x, d),
+            Self::PerCoordinate(b) => SliceDomain::feasible_direction(b, x, d),
+        }
+    }
+    fn dimension(&self) -> Option<usize> {
+        match self {
+            Self::Uniform(_) => None,
+            Self::PerCoordinate(b) => SliceDomain::dimension(b),
+        }
+    }
+}
+
+impl hrla::Sides<f64> for Sides {
+    #[inline]
+    fn side(&self, i: usize) -> (f64, f64) {
+        match self {
+            Self::Uniform(b) => b.side(i),
+            Self::PerCoordinate(b) => b.side(i),
+        }
+    }
 }
 
 impl From<Interval<f64>> for BoxSpec {

@@ -1,13 +1,10 @@
 //! A user's potential: a function evaluated on batches of points.
 //!
 //! The optimiser over flat storage hands a step's points to the kernel's
-//! batch seam as one `(n, d)` block; [`UserBatch`] calls the function once
-//! on the rows of the live chains. [`hrla::Auto`], typed by its dimension,
-//! evaluates one point at a time through [`UserPotential`].
+//! batch seam as one `(n, d)` block, and [`hrla::Auto`] its points;
+//! [`UserBatch`] calls the function once on the rows of the live chains.
 
 use std::sync::{Arc, Mutex, MutexGuard};
-
-use hrla::Potential;
 
 use crate::Error;
 
@@ -27,59 +24,6 @@ pub trait BatchFunction: Send + Sync {
         values: &mut [f64],
         grads: &mut [f64],
     ) -> Result<(), UserError>;
-}
-
-/// A [`BatchFunction`] as the kernel's [`Potential`] in dimension `D`,
-/// called on one point at a time: for [`hrla::Auto`], whose dimension is
-/// a type. After a failure every later evaluation is NaN without a call;
-/// [`UserPotential::finish`] returns the failure.
-pub struct UserPotential<const D: usize> {
-    function: Arc<dyn BatchFunction>,
-    error: Mutex<Option<Error>>,
-}
-
-impl<const D: usize> UserPotential<D> {
-    /// `function` in dimension `D`.
-    pub fn new(function: Arc<dyn BatchFunction>) -> Self {
-        Self {
-            function,
-            error: Mutex::new(None),
-        }
-    }
-
-    fn error(&self) -> MutexGuard<'_, Option<Error>> {
-        // The one field is replaced whole: a panic while the lock was held
-        // cannot leave it invalid.
-        self.error.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// Whether an evaluation failed since the last [`finish`](Self::finish).
-    pub fn failed(&self) -> bool {
-        self.error().is_some()
-    }
-
-    /// The first error of any evaluation since the last call.
-    pub fn finish(&self) -> Result<(), Error> {
-        self.error().take().map_or(Ok(()), Err)
-    }
-}
-
-impl<const D: usize> Potential<f64, D> for UserPotential<D> {
-    fn value_and_gradient(&self, x: &[f64; D], grad: &mut [f64; D]) -> f64 {
-        if self.failed() {
-            *grad = [f64::NAN; D];
-            return f64::NAN;
-        }
-        let mut value = [0.0];
-        match self.function.evaluate(x, D, &mut value, grad) {
-            Ok(()) => value[0],
-            Err(e) => {
-                self.error().get_or_insert(Error::User(e));
-                *grad = [f64::NAN; D];
-                f64::NAN
-            }
-        }
-    }
 }
 
 /// A [`BatchFunction`] as the kernel's batch seam, [`BatchPotential`](hrla::BatchPotential):
@@ -128,6 +72,11 @@ impl UserBatch {
     /// The first failure since the last call, if any.
     pub fn finish(&self) -> Result<(), Error> {
         self.state().error.take().map_or(Ok(()), Err)
+    }
+
+    /// Whether an evaluation failed since the last [`finish`](Self::finish).
+    pub fn failed(&self) -> bool {
+        self.state().error.is_some()
     }
 }
 

@@ -298,10 +298,11 @@ fn a_box_per_coordinate_is_the_kernels_bounds() {
     assert_eq!(positions(&*a), positions(&*b));
 }
 
-/// Auto takes one interval for every coordinate: a box per coordinate is
-/// its typed refusal, equal pairs run.
+/// Auto runs in a box per coordinate (sides that differ by 10^6 here):
+/// every point it returns is inside, and equal pairs give the bits of one
+/// interval.
 #[test]
-fn auto_refuses_a_box_per_coordinate() {
+fn auto_runs_in_a_box_per_coordinate() {
     let problem = |domain| Problem {
         potential: rastrigin(),
         domain,
@@ -310,18 +311,63 @@ fn auto_refuses_a_box_per_coordinate() {
         chains: Some(4),
         dim: None,
     };
-    let refused = solve(
+    let sides = wide_and_narrow();
+    let found = solve(
         &Auto::default(),
-        &problem(BoxSpec::PerCoordinate(wide_and_narrow())),
+        &problem(BoxSpec::PerCoordinate(sides.clone())),
         &mut |_| ControlFlow::Continue(()),
-    );
-    assert!(matches!(refused, Err(Error::NonUniformBox)));
+    )
+    .unwrap();
+    assert_eq!(found.x.len(), 10);
+    for (x, (lo, hi)) in found.x.iter().zip(&sides) {
+        assert!(lo <= x && x <= hi, "{x} outside [{lo}, {hi}]");
+    }
     let equal = solve(
         &Auto::default(),
         &problem(BoxSpec::PerCoordinate(vec![(-5.0, 5.0); 10])),
         &mut |_| ControlFlow::Continue(()),
-    );
-    assert!(equal.is_ok());
+    )
+    .unwrap();
+    let mut uniform = problem(BoxSpec::Uniform { lo: -5.0, hi: 5.0 });
+    uniform.dim = Some(10);
+    let one = solve(&Auto::default(), &uniform, &mut |_| {
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    assert_eq!(equal, one);
+}
+
+/// Auto at a dimension no table lists (17, 257) runs, and at 17 gives the
+/// bits of the kernel's `Auto` over `Chain<f64, 17>`.
+#[test]
+fn auto_runs_at_any_dimension() {
+    let mut chains: Vec<Chain<f64, 17>> = (0..4).map(|_| Chain::new()).collect();
+    let mut lbfgs: Lbfgs<f64, 17, 8> = Lbfgs::new();
+    let domain = Interval::new(-5.12, 5.12).unwrap();
+    let kernel = Auto::default()
+        .minimize(&Rastrigin, domain, 5_000, 2, &mut chains, &mut lbfgs)
+        .unwrap();
+    for d in [17, 257] {
+        let problem = Problem {
+            potential: rastrigin(),
+            domain: domain.into(),
+            budget: 5_000,
+            seed: 2,
+            chains: Some(4),
+            dim: Some(d),
+        };
+        let s = solve(&Auto::default(), &problem, &mut |_| {
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+        assert_eq!(s.x.len(), d);
+        assert!(s.evaluations <= 5_000);
+        if d == 17 {
+            assert_eq!(s.x, kernel.x);
+            assert_eq!(s.value.to_bits(), kernel.value.to_bits());
+            assert_eq!(s.message, kernel.to_string());
+        }
+    }
 }
 
 #[test]

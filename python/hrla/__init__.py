@@ -23,11 +23,9 @@ exactly: every coordinate moves to a Gaussian with, for ``u = alpha h``,
 Every number is computed by the Rust kernel ``hrla`` (this package binds it
 with PyO3): the same names as its Rust API and, for a seed, the same bits.
 Each chain ``c`` draws from its own ``Xoshiro256PlusPlus`` seeded with
-``chain_seed(seed, c)``. Floats are ``float64``. ``Optimizer`` and
-``minimize``'s sampler methods run any dimension ``D >= 1``. ``Auto`` and
-the built-ins' ``global_minimum`` are typed by ``D`` in the kernel:
-``DIMENSIONS`` lists those compiled in for them (1 to 16, 20, 32, 50,
-100); any other raises ``DimensionError`` there.
+``chain_seed(seed, c)``. Floats are ``float64``. Every method of
+``minimize``, ``Optimizer`` and the built-ins' ``global_minimum`` run any
+dimension ``D >= 1``.
 
 Two kinds of potential:
 
@@ -44,7 +42,7 @@ Two kinds of potential:
   there is drawn again; a chain that steps there diverges.
 
 Errors form one hierarchy under :class:`HrlaError` (a ``ValueError``):
-``DivergedError``, ``UnboundedBelowError``, ``DimensionError``,
+``DivergedError``, ``UnboundedBelowError``,
 ``BusyError`` and ``InternalError`` (both also ``RuntimeError``). Storage
 that cannot be allocated raises ``MemoryError``; Ctrl-C stops a run after
 a whole step with ``KeyboardInterrupt``, and the run can go on.
@@ -63,12 +61,10 @@ import numpy as np
 
 from ._hrla import (
     BUILTINS,
-    DIMENSIONS,
     Ackley,
     Auto,
     BusyError,
     Constant,
-    DimensionError,
     DivergedError,
     DoubleWell,
     Gaussian,
@@ -96,8 +92,8 @@ from ._hrla import (
 )
 
 __all__ = [
-    "BUILTINS", "DIMENSIONS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
-    "DimensionError", "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla",
+    "BUILTINS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
+    "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla",
     "HrlaError", "InternalError", "Interval", "Levy", "Linear", "Ola", "OptimizeResult",
     "Optimizer", "Point", "Polished", "PolishSettings", "Potential", "Quadratic", "Rastrigin",
     "Report", "Solution", "Stop", "StyblinskiTang", "Ula", "UnboundedBelowError", "minimize",
@@ -188,8 +184,7 @@ def minimize(
     ``X`` (shape ``(N, D)``; ``U`` of shape ``(N,)``, ``G`` of shape
     ``(N, D)``). ``bounds`` is ``(lo, hi)`` (then give ``dim``) or ``D``
     pairs ``(lo_i, hi_i)``, each coordinate with its own sides; the chains
-    stay in the box by reflection. :class:`Auto` takes one interval for
-    every coordinate: pairs that differ raise ``ValueError`` there.
+    stay in the box by reflection.
 
     ``method="auto"`` (the default; needs ``bounds``) is the kernel's
     :class:`Auto` solver: no setting to tune, ``budget`` evaluations in

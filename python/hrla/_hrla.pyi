@@ -8,7 +8,6 @@ import numpy.typing as npt
 F64 = npt.NDArray[np.float64]
 BatchedFunction = Callable[[F64], Tuple[npt.ArrayLike, npt.ArrayLike]]
 
-DIMENSIONS: List[int]
 #: The built-in potentials' class names, in the run-time layer's order.
 BUILTINS: List[str]
 
@@ -18,8 +17,6 @@ class DivergedError(HrlaError):
     """Every chain diverged (non-finite position, potential or gradient)."""
 class UnboundedBelowError(HrlaError):
     """The potential fell below -sqrt(MAX): it looks unbounded below."""
-class DimensionError(HrlaError):
-    """A dimension D that the module was not compiled for."""
 class BusyError(HrlaError, RuntimeError):
     """The optimiser is running (a call from its potential or another thread); nothing was done."""
 class InternalError(HrlaError, RuntimeError):

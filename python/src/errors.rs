@@ -4,7 +4,6 @@
 //! HrlaError (ValueError)           the kernel refused its input, or the run failed
 //! ├── DivergedError                every chain diverged
 //! ├── UnboundedBelowError          U fell below -sqrt(MAX)
-//! ├── DimensionError               a D not compiled in for Auto or a known minimum
 //! ├── BusyError (also RuntimeError)      the optimiser is running
 //! └── InternalError (also RuntimeError)  a bug in hrla (a caught panic)
 //! ```
@@ -41,12 +40,6 @@ create_exception!(
     HrlaError,
     "The potential fell below -sqrt(MAX): it looks unbounded below."
 );
-create_exception!(
-    hrla,
-    DimensionError,
-    HrlaError,
-    "A dimension D that the module was not compiled for."
-);
 
 /// `BusyError(HrlaError, RuntimeError)`, made at import.
 static BUSY: PyOnceLock<Py<PyType>> = PyOnceLock::new();
@@ -81,7 +74,6 @@ pub fn layer(e: hrla_dyn::Error) -> PyErr {
     let message = e.to_string();
     match e {
         Error::Kernel(e) => kernel(e),
-        Error::Dimension(_) => DimensionError::new_err(message),
         Error::Memory { .. } => PyMemoryError::new_err(message),
         Error::User(e) => match e.downcast::<PyErr>() {
             Ok(e) => *e,
@@ -145,7 +137,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("HrlaError", py.get_type::<HrlaError>())?;
     m.add("DivergedError", py.get_type::<DivergedError>())?;
     m.add("UnboundedBelowError", py.get_type::<UnboundedBelowError>())?;
-    m.add("DimensionError", py.get_type::<DimensionError>())?;
     let busy = BUSY.get_or_try_init(py, || both(py, "BusyError", BUSY_DOC))?;
     m.add("BusyError", busy.bind(py))?;
     let internal = INTERNAL.get_or_try_init(py, || both(py, "InternalError", INTERNAL_DOC))?;

@@ -5,9 +5,8 @@
 //! results, so every number a run computes is the kernel's, with the same
 //! names ([`hrla::Builder`]'s pieces, [`hrla::Optimizer`], [`hrla::Auto`],
 //! [`hrla::Lbfgs`]'s polish) and, for the same seed, the same bits. The
-//! optimiser runs any dimension; `Auto` and the known minima take those
-//! of the layer's table ([`hrla_dyn::dims::SUPPORTED`]), others raise
-//! `DimensionError`. Floats are `f64`.
+//! optimiser, `Auto` and the known minima run any dimension. Floats are
+//! `f64`.
 //!
 //! Potentials come in two kinds: the kernel's built-ins, which run with the
 //! GIL released and no Python in the loop, and a user's Python function,
@@ -33,6 +32,5 @@ fn _hrla(m: &Bound<'_, PyModule>) -> PyResult<()> {
     potential::register(m)?;
     engine::register(m)?;
     auto::register(m)?;
-    m.add("DIMENSIONS", hrla_dyn::dims::SUPPORTED.to_vec())?;
     Ok(())
 }

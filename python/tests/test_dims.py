@@ -43,3 +43,30 @@ def test_minimize_samplers_run_any_dimension(d):
         assert r.x.shape == (d,) and np.isfinite(r.fun)
         # One call for the initial points, then one per step, each with every chain.
         assert calls == [(2, d)] * 4
+
+
+@pytest.mark.parametrize("d", [1, 17, 24, 257, 10_000])
+def test_minimize_auto_runs_any_dimension(d):
+    budget = 400 if d == 10_000 else 3_000
+    for fun in (hrla.Rastrigin(), bowl):
+        r = hrla.minimize(fun, [(-1.0, 2.0)] * d, method="auto", budget=budget)
+        assert r.x.shape == (d,) and np.isfinite(r.fun) and r.nfev <= budget
+        assert np.all(r.x >= -1.0) and np.all(r.x <= 2.0)
+    if d <= 24:
+        # The bowl's minimum at 0 is inside the box: Auto polishes it.
+        r = hrla.minimize(bowl, [(-1.0, 2.0)] * d, method="auto", budget=budget)
+        assert r.fun < 1e-20 and np.max(np.abs(r.x)) < 1e-10
+
+
+def test_minimize_auto_takes_a_box_per_coordinate():
+    """Parameters on different scales: each coordinate's minimum in its own side."""
+    centre = np.array([3.0, 70.0, 5.0])
+    scale = np.array([10.0, 100.0, 20.0])
+
+    def fit(X):
+        Z = (X - centre) / scale
+        return np.sum(Z * Z, axis=1), 2.0 * Z / scale
+
+    r = hrla.minimize(fit, [(0, 10), (0, 100), (0.1, 20)], method="auto", budget=5_000)
+    assert r.x.shape == (3,) and r.fun < 1e-20
+    np.testing.assert_allclose(r.x, centre, rtol=1e-9)

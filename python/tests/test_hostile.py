@@ -281,7 +281,7 @@ def test_the_result_says_why_it_ended_after_the_polish():
 
 def test_the_exceptions_are_one_hierarchy():
     assert issubclass(hrla.HrlaError, ValueError)
-    for e in (hrla.DivergedError, hrla.UnboundedBelowError, hrla.DimensionError, hrla.BusyError,
+    for e in (hrla.DivergedError, hrla.UnboundedBelowError, hrla.BusyError,
               hrla.InternalError):
         assert issubclass(e, hrla.HrlaError) and e.__module__ == "hrla", e
     assert issubclass(hrla.BusyError, RuntimeError) and issubclass(hrla.InternalError, RuntimeError)

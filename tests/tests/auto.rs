@@ -5,10 +5,14 @@
 //! test: `bench/quality`, `docs/QUALITY.md`.)
 
 use std::cell::Cell;
+use std::ops::ControlFlow;
 
+use hrla::rand_core::SeedableRng;
 use hrla::{
-    Ackley, Auto, Chain, Error, FnPotential, Interval, Lbfgs, Potential, Rastrigin, StyblinskiTang,
+    Ackley, Auto, AutoStorage, Bounds, Chain, Error, FnPotential, Interval, Lbfgs, Parts,
+    Potential, Rastrigin, Sampling, StyblinskiTang,
 };
+use rand_xoshiro::Xoshiro256PlusPlus;
 
 fn chains<const D: usize>(n: usize) -> Vec<Chain<f64, D>> {
     (0..n).map(|_| Chain::new()).collect()
@@ -343,4 +347,357 @@ fn flat_stretches_give_a_finite_step() {
         found_it += usize::from(found.value < -1.0 + 1e-12);
     }
     assert!(found_it >= 4, "the well found in {found_it} of 5 runs");
+}
+
+/// A run's best point, value, evaluations, rounds and step bits, the
+/// chains' basins, and what its observer saw.
+type Outcome<F> = (Result<(Vec<F>, F, u64, u64, u64), Error>, Vec<F>, Vec<u64>);
+
+/// Runs `auto` over `n` chains of dimension `d` in lent flat storage, with
+/// an observer that stops after `stop_at` evaluations.
+#[allow(clippy::too_many_arguments)]
+fn flat<F, P, B>(
+    auto: &Auto<F>,
+    p: &P,
+    domain: &B,
+    d: usize,
+    n: usize,
+    budget: u64,
+    seed: u64,
+    stop_at: u64,
+) -> Outcome<F>
+where
+    F: hrla::Float,
+    P: hrla::BatchPotential<F> + ?Sized,
+    B: hrla::Sides<F> + ?Sized,
+{
+    let m = 6;
+    let mut floats = vec![F::ZERO; AutoStorage::<F, Xoshiro256PlusPlus>::floats(n, d, m)];
+    let mut diverged = vec![false; n];
+    let mut rngs: Vec<_> = (0..n)
+        .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
+        .collect();
+    let mut storage = AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs).unwrap();
+    let mut seen = Vec::new();
+    let found = auto
+        .minimize_flat_with(p, domain, budget, seed, &mut storage, |pr| {
+            seen.push(pr.evaluations);
+            seen.push(pr.value.to_f64().to_bits());
+            if pr.evaluations > stop_at {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        })
+        .map(|s| {
+            (
+                s.x.to_vec(),
+                s.value,
+                s.evaluations,
+                s.rounds,
+                s.step.to_f64().to_bits(),
+            )
+        });
+    let positions = storage.positions().to_vec();
+    (found, positions, seen)
+}
+
+/// The same run through the const-generic entry point.
+fn fixed<F, P, const D: usize>(
+    auto: &Auto<F>,
+    p: &P,
+    domain: Interval<F>,
+    n: usize,
+    budget: u64,
+    seed: u64,
+    stop_at: u64,
+) -> Outcome<F>
+where
+    F: hrla::Float,
+    P: Potential<F, D>,
+{
+    let mut chains: Vec<Chain<F, D>> = (0..n).map(|_| Chain::default()).collect();
+    let mut lbfgs: Lbfgs<F, D, 6> = Lbfgs::new();
+    let mut seen = Vec::new();
+    let found = auto
+        .minimize_with(p, domain, budget, seed, &mut chains, &mut lbfgs, |pr| {
+            seen.push(pr.evaluations);
+            seen.push(pr.value.to_f64().to_bits());
+            if pr.evaluations > stop_at {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        })
+        .map(|s| {
+            (
+                s.x.to_vec(),
+                s.value,
+                s.evaluations,
+                s.rounds,
+                s.step.to_f64().to_bits(),
+            )
+        });
+    let positions = chains.iter().flat_map(|c| c.x().to_vec()).collect();
+    (found, positions, seen)
+}
+
+/// `Auto` over lent flat storage at a run-time dimension gives the bits
+/// of the const-generic run at `Const<17>`: every part of a round, f64 and
+/// f32, infeasible regions, an observer that stops the run, a box given as
+/// an `Interval` or as `Bounds` with equal sides.
+#[test]
+fn a_run_time_dimension_gives_the_const_bits() {
+    let holes = FnPotential::new(|x: &[f64; 17], g: &mut [f64; 17]| {
+        let v = Rastrigin.value_and_gradient(x, g);
+        if x[0] < -3.0 { f64::NAN } else { v }
+    });
+    let holes_flat = FnPotential::slices(|x: &[f64], g: &mut [f64]| {
+        let v =
+            Rastrigin.value_and_gradient(<&[f64; 17]>::try_from(x).unwrap(), g.try_into().unwrap());
+        if x[0] < -3.0 { f64::NAN } else { v }
+    });
+    let box17 = Interval::new(-5.12, 5.12).unwrap();
+    let sides = Bounds::new(vec![-5.12; 17], vec![5.12; 17]).unwrap();
+    let mut cases = 0;
+    for seed in 0..2 {
+        for parts in [
+            Parts::default(),
+            Parts {
+                sampling: Sampling::Jump,
+                ..Parts::default()
+            },
+            Parts {
+                sampling: Sampling::Off,
+                ..Parts::default()
+            },
+            Parts {
+                quenches: false,
+                ..Parts::default()
+            },
+            Parts {
+                global_moves: false,
+                ..Parts::default()
+            },
+        ] {
+            let auto = Auto {
+                parts,
+                stall: 3,
+                ..Auto::default()
+            };
+            let want = fixed::<_, _, 17>(&auto, &Rastrigin, box17, 6, 6_000, seed, u64::MAX);
+            assert_eq!(
+                flat(&auto, &Rastrigin, &box17, 17, 6, 6_000, seed, u64::MAX),
+                want
+            );
+            assert_eq!(
+                flat(&auto, &Rastrigin, &sides, 17, 6, 6_000, seed, u64::MAX),
+                want
+            );
+            assert!(want.0.is_ok());
+            cases += 1;
+        }
+        let auto = Auto::default();
+        let want = fixed::<_, _, 17>(&auto, &holes, box17, 8, 8_000, seed, u64::MAX);
+        assert_eq!(
+            flat(&auto, &holes_flat, &sides, 17, 8, 8_000, seed, u64::MAX),
+            want
+        );
+        let want = fixed::<_, _, 17>(&auto, &Ackley, box17, 5, 50_000, seed, 3_000);
+        let got = flat(&auto, &Ackley, &box17, 17, 5, 50_000, seed, 3_000);
+        assert_eq!(got, want);
+        assert!(got.0.unwrap().2 < 4_000, "the observer stopped it");
+        let want = fixed::<f32, _, 17>(
+            &Auto::default(),
+            &Rastrigin,
+            Interval::new(-5.12, 5.12).unwrap(),
+            4,
+            5_000,
+            seed,
+            u64::MAX,
+        );
+        assert_eq!(
+            flat(
+                &Auto::default(),
+                &Rastrigin,
+                &Interval::new(-5.12f32, 5.12).unwrap(),
+                17,
+                4,
+                5_000,
+                seed,
+                u64::MAX
+            ),
+            want
+        );
+        cases += 3;
+    }
+    assert_eq!(cases, 16);
+}
+
+/// `Auto` in the box `[-5.12 s_i, 5.12 s_i]` on `U(x) = base(z)`,
+/// `z_i = x_i / s_i - shift_i` (each coordinate on its side's scale, the
+/// minimum `base(0) = 0` at `x_i = s_i shift_i`): how many of `seeds` runs
+/// end within `1e-10` of it, each such point checked.
+fn scaled_hits(
+    base: fn(&[f64], &mut [f64]) -> f64,
+    side: [f64; 6],
+    budget: u64,
+    seeds: u64,
+) -> u64 {
+    let d = side.len();
+    let lo: Vec<f64> = side.iter().map(|s| -5.12 * s).collect();
+    let hi: Vec<f64> = side.iter().map(|s| 5.12 * s).collect();
+    let bounds = Bounds::new(lo, hi).unwrap();
+    let shift = [0.7, -1.3, 2.1, -0.4, 1.9, 0.2];
+    let p = FnPotential::slices(move |x: &[f64], g: &mut [f64]| {
+        let z: Vec<f64> = (0..x.len()).map(|i| x[i] / side[i] - shift[i]).collect();
+        let v = base(&z, g);
+        for i in 0..x.len() {
+            g[i] /= side[i];
+        }
+        v
+    });
+    let mut hits = 0;
+    for seed in 0..seeds {
+        let n = Auto::<f64>::chains_for(budget);
+        let (found, ..) = flat(&Auto::default(), &p, &bounds, d, n, budget, seed, u64::MAX);
+        let (x, value, evaluations, ..) = found.unwrap();
+        assert!(evaluations <= budget);
+        // U >= sum z_i^2 for both bases: U < 1e-10 puts every z_i within
+        // 1e-5 of 0.
+        if value < 1e-10 {
+            hits += 1;
+            for i in 0..d {
+                assert!(
+                    (x[i] - side[i] * shift[i]).abs() < 1e-5 * side[i],
+                    "{seed}: {x:?}"
+                );
+            }
+        }
+    }
+    hits
+}
+
+fn sphere(z: &[f64], g: &mut [f64]) -> f64 {
+    z.iter()
+        .zip(g.iter_mut())
+        .map(|(&z, g)| {
+            *g = 2.0 * z;
+            z * z
+        })
+        .sum()
+}
+
+fn rastrigin6(z: &[f64], g: &mut [f64]) -> f64 {
+    Rastrigin.value_and_gradient(<&[f64; 6]>::try_from(z).unwrap(), g.try_into().unwrap())
+}
+
+/// A box whose sides differ by 10^6: the probes, moves, restarts and the
+/// step's cap follow each coordinate's side, and `Auto` finds the minimum
+/// of a shifted sphere scaled per coordinate every time (its condition
+/// number is 10^12, so L-BFGS ends where U stops falling in its last
+/// bits, near 1e-16). Rastrigin scaled per coordinate over sides that
+/// differ by 10^2 too. (At 10^6, Rastrigin's global basin is found in 3
+/// of 5 runs but not polished below 1e-7: one step size `h` serves every
+/// coordinate.)
+#[test]
+fn auto_finds_minima_in_a_box_of_sides_on_different_scales() {
+    assert_eq!(
+        scaled_hits(sphere, [1e-3, 1.0, 1e3, 0.1, 10.0, 999.0], 5_000, 5),
+        5
+    );
+    assert_eq!(
+        scaled_hits(rastrigin6, [0.1, 1.0, 10.0, 0.3, 3.0, 9.9], 125_000, 5),
+        5
+    );
+}
+
+/// Lent storage of the wrong shape, and a box or a potential of another
+/// dimension, are typed errors before any evaluation.
+#[test]
+fn auto_storage_refuses_bad_shapes() {
+    let (n, d, m) = (4, 3, 5);
+    let size = AutoStorage::<f64, Xoshiro256PlusPlus>::floats(n, d, m);
+    let mut floats = vec![0.0; size + 1];
+    let mut diverged = vec![false; n];
+    let mut rngs: Vec<_> = (0..n)
+        .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
+        .collect();
+    assert!(matches!(
+        AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs),
+        Err(Error::Length { name: "floats", .. })
+    ));
+    assert!(matches!(
+        AutoStorage::new(0, m, &mut floats[..size], &mut diverged, &mut rngs),
+        Err(Error::Zero { name: "dimension" })
+    ));
+    assert!(matches!(
+        AutoStorage::new(d, 0, &mut floats[..size], &mut diverged, &mut rngs),
+        Err(Error::Zero { .. })
+    ));
+    assert!(matches!(
+        AutoStorage::new(d, m, &mut floats[..size], &mut diverged[..3], &mut rngs),
+        Err(Error::Length {
+            name: "diverged",
+            ..
+        })
+    ));
+    assert!(matches!(
+        AutoStorage::<f64, Xoshiro256PlusPlus>::new(d, m, &mut floats[..size], &mut [], &mut []),
+        Err(Error::Zero { name: "chains" })
+    ));
+    assert_eq!(
+        AutoStorage::<f64, Xoshiro256PlusPlus>::floats(usize::MAX, 2, 2),
+        usize::MAX
+    );
+    let mut storage =
+        AutoStorage::new(d, m, &mut floats[..size], &mut diverged, &mut rngs).unwrap();
+    let calls = Cell::new(0);
+    let p = FnPotential::slices(|x: &[f64], g: &mut [f64]| {
+        calls.set(calls.get() + 1);
+        Rastrigin.value_and_gradient(<&[f64; 3]>::try_from(x).unwrap(), g.try_into().unwrap())
+    });
+    let four = Bounds::new([-1.0; 4], [1.0; 4]).unwrap();
+    assert!(matches!(
+        Auto::default().minimize_flat(&p, &four, 1_000, 0, &mut storage),
+        Err(Error::Length {
+            name: "box sides",
+            expected: 3,
+            got: 4
+        })
+    ));
+    let q = hrla::Quadratic::<f64, 2>::new(1.0, [0.0; 2]).unwrap();
+    assert!(matches!(
+        Auto::default().minimize_flat(
+            &q,
+            &Interval::new(-1.0, 1.0).unwrap(),
+            1_000,
+            0,
+            &mut storage
+        ),
+        Err(Error::Length {
+            name: "potential",
+            expected: 3,
+            got: 2
+        })
+    ));
+    assert!(matches!(
+        Auto::default().minimize_flat(&p, &Interval::new(-1.0, 1.0).unwrap(), 7, 0, &mut storage),
+        Err(Error::Budget { .. })
+    ));
+    assert_eq!(calls.get(), 0);
+    let found = Auto::default()
+        .minimize_flat(
+            &p,
+            &Interval::new(-5.12, 5.12).unwrap(),
+            3_000,
+            0,
+            &mut storage,
+        )
+        .unwrap();
+    assert_eq!(found.evaluations, calls.get());
+    let (x, value) = (found.x.to_vec(), found.value);
+    assert_eq!(storage.best(), &x[..]);
+    assert_eq!(storage.values().len(), n);
+    assert!(storage.values().iter().all(|&v| v >= value));
 }

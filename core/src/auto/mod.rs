@@ -45,19 +45,26 @@
 mod measure;
 mod moves;
 mod run;
+mod settings;
 
 use core::fmt;
 use core::ops::ControlFlow;
 
 use rand_core::{Rng, SeedableRng};
 
-use crate::domain::Interval;
+use crate::domain::{Interval, Sides};
 use crate::error::Error;
 use crate::float::Float;
 use crate::optimizer::{Chain, Termination};
-use crate::polish::Lbfgs;
+use crate::polish::{Arrays, Lbfgs};
+use crate::potential::BatchPotential;
 use crate::potential::traits::Potential;
 use crate::schedule::Schedule;
+
+pub use settings::{Auto, MAX_STEPS, Parts, Sampling};
+pub use storage::AutoStorage;
+
+mod storage;
 
 /// An inverse temperature that the caller changes between steps: a
 /// schedule for runs whose temperature adapts to the run.
@@ -68,86 +75,6 @@ impl<F: Float> Schedule<F> for Tempering<F> {
     #[inline]
     fn inverse_temperature(&self, _k: u64) -> F {
         self.0
-    }
-}
-
-/// The most HRLA steps per round [`Auto::steps`] may ask for.
-pub const MAX_STEPS: u64 = 10_000;
-
-/// How a round moves a chain away from its basin before the quench.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Sampling {
-    /// [`Auto::steps`] HRLA steps at the chain's temperature (the default).
-    Langevin,
-    /// The same dynamics with `∇U` set to zero: a Gaussian jump of the law
-    /// of [`Auto::steps`] gradient-free HRLA steps, evaluated once at its
-    /// end. What the gradient in the sampler adds is the difference.
-    Jump,
-    /// No move: the global moves alone leave the basin (every round, not
-    /// at [`Auto::jump_rate`]), and the evaluations go to more rounds.
-    Off,
-}
-
-/// The parts of a round (all on by default); switched off one at a time,
-/// they are the quality benchmark's ablations.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Parts {
-    /// How a chain leaves its basin.
-    pub sampling: Sampling,
-    /// The differential moves and the restarts of a stalled run.
-    pub global_moves: bool,
-    /// The quench of every proposal (without it, the proposal's end point
-    /// is the chain's new state; the best point is still polished at the
-    /// end).
-    pub quenches: bool,
-}
-
-impl Default for Parts {
-    fn default() -> Self {
-        Self {
-            sampling: Sampling::Langevin,
-            global_moves: true,
-            quenches: true,
-        }
-    }
-}
-
-/// The default solver's constants (see the module docs of `auto` in the
-/// crate's source, and [`Auto::minimize`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Auto<F> {
-    /// HRLA steps per round, from the chain's basin (1 to [`MAX_STEPS`]).
-    pub steps: u64,
-    /// `h = step_scale / L`, `L` the typical curvature at the basins'
-    /// bottoms.
-    pub step_scale: F,
-    /// Half-width of the ladder of inverse temperatures in `ln a`: chain
-    /// `c` of `N` samples at `a_0 exp(ladder (2c / (N - 1) - 1))`.
-    pub ladder: F,
-    /// Evaluations per quench, at most (it ends earlier when it converges).
-    pub quench: u64,
-    /// Probability that a chain's round starts with a differential move.
-    pub jump_rate: F,
-    /// Rounds without a new best before the hotter half restarts.
-    pub stall: u64,
-    /// The parts of a round: all on, except in ablations.
-    pub parts: Parts,
-}
-
-impl<F: Float> Default for Auto<F> {
-    /// 10 HRLA steps per round at `h = 2 / L`, a ladder of `±3.5` in
-    /// `ln a`, quenches of up to 1000 evaluations, differential moves in
-    /// 10% of the rounds, restarts after 30 rounds without a new best.
-    fn default() -> Self {
-        Self {
-            steps: 10,
-            step_scale: F::TWO,
-            ladder: F::from_f64(3.5),
-            quench: 1000,
-            jump_rate: F::from_f64(0.1),
-            stall: 30,
-            parts: Parts::default(),
-        }
     }
 }
 
@@ -189,6 +116,74 @@ impl<F, const D: usize> Solution<F, D> {
 
 impl<F: Float, const D: usize> fmt::Display for Solution<F, D> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.found().fmt(f)
+    }
+}
+
+impl<F: Copy, const D: usize> Solution<F, D> {
+    fn found(&self) -> run::Found<F> {
+        run::Found {
+            value: self.value,
+            evaluations: self.evaluations,
+            rounds: self.rounds,
+            step: self.step,
+            inverse_temperature: self.inverse_temperature,
+            termination: self.termination,
+            diverged_chains: self.diverged_chains,
+            chains: self.chains,
+        }
+    }
+}
+
+/// What [`Auto::minimize_flat`] found: [`Solution`]'s fields, the best
+/// point borrowed from the storage.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlatSolution<'a, F> {
+    /// The best point.
+    pub x: &'a [F],
+    /// `U(x)`.
+    pub value: F,
+    /// Evaluations used, all included (at most the budget).
+    pub evaluations: u64,
+    /// Rounds done.
+    pub rounds: u64,
+    /// The step size chosen.
+    pub step: F,
+    /// The inverse temperature of the coldest chain.
+    pub inverse_temperature: F,
+    /// Why the run ended, as [`Solution::termination`].
+    pub termination: Termination,
+    /// Chains whose last proposal met an infeasible point.
+    pub diverged_chains: usize,
+    /// Chains in the run.
+    pub chains: usize,
+}
+
+impl<F> FlatSolution<'_, F> {
+    /// As [`Solution::all_diverged`].
+    pub fn all_diverged(&self) -> bool {
+        self.diverged_chains == self.chains
+    }
+}
+
+impl<F: Float> fmt::Display for FlatSolution<'_, F> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        run::Found {
+            value: self.value,
+            evaluations: self.evaluations,
+            rounds: self.rounds,
+            step: self.step,
+            inverse_temperature: self.inverse_temperature,
+            termination: self.termination,
+            diverged_chains: self.diverged_chains,
+            chains: self.chains,
+        }
+        .fmt(f)
+    }
+}
+
+impl<F: Float> fmt::Display for run::Found<F> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
             "{}: best U = {} after {} evaluations in {} rounds (h = {}, a = {}); \
@@ -201,8 +196,7 @@ impl<F: Float, const D: usize> fmt::Display for Solution<F, D> {
             self.inverse_temperature,
             self.diverged_chains,
             self.chains,
-        )?;
-        Ok(())
+        )
     }
 }
 
@@ -215,6 +209,27 @@ pub struct AutoProgress<'a, F, const D: usize> {
     pub rounds: u64,
     /// The best point so far.
     pub x: &'a [F; D],
+    /// `U` there.
+    pub value: F,
+    /// Whether the best value fell since the observer's last call (`true`
+    /// at the first call).
+    pub improved: bool,
+    /// The inverse temperature of the coldest chain.
+    pub inverse_temperature: F,
+    /// Chains whose last proposal met an infeasible point.
+    pub diverged_chains: usize,
+}
+
+/// What the observer of [`Auto::minimize_flat_with`] sees:
+/// [`AutoProgress`]'s fields, the best point as a slice.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlatAutoProgress<'a, F> {
+    /// Evaluations so far, all included.
+    pub evaluations: u64,
+    /// Rounds done.
+    pub rounds: u64,
+    /// The best point so far.
+    pub x: &'a [F],
     /// `U` there.
     pub value: F,
     /// Whether the best value fell since the observer's last call (`true`
@@ -328,12 +343,201 @@ impl<F: Float> Auto<F> {
         seed: u64,
         chains: &mut [Chain<F, D, R>],
         lbfgs: &mut Lbfgs<F, D, M>,
-        observer: O,
+        mut observer: O,
     ) -> Result<Solution<F, D>, Error>
     where
         P: Potential<F, D> + ?Sized,
         R: Rng + SeedableRng + 'static,
         O: FnMut(&AutoProgress<'_, F, D>) -> ControlFlow<()>,
+    {
+        let mut floats = [[F::ZERO; D]; 7];
+        let buffers = run::Buffers::new(D, floats.as_flattened_mut());
+        let observe = |seen: &run::Seen<'_, F>| match <&[F; D]>::try_from(seen.x) {
+            Ok(x) => observer(&AutoProgress {
+                evaluations: seen.evaluations,
+                rounds: seen.rounds,
+                x,
+                value: seen.value,
+                improved: seen.improved,
+                inverse_temperature: seen.inverse_temperature,
+                diverged_chains: seen.diverged_chains,
+            }),
+            // Every point of a run of `Chain<F, D>`s has length D.
+            Err(_) => ControlFlow::Continue(()),
+        };
+        let found = self.drive(
+            &Arrays::<_, D>(potential),
+            &domain,
+            budget,
+            seed,
+            chains,
+            lbfgs,
+            buffers,
+            observe,
+        )?;
+        Ok(Solution {
+            x: floats[0],
+            value: found.value,
+            evaluations: found.evaluations,
+            rounds: found.rounds,
+            step: found.step,
+            inverse_temperature: found.inverse_temperature,
+            termination: found.termination,
+            diverged_chains: found.diverged_chains,
+            chains: found.chains,
+        })
+    }
+
+    /// Minimises `potential` over the box `domain` (an [`Interval`], a
+    /// [`Bounds`](crate::Bounds) with a side per coordinate) at the
+    /// dimension of `storage`, in storage the caller lends
+    /// ([`AutoStorage`]): [`minimize`](Auto::minimize) at any dimension,
+    /// with the same bits as `Chain<F, d, R>`s and an `Lbfgs<F, d, m>`.
+    /// The potential is evaluated through the batch seam.
+    ///
+    /// ```
+    /// use hrla::{Auto, AutoStorage, Bounds, FnPotential};
+    /// use rand_xoshiro::Xoshiro256PlusPlus;
+    /// use rand_core::SeedableRng;
+    ///
+    /// // A sphere centred at 3 on each coordinate's own scale, in a box
+    /// // whose sides run from 10 to 10^6.
+    /// let (n, d, m) = (4, 3, 8);
+    /// let scale = [10.0, 1e3, 1e6];
+    /// let sphere = FnPotential::slices(move |x: &[f64], g: &mut [f64]| {
+    ///     let mut u = 0.0;
+    ///     for i in 0..x.len() {
+    ///         let z = x[i] / scale[i] - 0.3;
+    ///         u += z * z;
+    ///         g[i] = 2.0 * z / scale[i];
+    ///     }
+    ///     u
+    /// });
+    /// let bounds = Bounds::new(vec![0.0; 3], scale.to_vec())?;
+    /// let mut floats = vec![0.0; AutoStorage::<f64, Xoshiro256PlusPlus>::floats(n, d, m)];
+    /// let mut diverged = vec![false; n];
+    /// let mut rngs: Vec<_> = (0..n).map(|_| Xoshiro256PlusPlus::seed_from_u64(0)).collect();
+    /// let mut storage = AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs)?;
+    /// let found = Auto::default().minimize_flat(&sphere, &bounds, 10_000, 1, &mut storage)?;
+    /// assert!(found.value < 1e-20, "{found}");
+    /// assert!((found.x[2] - 3e5).abs() < 1e-3);
+    /// # Ok::<(), hrla::Error>(())
+    /// ```
+    ///
+    /// Errors: those of [`minimize`](Auto::minimize), and
+    /// [`Error::Length`] for a box or a potential made for another
+    /// dimension than the storage's.
+    pub fn minimize_flat<'s, P, B, R>(
+        &self,
+        potential: &P,
+        domain: &B,
+        budget: u64,
+        seed: u64,
+        storage: &'s mut AutoStorage<'_, F, R>,
+    ) -> Result<FlatSolution<'s, F>, Error>
+    where
+        P: BatchPotential<F> + ?Sized,
+        B: Sides<F> + ?Sized,
+        R: Rng + SeedableRng + 'static,
+    {
+        self.minimize_flat_with(potential, domain, budget, seed, storage, |_| {
+            ControlFlow::Continue(())
+        })
+    }
+
+    /// [`minimize_flat`](Auto::minimize_flat) with an observer, called as
+    /// [`minimize_with`](Auto::minimize_with)'s is.
+    pub fn minimize_flat_with<'s, P, B, R, O>(
+        &self,
+        potential: &P,
+        domain: &B,
+        budget: u64,
+        seed: u64,
+        storage: &'s mut AutoStorage<'_, F, R>,
+        mut observer: O,
+    ) -> Result<FlatSolution<'s, F>, Error>
+    where
+        P: BatchPotential<F> + ?Sized,
+        B: Sides<F> + ?Sized,
+        R: Rng + SeedableRng + 'static,
+        O: FnMut(&FlatAutoProgress<'_, F>) -> ControlFlow<()>,
+    {
+        let d = storage.dim();
+        for (name, dimension) in [
+            ("box sides", domain.dimension()),
+            ("potential", potential.batch_dimension()),
+        ] {
+            if let Some(got) = dimension
+                && got != d
+            {
+                return Err(Error::Length {
+                    name,
+                    expected: d,
+                    got,
+                });
+            }
+        }
+        let storage::Lent {
+            mut chains,
+            buffers,
+            lbfgs,
+        } = storage.parts();
+        let mut lbfgs = lbfgs?;
+        let observe = |seen: &run::Seen<'_, F>| {
+            observer(&FlatAutoProgress {
+                evaluations: seen.evaluations,
+                rounds: seen.rounds,
+                x: seen.x,
+                value: seen.value,
+                improved: seen.improved,
+                inverse_temperature: seen.inverse_temperature,
+                diverged_chains: seen.diverged_chains,
+            })
+        };
+        let found = self.drive(
+            potential,
+            domain,
+            budget,
+            seed,
+            &mut chains,
+            &mut lbfgs,
+            buffers,
+            observe,
+        )?;
+        Ok(FlatSolution {
+            x: storage.best(),
+            value: found.value,
+            evaluations: found.evaluations,
+            rounds: found.rounds,
+            step: found.step,
+            inverse_temperature: found.inverse_temperature,
+            termination: found.termination,
+            diverged_chains: found.diverged_chains,
+            chains: found.chains,
+        })
+    }
+
+    /// The one run of every entry point: checks, start, solve, and the
+    /// termination; the best point is left in the buffers' `best`.
+    #[allow(clippy::too_many_arguments)]
+    fn drive<P, B, S, L, O>(
+        &self,
+        potential: &P,
+        domain: &B,
+        budget: u64,
+        seed: u64,
+        chains: &mut S,
+        lbfgs: &mut L,
+        buffers: run::Buffers<'_, F>,
+        observer: O,
+    ) -> Result<run::Found<F>, Error>
+    where
+        P: BatchPotential<F> + ?Sized,
+        B: Sides<F> + ?Sized,
+        S: run::Chains<F> + ?Sized,
+        S::Rng: Rng + SeedableRng + 'static,
+        L: run::Quencher<F> + ?Sized,
+        O: FnMut(&run::Seen<'_, F>) -> ControlFlow<()>,
     {
         self.validate()?;
         let n = chains.len();
@@ -347,7 +551,7 @@ impl<F: Float> Auto<F> {
             });
         }
         let mut run = run::Run::start(
-            self, potential, domain, budget, seed, chains, lbfgs, observer,
+            self, potential, domain, budget, seed, chains, lbfgs, buffers, observer,
         )?;
         let termination = match run.solve() {
             ControlFlow::Continue(()) => Termination::Evaluations,
@@ -355,47 +559,6 @@ impl<F: Float> Auto<F> {
             ControlFlow::Break(run::Stop::Budget) => Termination::Evaluations,
             ControlFlow::Break(run::Stop::Failed(e)) => return Err(e),
         };
-        Ok(run.solution(termination))
-    }
-
-    fn validate(&self) -> Result<(), Error> {
-        if self.quench == 0 {
-            return Err(Error::Zero { name: "quench" });
-        }
-        if self.stall == 0 {
-            return Err(Error::Zero { name: "stall" });
-        }
-        if self.steps == 0 && self.parts.sampling != Sampling::Off {
-            return Err(Error::Zero { name: "steps" });
-        }
-        // A jump's steps cost no evaluation: the budget would not bound them.
-        if self.steps > MAX_STEPS {
-            return Err(Error::OutOfRange {
-                name: "steps",
-                value: self.steps as f64,
-                min: 1.0,
-                max: MAX_STEPS as f64,
-            });
-        }
-        if !(self.step_scale.is_finite() && self.step_scale > F::ZERO) {
-            return Err(Error::NotPositive {
-                name: "step_scale",
-                value: self.step_scale.to_f64(),
-            });
-        }
-        // Zero is allowed: a ladder of one temperature.
-        if !(self.ladder.is_finite() && self.ladder >= F::ZERO) {
-            return Err(Error::NotPositive {
-                name: "ladder",
-                value: self.ladder.to_f64(),
-            });
-        }
-        if !(self.jump_rate >= F::ZERO && self.jump_rate <= F::ONE) {
-            return Err(Error::NotPositive {
-                name: "jump_rate (in [0, 1])",
-                value: self.jump_rate.to_f64(),
-            });
-        }
-        Ok(())
+        Ok(run.found(termination))
     }
 }

@@ -3,10 +3,9 @@
 
 use rand_core::Rng;
 
-use crate::domain::{Domain, Interval};
+use crate::domain::{Sides, SliceDomain};
 use crate::float::Float;
 use crate::sampler::Kernel;
-use crate::start::Start;
 
 /// Uniform in `[0, 1)`, from the top bits of one word.
 pub(super) fn uniform<F: Float, R: Rng + ?Sized>(rng: &mut R) -> F {
@@ -24,9 +23,9 @@ pub(super) fn chance<F: Float, R: Rng + ?Sized>(rng: &mut R, p: F) -> bool {
     uniform::<F, R>(rng) < p
 }
 
-/// A uniform direction: normalised standard normals (rotation invariant).
-pub(super) fn direction<F: Float, R: Rng + ?Sized, const D: usize>(rng: &mut R) -> [F; D] {
-    let mut v = [F::ZERO; D];
+/// A uniform direction into `v`: normalised standard normals (rotation
+/// invariant).
+pub(super) fn direction<F: Float, R: Rng + ?Sized>(rng: &mut R, v: &mut [F]) {
     let mut norm = F::ZERO;
     for vi in v.iter_mut() {
         *vi = F::standard_normal(rng);
@@ -37,52 +36,48 @@ pub(super) fn direction<F: Float, R: Rng + ?Sized, const D: usize>(rng: &mut R) 
         for vi in v.iter_mut() {
             *vi = *vi / norm;
         }
-    } else if D > 0 {
-        v[0] = F::ONE;
+    } else if let Some(v0) = v.first_mut() {
+        *v0 = F::ONE;
     }
-    v
 }
 
-/// A point uniform in the box.
-pub(super) fn anywhere<F: Float, R: Rng, const D: usize>(
-    domain: Interval<F>,
-    rng: &mut R,
-    x: &mut [F; D],
-) {
-    let mut d = domain;
-    d.initial_point(0, rng, x);
+/// The factor `γ` of a differential move: uniform in `[0.5, 1]`.
+pub(super) fn gamma<F: Float, R: Rng + ?Sized>(rng: &mut R) -> F {
+    F::HALF + F::HALF * uniform::<F, R>(rng)
 }
 
-/// `x + γ (p - q)`, `γ` uniform in `[0.5, 1]`, reflected into the box: a
-/// move of the length and direction the chains' basins span.
-pub(super) fn differential<F: Float, R: Rng + ?Sized, const D: usize>(
-    x: &mut [F; D],
-    p: &[F; D],
-    q: &[F; D],
-    domain: Interval<F>,
-    rng: &mut R,
+/// `x + γ (p - q)`, reflected into the box (`y` is scratch): a move of the
+/// length and direction the chains' basins span, in each coordinate on
+/// the scale the chains found there.
+pub(super) fn differential<F: Float, B: Sides<F> + ?Sized>(
+    x: &mut [F],
+    p: &[F],
+    q: &[F],
+    gamma: F,
+    domain: &B,
+    y: &mut [F],
 ) {
-    let gamma = F::HALF + F::HALF * uniform::<F, R>(rng);
-    let mut y = [F::ZERO; D];
     for ((xi, &pi), &qi) in x.iter_mut().zip(p).zip(q) {
         *xi += gamma * (pi - qi);
     }
-    domain.confine(x, &mut y);
+    y.fill(F::ZERO);
+    domain.confine(x, y);
 }
 
-/// `steps` steps of `kernel` with the gradient set to zero: the noise of
-/// a trajectory without the potential's drift.
-pub(super) fn free<F: Float, K: Kernel<F>, R: Rng + ?Sized, const D: usize>(
+/// `steps` steps of `kernel` with the gradient set to zero (`zero` is
+/// scratch): the noise of a trajectory without the potential's drift.
+pub(super) fn free<F: Float, K: Kernel<F>, B: SliceDomain<F> + ?Sized, R: Rng + ?Sized>(
     kernel: &K,
-    x: &mut [F; D],
-    y: &mut [F; D],
+    x: &mut [F],
+    y: &mut [F],
+    zero: &mut [F],
     steps: u64,
-    domain: Interval<F>,
+    domain: &B,
     rng: &mut R,
 ) {
-    let zero = [F::ZERO; D];
+    zero.fill(F::ZERO);
     for _ in 0..steps {
-        kernel.step(x, y, &zero, rng);
+        kernel.step_slice(x, y, zero, rng);
         domain.confine(x, y);
     }
 }

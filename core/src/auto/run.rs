@@ -1,4 +1,7 @@
-//! One run of [`Auto`]: its state, and each step of the method by name.
+//! One run of [`Auto`]: its state, and each step of the method by name,
+//! over chains and buffers of any dimension (slices of length `d`): the
+//! const-generic [`Chain`]s and the caller's flat storage run this one
+//! body.
 
 use core::ops::ControlFlow;
 
@@ -6,16 +9,15 @@ use rand_core::{Rng, SeedableRng};
 
 use super::measure::{self, A_RANGE};
 use super::moves;
-use super::{Auto, AutoProgress, Sampling, Solution};
-use crate::domain::{Domain, Interval};
+use super::settings::{Auto, Sampling};
+use crate::domain::Sides;
 use crate::error::{Error, floor};
 use crate::float::Float;
-use crate::optimizer::{Best, Chain, Termination, chain_seed, draw_start};
+use crate::optimizer::{Best, Chain, Termination, chain_seed, draw_point};
 use crate::optimizer::{Verdict, judge};
-use crate::polish::{Lbfgs, PolishEnd, PolishSettings};
-use crate::potential::traits::Potential;
-use crate::sampler::{Hrla, Sampler};
-use crate::start::Start;
+use crate::polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished};
+use crate::potential::{BatchPotential, SlicePotential};
+use crate::sampler::{Hrla, Kernel, Sampler};
 
 /// Why a run ended early.
 pub(super) enum Stop {
@@ -32,418 +34,293 @@ type Flow = ControlFlow<Stop>;
 /// Chains whose curvature is probed: their median suffices.
 const PROBES: usize = 16;
 
-/// A run in progress. Each chain's `x`, `value` and `grad` hold its basin
-/// (the quenched point; the gradient there is taken as zero, its value at
-/// a converged minimum), `y` the momentum its last trajectory ended with,
-/// `diverged` whether its last proposal met an infeasible point.
-pub(super) struct Run<'a, F, P: ?Sized, R, const D: usize, const M: usize, O> {
+/// The floats of [`Buffers`] in dimension `d`.
+pub(super) const fn buffer_floats(d: usize) -> usize {
+    d.saturating_mul(7)
+}
+
+/// One chain's state, borrowed from wherever the chains live.
+pub(super) struct ChainMut<'a, F, R> {
+    pub(super) x: &'a mut [F],
+    pub(super) y: &'a mut [F],
+    pub(super) grad: &'a mut [F],
+    pub(super) value: &'a mut F,
+    pub(super) diverged: &'a mut bool,
+    pub(super) rng: &'a mut R,
+}
+
+/// The chains of a run, as the body reads and writes them: an array of
+/// [`Chain`]s or the caller's flat storage.
+pub(super) trait Chains<F> {
+    /// The chains' generator.
+    type Rng;
+    /// The number of chains.
+    fn len(&self) -> usize;
+    /// Chain `c`'s state.
+    fn chain(&mut self, c: usize) -> ChainMut<'_, F, Self::Rng>;
+    /// Chain `c`'s basin.
+    fn x(&self, c: usize) -> &[F];
+    /// `U` at chain `c`'s basin.
+    fn value(&self, c: usize) -> F;
+    /// Whether chain `c`'s last proposal met an infeasible point.
+    fn diverged(&self, c: usize) -> bool;
+    /// Chains `c` and `c + 1` exchange their basins and momenta.
+    fn swap(&mut self, c: usize);
+    /// Chain `c`'s initial point is drawn and evaluated.
+    fn started(&mut self, _c: usize) {}
+}
+
+impl<F: Float, const D: usize, R> Chains<F> for [Chain<F, D, R>] {
+    type Rng = R;
+    fn len(&self) -> usize {
+        <[_]>::len(self)
+    }
+    fn chain(&mut self, c: usize) -> ChainMut<'_, F, R> {
+        let chain = &mut self[c];
+        ChainMut {
+            x: &mut chain.x,
+            y: &mut chain.y,
+            grad: &mut chain.grad,
+            value: &mut chain.value,
+            diverged: &mut chain.diverged,
+            rng: &mut chain.rng,
+        }
+    }
+    fn x(&self, c: usize) -> &[F] {
+        &self[c].x
+    }
+    fn value(&self, c: usize) -> F {
+        self[c].value
+    }
+    fn diverged(&self, c: usize) -> bool {
+        self[c].diverged
+    }
+    fn swap(&mut self, c: usize) {
+        let (lo, hi) = self.split_at_mut(c + 1);
+        let (p, q) = (&mut lo[c], &mut hi[0]);
+        core::mem::swap(&mut p.x, &mut q.x);
+        core::mem::swap(&mut p.value, &mut q.value);
+        core::mem::swap(&mut p.grad, &mut q.grad);
+        core::mem::swap(&mut p.y, &mut q.y);
+    }
+    fn started(&mut self, c: usize) {
+        let chain = &mut self[c];
+        chain.best = Best {
+            x: chain.x,
+            value: chain.value,
+            iteration: 0,
+        };
+    }
+}
+
+/// `n` chains of dimension `d` in flat arrays, chain-major (chain `c`'s
+/// vectors at `c d..(c + 1) d`).
+pub(super) struct FlatChains<'a, F, R> {
+    pub(super) d: usize,
+    pub(super) x: &'a mut [F],
+    pub(super) y: &'a mut [F],
+    pub(super) grad: &'a mut [F],
+    pub(super) value: &'a mut [F],
+    pub(super) diverged: &'a mut [bool],
+    pub(super) rngs: &'a mut [R],
+}
+
+/// Swaps blocks `c` and `c + 1` of `d` values.
+fn swap_blocks<T>(v: &mut [T], c: usize, d: usize) {
+    let (lo, hi) = v.split_at_mut((c + 1) * d);
+    lo[c * d..].swap_with_slice(&mut hi[..d]);
+}
+
+impl<F: Float, R> Chains<F> for FlatChains<'_, F, R> {
+    type Rng = R;
+    fn len(&self) -> usize {
+        self.rngs.len()
+    }
+    fn chain(&mut self, c: usize) -> ChainMut<'_, F, R> {
+        let span = c * self.d..(c + 1) * self.d;
+        ChainMut {
+            x: &mut self.x[span.clone()],
+            y: &mut self.y[span.clone()],
+            grad: &mut self.grad[span],
+            value: &mut self.value[c],
+            diverged: &mut self.diverged[c],
+            rng: &mut self.rngs[c],
+        }
+    }
+    fn x(&self, c: usize) -> &[F] {
+        &self.x[c * self.d..(c + 1) * self.d]
+    }
+    fn value(&self, c: usize) -> F {
+        self.value[c]
+    }
+    fn diverged(&self, c: usize) -> bool {
+        self.diverged[c]
+    }
+    fn swap(&mut self, c: usize) {
+        let d = self.d;
+        swap_blocks(self.x, c, d);
+        self.value.swap(c, c + 1);
+        swap_blocks(self.grad, c, d);
+        swap_blocks(self.y, c, d);
+    }
+}
+
+/// The points a run works on besides the chains' own (`d` floats each).
+pub(super) struct Buffers<'a, F> {
+    /// The best feasible point evaluated.
+    pub(super) best: &'a mut [F],
+    /// A proposal's position, momentum and gradient.
+    x: &'a mut [F],
+    y: &'a mut [F],
+    grad: &'a mut [F],
+    /// A curvature probe's direction, base point and gradient there.
+    v: &'a mut [F],
+    base: &'a mut [F],
+    g0: &'a mut [F],
+}
+
+impl<'a, F> Buffers<'a, F> {
+    /// Cuts `floats` ([`buffer_floats`]`(d)` of them) into the buffers.
+    pub(super) fn new(d: usize, floats: &'a mut [F]) -> Self {
+        let (best, rest) = floats.split_at_mut(d);
+        let (x, rest) = rest.split_at_mut(d);
+        let (y, rest) = rest.split_at_mut(d);
+        let (grad, rest) = rest.split_at_mut(d);
+        let (v, rest) = rest.split_at_mut(d);
+        let (base, g0) = rest.split_at_mut(d);
+        Self {
+            best,
+            x,
+            y,
+            grad,
+            v,
+            base,
+            g0: &mut g0[..d],
+        }
+    }
+}
+
+/// L-BFGS over some storage, as the run's quenches and polish use it.
+pub(super) trait Quencher<F: Float> {
+    /// L-BFGS from `x` within the box, `x` ending at the best point.
+    fn quench<P, B>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &mut [F],
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error>
+    where
+        P: SlicePotential<F> + ?Sized,
+        B: Sides<F> + ?Sized;
+}
+
+impl<F: Float, const D: usize, const M: usize> Quencher<F> for Lbfgs<F, D, M> {
+    fn quench<P, B>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &mut [F],
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error>
+    where
+        P: SlicePotential<F> + ?Sized,
+        B: Sides<F> + ?Sized,
+    {
+        self.minimize_slices(potential, domain, x, settings)
+    }
+}
+
+impl<F: Float> Quencher<F> for LbfgsIn<'_, F> {
+    fn quench<P, B>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &mut [F],
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error>
+    where
+        P: SlicePotential<F> + ?Sized,
+        B: Sides<F> + ?Sized,
+    {
+        self.minimize_in(potential, domain, x, settings)
+    }
+}
+
+/// One point at a time through the batch seam: a batch of one.
+pub(super) struct One<'a, P: ?Sized>(pub(super) &'a P);
+
+impl<F: Float, P: BatchPotential<F> + ?Sized> SlicePotential<F> for One<'_, P> {
+    #[inline]
+    fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
+        let mut value = [F::INFINITY];
+        self.0
+            .values_and_gradients(x.len(), x, grad, &mut value, &[false]);
+        value[0]
+    }
+}
+
+/// What the observer sees: the run's state at a call.
+pub(super) struct Seen<'a, F> {
+    pub(super) evaluations: u64,
+    pub(super) rounds: u64,
+    pub(super) x: &'a [F],
+    pub(super) value: F,
+    pub(super) improved: bool,
+    pub(super) inverse_temperature: F,
+    pub(super) diverged_chains: usize,
+}
+
+/// What a run found, but its point (in [`Buffers::best`]).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Found<F> {
+    pub(super) value: F,
+    pub(super) evaluations: u64,
+    pub(super) rounds: u64,
+    pub(super) step: F,
+    pub(super) inverse_temperature: F,
+    pub(super) termination: Termination,
+    pub(super) diverged_chains: usize,
+    pub(super) chains: usize,
+}
+
+/// The evaluations and the best point: what every evaluation updates.
+struct Tally<'a, F, P: ?Sized, B: ?Sized, L: ?Sized> {
     auto: &'a Auto<F>,
-    potential: &'a P,
-    domain: Interval<F>,
+    potential: One<'a, P>,
+    domain: &'a B,
+    lbfgs: &'a mut L,
     budget: u64,
-    chains: &'a mut [Chain<F, D, R>],
-    lbfgs: &'a mut Lbfgs<F, D, M>,
-    observer: O,
     evaluations: u64,
     rounds: u64,
     /// The best feasible point evaluated, and whether a converged L-BFGS
     /// ended there.
-    best: Best<F, D>,
+    best: &'a mut [F],
+    best_value: F,
     polished: bool,
-    /// The best value at the observer's last call.
-    seen: Option<F>,
-    /// The measured settings: the ladder's centre and the step.
-    a0: F,
-    h: F,
-    /// Rounds since the best last fell.
-    stalled: u64,
 }
 
-impl<'a, F, P, R, const D: usize, const M: usize, O> Run<'a, F, P, R, D, M, O>
+impl<F, P, B, L> Tally<'_, F, P, B, L>
 where
     F: Float,
-    P: Potential<F, D> + ?Sized,
-    R: Rng + SeedableRng + 'static,
-    O: FnMut(&AutoProgress<'_, F, D>) -> ControlFlow<()>,
+    P: BatchPotential<F> + ?Sized,
+    B: Sides<F> + ?Sized,
+    L: Quencher<F> + ?Sized,
 {
-    /// Draws every chain's initial point uniformly in the box (redrawn
-    /// where infeasible, up to [`START_TRIES`], within the budget).
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn start(
-        auto: &'a Auto<F>,
-        potential: &'a P,
-        domain: Interval<F>,
-        budget: u64,
-        seed: u64,
-        chains: &'a mut [Chain<F, D, R>],
-        lbfgs: &'a mut Lbfgs<F, D, M>,
-        observer: O,
-    ) -> Result<Self, Error> {
-        let n = chains.len() as u64;
-        let mut spare = budget - n;
-        let mut evaluations = 0;
-        let mut best = Best {
-            x: [F::ZERO; D],
-            value: F::INFINITY,
-            iteration: 0,
-        };
-        let mut start = domain;
-        for (c, chain) in chains.iter_mut().enumerate() {
-            chain.rng = R::seed_from_u64(chain_seed(seed, c as u64));
-            chain.y = [F::ZERO; D];
-            chain.diverged = false;
-            draw_start(
-                c,
-                chain,
-                potential,
-                &mut spare,
-                &mut evaluations,
-                |rng, x, _| start.initial_point(c, rng, x),
-            )?;
-            chain.best = Best {
-                x: chain.x,
-                value: chain.value,
-                iteration: 0,
-            };
-            if chain.value < best.value {
-                best = chain.best;
-            }
-        }
-        Ok(Self {
-            auto,
-            potential,
-            domain,
-            budget,
-            chains,
-            lbfgs,
-            observer,
-            evaluations,
-            rounds: 0,
-            best,
-            polished: false,
-            seen: None,
-            a0: F::ONE,
-            h: F::ONE,
-            stalled: 0,
-        })
+    fn remaining(&self) -> u64 {
+        self.budget - self.evaluations
     }
 
-    /// The method: quench the initial points, measure the settings, then
-    /// rounds until the budget is spent, then polish the best point.
-    pub(super) fn solve(&mut self) -> Flow {
-        self.observe()?;
-        if self.auto.parts.quenches {
-            for c in 0..self.chains.len() {
-                let x = self.chains[c].x;
-                if let Some((x, value)) = self.quench(c, x)? {
-                    self.settle(c, x, value);
-                }
-                self.observe()?;
-            }
-        }
-        self.measure()?;
-        while self.remaining() > self.reserve() {
-            let before = self.evaluations;
-            self.round()?;
-            if self.evaluations == before {
-                // Nothing left that moves a chain (every part switched off).
-                break;
-            }
-        }
-        self.polish()
-    }
-
-    /// The ladder's centre from the basins' values, the step from the
-    /// curvature along a random direction at up to [`PROBES`] basins (one
-    /// evaluation each).
-    fn measure(&mut self) -> Flow {
-        let n = self.chains.len();
-        let m = n.min(64);
-        let mut values = [F::ZERO; 64];
-        for (i, v) in values.iter_mut().take(m).enumerate() {
-            *v = self.chains[i * n / m].value;
-        }
-        self.a0 = measure::centre(&mut values[..m]);
-        let probes = n.min(PROBES);
-        let width = self.domain.hi() - self.domain.lo();
-        let delta = F::from_f64(1e-4) * width;
-        let mut curvature = [F::ZERO; PROBES];
-        for (i, k) in curvature.iter_mut().take(probes).enumerate() {
-            let c = i * n / probes;
-            let v: [F; D] = moves::direction(&mut self.chains[c].rng);
-            let base = self.chains[c].x;
-            let mut g0 = [F::ZERO; D];
-            let mut g1 = [F::ZERO; D];
-            let mut x = base;
-            for (xi, vi) in x.iter_mut().zip(v) {
-                *xi += delta * vi;
-            }
-            self.domain.project(&mut x);
-            // Both ends evaluated: the basin's gradient is not stored.
-            let (Some(_), Some(_)) = (self.evaluate(&base, &mut g0)?, self.evaluate(&x, &mut g1)?)
-            else {
-                continue;
-            };
-            let mut dx2 = F::ZERO;
-            let mut dg = F::ZERO;
-            for j in 0..D {
-                let dx = x[j] - base[j];
-                dx2 += dx * dx;
-                dg += (g1[j] - g0[j]) * dx;
-            }
-            *k = if dx2 > F::ZERO {
-                (dg / dx2).abs()
-            } else {
-                F::ZERO
-            };
-        }
-        self.h = measure::step(&mut curvature[..probes], self.auto.step_scale, width);
-        self.observe()
-    }
-
-    /// One round: every chain proposes and accepts or rejects a new basin,
-    /// then the ladder's neighbours exchange, then a stalled run restarts
-    /// its hotter half.
-    fn round(&mut self) -> Flow {
-        let before = self.best.value;
-        let n = self.chains.len();
-        for c in 0..n {
-            if self.remaining() <= self.reserve() {
-                return ControlFlow::Continue(());
-            }
-            self.propose(c)?;
-            self.observe()?;
-        }
-        self.rounds += 1;
-        self.exchange();
-        self.stalled = if self.best.value < before {
-            0
-        } else {
-            self.stalled + 1
-        };
-        if self.auto.parts.global_moves && self.stalled >= self.auto.stall {
-            self.stalled = 0;
-            self.restart()?;
-        }
-        ControlFlow::Continue(())
-    }
-
-    /// Chain `c` leaves its basin (global move, then sampling), quenches,
-    /// and accepts the new basin by Metropolis at its temperature.
-    fn propose(&mut self, c: usize) -> Flow {
-        let n = self.chains.len();
-        let parts = self.auto.parts;
-        let a = self.rung(c);
-        let mut x = self.chains[c].x;
-        let mut y = self.chains[c].y;
-        let mut grad = [F::ZERO; D];
-        let mut value = self.chains[c].value;
-        let mut known = true;
-        let jump = parts.global_moves
-            && n >= 3
-            && (parts.sampling == Sampling::Off
-                || moves::chance(&mut self.chains[c].rng, self.auto.jump_rate));
-        if jump {
-            let rng = &mut self.chains[c].rng;
-            let i = (c + 1 + moves::index(rng, n - 1)) % n;
-            let mut j = (c + 1 + moves::index(rng, n - 2)) % n;
-            if j == i {
-                j = (i + 1) % n;
-                if j == c {
-                    j = (j + 1) % n;
-                }
-            }
-            let (p, q) = (self.chains[i].x, self.chains[j].x);
-            moves::differential(&mut x, &p, &q, self.domain, &mut self.chains[c].rng);
-            known = false;
-        }
-        let kernel = match Hrla::paper(self.h).and_then(|s| s.at(a)) {
-            Ok(k) => k,
-            Err(e) => return ControlFlow::Break(Stop::Failed(e)),
-        };
-        match parts.sampling {
-            Sampling::Langevin => {
-                if !known {
-                    match self.evaluate(&x, &mut grad)? {
-                        Some(v) => value = v,
-                        None => return self.reject(c),
-                    }
-                }
-                for _ in 0..self.auto.steps {
-                    crate::sampler::Kernel::step(
-                        &kernel,
-                        &mut x,
-                        &mut y,
-                        &grad,
-                        &mut self.chains[c].rng,
-                    );
-                    self.domain.confine(&mut x, &mut y);
-                    match self.evaluate(&x, &mut grad)? {
-                        Some(v) => value = v,
-                        None => return self.reject(c),
-                    }
-                    self.observe()?;
-                }
-                known = true;
-            }
-            Sampling::Jump => {
-                moves::free(
-                    &kernel,
-                    &mut x,
-                    &mut y,
-                    self.auto.steps,
-                    self.domain,
-                    &mut self.chains[c].rng,
-                );
-                known = false;
-            }
-            Sampling::Off => {}
-        }
-        self.chains[c].y = y;
-        if parts.quenches {
-            match self.quench(c, x)? {
-                Some((q, v)) => {
-                    x = q;
-                    value = v;
-                    grad = [F::ZERO; D];
-                }
-                None => return self.reject(c),
-            }
-        } else if !known {
-            match self.evaluate(&x, &mut grad)? {
-                Some(v) => value = v,
-                None => return self.reject(c),
-            }
-        }
-        self.chains[c].diverged = false;
-        let old = self.chains[c].value;
-        let accept = value <= old || {
-            let p = (-a * (value - old)).exp();
-            moves::chance(&mut self.chains[c].rng, p)
-        };
-        if accept {
-            let chain = &mut self.chains[c];
-            chain.x = x;
-            chain.value = value;
-            chain.grad = grad;
-        }
-        ControlFlow::Continue(())
-    }
-
-    /// A proposal that met an infeasible point: the chain stays in its
-    /// basin, at rest.
-    fn reject(&mut self, c: usize) -> Flow {
-        self.chains[c].diverged = true;
-        self.chains[c].y = [F::ZERO; D];
-        ControlFlow::Continue(())
-    }
-
-    /// Replica exchange: each pair of neighbouring rungs, hottest first,
-    /// swaps basins with probability `min(1, exp((a_{c+1} - a_c)(U_{c+1} - U_c)))`.
-    fn exchange(&mut self) {
-        let n = self.chains.len();
-        for c in 0..n.saturating_sub(1) {
-            let (a, b) = (self.rung(c), self.rung(c + 1));
-            let delta = (b - a) * (self.chains[c + 1].value - self.chains[c].value);
-            let swap = delta >= F::ZERO || moves::chance(&mut self.chains[c].rng, delta.exp());
-            if swap {
-                let (lo, hi) = self.chains.split_at_mut(c + 1);
-                let (p, q) = (&mut lo[c], &mut hi[0]);
-                core::mem::swap(&mut p.x, &mut q.x);
-                core::mem::swap(&mut p.value, &mut q.value);
-                core::mem::swap(&mut p.grad, &mut q.grad);
-                core::mem::swap(&mut p.y, &mut q.y);
-            }
-        }
-    }
-
-    /// The hotter half of the ladder starts again uniformly in the box.
-    fn restart(&mut self) -> Flow {
-        for c in 0..self.chains.len() / 2 {
-            if self.remaining() <= self.reserve() {
-                break;
-            }
-            let mut x = [F::ZERO; D];
-            moves::anywhere(self.domain, &mut self.chains[c].rng, &mut x);
-            let mut grad = [F::ZERO; D];
-            let Some(mut value) = self.evaluate(&x, &mut grad)? else {
-                continue;
-            };
-            if self.auto.parts.quenches {
-                let Some((q, v)) = self.quench(c, x)? else {
-                    continue;
-                };
-                (x, value, grad) = (q, v, [F::ZERO; D]);
-            }
-            self.settle(c, x, value);
-            self.chains[c].grad = grad;
-            self.observe()?;
-        }
-        ControlFlow::Continue(())
-    }
-
-    /// The best point polished by L-BFGS until it converges, if no
-    /// converged quench ended there, with what is left of the budget.
-    fn polish(&mut self) -> Flow {
-        if self.polished || self.remaining() == 0 {
-            return ControlFlow::Continue(());
-        }
-        let x = self.best.x;
-        let settings = PolishSettings::new(self.remaining());
-        let mut y = x;
-        match self
-            .lbfgs
-            .minimize_in(self.potential, &self.domain, &mut y, settings)
-        {
-            Ok(done) => {
-                self.evaluations += done.evaluations;
-                self.record(&y, done.value, done.end != PolishEnd::Budget);
-            }
-            Err(Error::NotFinite { .. }) => self.evaluations += 1,
-            Err(Error::UnboundedBelow { value, .. }) => {
-                return ControlFlow::Break(Stop::Failed(Error::UnboundedBelow {
-                    chain: self.best_chain(),
-                    value,
-                }));
-            }
-            Err(e) => return ControlFlow::Break(Stop::Failed(e)),
-        }
-        self.observe()
-    }
-
-    /// L-BFGS from `x` for chain `c`, within [`Auto::quench`] and the
-    /// budget: its end and value, or `None` where `x` is infeasible.
-    fn quench(&mut self, c: usize, mut x: [F; D]) -> ControlFlow<Stop, Option<([F; D], F)>> {
-        let cap = self.auto.quench.min(self.remaining());
-        if cap == 0 {
-            return ControlFlow::Break(Stop::Budget);
-        }
-        match self.lbfgs.minimize_in(
-            self.potential,
-            &self.domain,
-            &mut x,
-            PolishSettings::new(cap),
-        ) {
-            Ok(done) => {
-                self.evaluations += done.evaluations;
-                self.record(&x, done.value, done.end != PolishEnd::Budget);
-                ControlFlow::Continue(Some((x, done.value)))
-            }
-            // Infeasible where it started: one evaluation spent.
-            Err(Error::NotFinite { .. }) => {
-                self.evaluations += 1;
-                ControlFlow::Continue(None)
-            }
-            Err(Error::UnboundedBelow { value, .. }) => {
-                ControlFlow::Break(Stop::Failed(Error::UnboundedBelow { chain: c, value }))
-            }
-            Err(e) => ControlFlow::Break(Stop::Failed(e)),
-        }
+    /// Evaluations kept for the final polish while the best point is not
+    /// a converged minimum: 5% of the budget, whatever a quench may take
+    /// (a quench cut short is why the best is not converged).
+    fn reserve(&self) -> u64 {
+        if self.polished { 0 } else { self.budget / 20 }
     }
 
     /// One evaluation at `x` within the budget: its value where feasible,
     /// `None` where not.
-    fn evaluate(&mut self, x: &[F; D], grad: &mut [F; D]) -> ControlFlow<Stop, Option<F>> {
+    fn evaluate(&mut self, x: &[F], grad: &mut [F]) -> ControlFlow<Stop, Option<F>> {
         if self.remaining() == 0 {
             return ControlFlow::Break(Stop::Budget);
         }
@@ -462,84 +339,499 @@ where
         }
     }
 
-    /// A feasible point evaluated: the new best if it is lower.
-    fn record(&mut self, x: &[F; D], value: F, converged: bool) {
-        if value < self.best.value {
-            self.best = Best {
-                x: *x,
-                value,
-                iteration: self.rounds,
-            };
-            self.polished = converged;
-        } else if value == self.best.value && converged && *x == self.best.x {
-            self.polished = true;
+    /// L-BFGS from `x` (in place) for chain `c`, within [`Auto::quench`]
+    /// and the budget: the value at its end, or `None` where `x` is
+    /// infeasible.
+    fn quench(&mut self, c: usize, x: &mut [F]) -> ControlFlow<Stop, Option<F>> {
+        let cap = self.auto.quench.min(self.remaining());
+        if cap == 0 {
+            return ControlFlow::Break(Stop::Budget);
+        }
+        match self
+            .lbfgs
+            .quench(&self.potential, self.domain, x, PolishSettings::new(cap))
+        {
+            Ok(done) => {
+                self.evaluations += done.evaluations;
+                self.record(x, done.value, done.end != PolishEnd::Budget);
+                ControlFlow::Continue(Some(done.value))
+            }
+            // Infeasible where it started: one evaluation spent.
+            Err(Error::NotFinite { .. }) => {
+                self.evaluations += 1;
+                ControlFlow::Continue(None)
+            }
+            Err(Error::UnboundedBelow { value, .. }) => {
+                ControlFlow::Break(Stop::Failed(Error::UnboundedBelow { chain: c, value }))
+            }
+            Err(e) => ControlFlow::Break(Stop::Failed(e)),
         }
     }
 
-    /// Chain `c` takes the basin `(x, value)`, at rest.
-    fn settle(&mut self, c: usize, x: [F; D], value: F) {
-        let chain = &mut self.chains[c];
-        chain.x = x;
-        chain.value = value;
-        chain.grad = [F::ZERO; D];
-        chain.y = [F::ZERO; D];
-        chain.diverged = false;
+    /// A feasible point evaluated: the new best if it is lower.
+    fn record(&mut self, x: &[F], value: F, converged: bool) {
+        if value < self.best_value {
+            self.best.copy_from_slice(x);
+            self.best_value = value;
+            self.polished = converged;
+        } else if value == self.best_value && converged && *x == *self.best {
+            self.polished = true;
+        }
+    }
+}
+
+/// A run in progress. Each chain's `x`, `value` and `grad` hold its basin
+/// (the quenched point; the gradient there is taken as zero, its value at
+/// a converged minimum), `y` the momentum its last trajectory ended with,
+/// `diverged` whether its last proposal met an infeasible point.
+pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
+    tally: Tally<'a, F, P, B, L>,
+    chains: &'a mut S,
+    x: &'a mut [F],
+    y: &'a mut [F],
+    grad: &'a mut [F],
+    v: &'a mut [F],
+    base: &'a mut [F],
+    g0: &'a mut [F],
+    observer: O,
+    /// The best value at the observer's last call.
+    seen: Option<F>,
+    /// The measured settings: the ladder's centre and the step.
+    a0: F,
+    h: F,
+    /// Rounds since the best last fell.
+    stalled: u64,
+}
+
+impl<'a, F, P, B, S, L, O> Run<'a, F, P, B, S, L, O>
+where
+    F: Float,
+    P: BatchPotential<F> + ?Sized,
+    B: Sides<F> + ?Sized,
+    S: Chains<F> + ?Sized,
+    S::Rng: Rng + SeedableRng + 'static,
+    L: Quencher<F> + ?Sized,
+    O: FnMut(&Seen<'_, F>) -> ControlFlow<()>,
+{
+    /// Draws every chain's initial point uniformly in the box (redrawn
+    /// where infeasible, up to [`START_TRIES`](crate::START_TRIES), within
+    /// the budget). `budget` is at least twice the number of chains, and
+    /// every slice has the run's dimension.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn start(
+        auto: &'a Auto<F>,
+        potential: &'a P,
+        domain: &'a B,
+        budget: u64,
+        seed: u64,
+        chains: &'a mut S,
+        lbfgs: &'a mut L,
+        buffers: Buffers<'a, F>,
+        observer: O,
+    ) -> Result<Self, Error> {
+        let n = chains.len();
+        let mut spare = budget - n as u64;
+        let mut evaluations = 0;
+        let Buffers {
+            best,
+            x,
+            y,
+            grad,
+            v,
+            base,
+            g0,
+        } = buffers;
+        let mut best_value = F::INFINITY;
+        let one = One(potential);
+        for c in 0..n {
+            let chain = chains.chain(c);
+            *chain.rng = S::Rng::seed_from_u64(chain_seed(seed, c as u64));
+            chain.y.fill(F::ZERO);
+            *chain.diverged = false;
+            *chain.value = draw_point(
+                c,
+                chain.x,
+                chain.grad,
+                chain.rng,
+                &one,
+                &mut spare,
+                &mut evaluations,
+                |rng, x| domain.uniform(rng, x),
+            )?;
+            if *chain.value < best_value {
+                best_value = *chain.value;
+                best.copy_from_slice(chain.x);
+            }
+            chains.started(c);
+        }
+        Ok(Self {
+            tally: Tally {
+                auto,
+                potential: one,
+                domain,
+                lbfgs,
+                budget,
+                evaluations,
+                rounds: 0,
+                best,
+                best_value,
+                polished: false,
+            },
+            chains,
+            x,
+            y,
+            grad,
+            v,
+            base,
+            g0,
+            observer,
+            seen: None,
+            a0: F::ONE,
+            h: F::ONE,
+            stalled: 0,
+        })
+    }
+
+    /// The method: quench the initial points, measure the settings, then
+    /// rounds until the budget is spent, then polish the best point.
+    pub(super) fn solve(&mut self) -> Flow {
+        self.observe()?;
+        if self.tally.auto.parts.quenches {
+            for c in 0..self.chains.len() {
+                self.x.copy_from_slice(self.chains.x(c));
+                if let Some(value) = self.tally.quench(c, self.x)? {
+                    settle(self.chains.chain(c), self.x, value);
+                }
+                self.observe()?;
+            }
+        }
+        self.measure()?;
+        while self.tally.remaining() > self.tally.reserve() {
+            let before = self.tally.evaluations;
+            self.round()?;
+            if self.tally.evaluations == before {
+                // Nothing left that moves a chain (every part switched off).
+                break;
+            }
+        }
+        self.polish()
+    }
+
+    /// The ladder's centre from the basins' values, the step from the
+    /// curvature along a random direction at up to [`PROBES`] basins (one
+    /// evaluation each), each coordinate displaced in proportion to its
+    /// side of the box.
+    fn measure(&mut self) -> Flow {
+        let n = self.chains.len();
+        let m = n.min(64);
+        let mut values = [F::ZERO; 64];
+        for (i, v) in values.iter_mut().take(m).enumerate() {
+            *v = self.chains.value(i * n / m);
+        }
+        self.a0 = measure::centre(&mut values[..m]);
+        let probes = n.min(PROBES);
+        let domain = self.tally.domain;
+        let delta = F::from_f64(1e-4);
+        let mut curvature = [F::ZERO; PROBES];
+        for (i, k) in curvature.iter_mut().take(probes).enumerate() {
+            let c = i * n / probes;
+            moves::direction(self.chains.chain(c).rng, self.v);
+            self.base.copy_from_slice(self.chains.x(c));
+            self.x.copy_from_slice(self.base);
+            for (j, (xi, &vi)) in self.x.iter_mut().zip(&*self.v).enumerate() {
+                let (lo, hi) = domain.side(j);
+                *xi += delta * (hi - lo) * vi;
+            }
+            domain.project(self.x);
+            // Both ends evaluated: the basin's gradient is not stored.
+            let (Some(_), Some(_)) = (
+                self.tally.evaluate(self.base, self.g0)?,
+                self.tally.evaluate(self.x, self.grad)?,
+            ) else {
+                continue;
+            };
+            let mut dx2 = F::ZERO;
+            let mut dg = F::ZERO;
+            for j in 0..self.x.len() {
+                let dx = self.x[j] - self.base[j];
+                dx2 += dx * dx;
+                dg += (self.grad[j] - self.g0[j]) * dx;
+            }
+            *k = if dx2 > F::ZERO {
+                (dg / dx2).abs()
+            } else {
+                F::ZERO
+            };
+        }
+        // The step's cap: a tenth of the narrowest side.
+        let mut width = F::INFINITY;
+        for j in 0..self.x.len() {
+            let (lo, hi) = domain.side(j);
+            if hi - lo < width {
+                width = hi - lo;
+            }
+        }
+        self.h = measure::step(&mut curvature[..probes], self.tally.auto.step_scale, width);
+        self.observe()
+    }
+
+    /// One round: every chain proposes and accepts or rejects a new basin,
+    /// then the ladder's neighbours exchange, then a stalled run restarts
+    /// its hotter half.
+    fn round(&mut self) -> Flow {
+        let before = self.tally.best_value;
+        let n = self.chains.len();
+        for c in 0..n {
+            if self.tally.remaining() <= self.tally.reserve() {
+                return ControlFlow::Continue(());
+            }
+            self.propose(c)?;
+            self.observe()?;
+        }
+        self.tally.rounds += 1;
+        self.exchange();
+        self.stalled = if self.tally.best_value < before {
+            0
+        } else {
+            self.stalled + 1
+        };
+        let auto = self.tally.auto;
+        if auto.parts.global_moves && self.stalled >= auto.stall {
+            self.stalled = 0;
+            self.restart()?;
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// Chain `c` leaves its basin (global move, then sampling), quenches,
+    /// and accepts the new basin by Metropolis at its temperature.
+    fn propose(&mut self, c: usize) -> Flow {
+        let n = self.chains.len();
+        let auto = self.tally.auto;
+        let domain = self.tally.domain;
+        let parts = auto.parts;
+        let a = self.rung(c);
+        self.x.copy_from_slice(self.chains.x(c));
+        self.y.copy_from_slice(self.chains.chain(c).y);
+        self.grad.fill(F::ZERO);
+        let mut value = self.chains.value(c);
+        let mut known = true;
+        let jump = parts.global_moves
+            && n >= 3
+            && (parts.sampling == Sampling::Off
+                || moves::chance(self.chains.chain(c).rng, auto.jump_rate));
+        if jump {
+            let rng = self.chains.chain(c).rng;
+            let i = (c + 1 + moves::index(rng, n - 1)) % n;
+            let mut j = (c + 1 + moves::index(rng, n - 2)) % n;
+            if j == i {
+                j = (i + 1) % n;
+                if j == c {
+                    j = (j + 1) % n;
+                }
+            }
+            let gamma = moves::gamma(rng);
+            moves::differential(
+                self.x,
+                self.chains.x(i),
+                self.chains.x(j),
+                gamma,
+                domain,
+                self.g0,
+            );
+            known = false;
+        }
+        let kernel = match Hrla::paper(self.h).and_then(|s| s.at(a)) {
+            Ok(k) => k,
+            Err(e) => return ControlFlow::Break(Stop::Failed(e)),
+        };
+        match parts.sampling {
+            Sampling::Langevin => {
+                if !known {
+                    match self.tally.evaluate(self.x, self.grad)? {
+                        Some(v) => value = v,
+                        None => return self.reject(c),
+                    }
+                }
+                for _ in 0..auto.steps {
+                    kernel.step_slice(self.x, self.y, self.grad, self.chains.chain(c).rng);
+                    domain.confine(self.x, self.y);
+                    match self.tally.evaluate(self.x, self.grad)? {
+                        Some(v) => value = v,
+                        None => return self.reject(c),
+                    }
+                    self.observe()?;
+                }
+                known = true;
+            }
+            Sampling::Jump => {
+                moves::free(
+                    &kernel,
+                    self.x,
+                    self.y,
+                    self.g0,
+                    auto.steps,
+                    domain,
+                    self.chains.chain(c).rng,
+                );
+                known = false;
+            }
+            Sampling::Off => {}
+        }
+        self.chains.chain(c).y.copy_from_slice(self.y);
+        if parts.quenches {
+            match self.tally.quench(c, self.x)? {
+                Some(v) => {
+                    value = v;
+                    self.grad.fill(F::ZERO);
+                }
+                None => return self.reject(c),
+            }
+        } else if !known {
+            match self.tally.evaluate(self.x, self.grad)? {
+                Some(v) => value = v,
+                None => return self.reject(c),
+            }
+        }
+        let chain = self.chains.chain(c);
+        *chain.diverged = false;
+        let old = *chain.value;
+        let accept = value <= old || {
+            let p = (-a * (value - old)).exp();
+            moves::chance(chain.rng, p)
+        };
+        if accept {
+            chain.x.copy_from_slice(self.x);
+            *chain.value = value;
+            chain.grad.copy_from_slice(self.grad);
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// A proposal that met an infeasible point: the chain stays in its
+    /// basin, at rest.
+    fn reject(&mut self, c: usize) -> Flow {
+        let chain = self.chains.chain(c);
+        *chain.diverged = true;
+        chain.y.fill(F::ZERO);
+        ControlFlow::Continue(())
+    }
+
+    /// Replica exchange: each pair of neighbouring rungs, hottest first,
+    /// swaps basins with probability `min(1, exp((a_{c+1} - a_c)(U_{c+1} - U_c)))`.
+    fn exchange(&mut self) {
+        let n = self.chains.len();
+        for c in 0..n.saturating_sub(1) {
+            let (a, b) = (self.rung(c), self.rung(c + 1));
+            let delta = (b - a) * (self.chains.value(c + 1) - self.chains.value(c));
+            let swap = delta >= F::ZERO || moves::chance(self.chains.chain(c).rng, delta.exp());
+            if swap {
+                self.chains.swap(c);
+            }
+        }
+    }
+
+    /// The hotter half of the ladder starts again uniformly in the box.
+    fn restart(&mut self) -> Flow {
+        let domain = self.tally.domain;
+        for c in 0..self.chains.len() / 2 {
+            if self.tally.remaining() <= self.tally.reserve() {
+                break;
+            }
+            domain.uniform(self.chains.chain(c).rng, self.x);
+            let Some(mut value) = self.tally.evaluate(self.x, self.grad)? else {
+                continue;
+            };
+            if self.tally.auto.parts.quenches {
+                let Some(v) = self.tally.quench(c, self.x)? else {
+                    continue;
+                };
+                value = v;
+                self.grad.fill(F::ZERO);
+            }
+            let chain = self.chains.chain(c);
+            settle(chain, self.x, value);
+            self.chains.chain(c).grad.copy_from_slice(self.grad);
+            self.observe()?;
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// The best point polished by L-BFGS until it converges, if no
+    /// converged quench ended there, with what is left of the budget.
+    fn polish(&mut self) -> Flow {
+        let tally = &mut self.tally;
+        if tally.polished || tally.remaining() == 0 {
+            return ControlFlow::Continue(());
+        }
+        self.x.copy_from_slice(tally.best);
+        let settings = PolishSettings::new(tally.remaining());
+        match tally
+            .lbfgs
+            .quench(&tally.potential, tally.domain, self.x, settings)
+        {
+            Ok(done) => {
+                tally.evaluations += done.evaluations;
+                tally.record(self.x, done.value, done.end != PolishEnd::Budget);
+            }
+            Err(Error::NotFinite { .. }) => tally.evaluations += 1,
+            Err(Error::UnboundedBelow { value, .. }) => {
+                return ControlFlow::Break(Stop::Failed(Error::UnboundedBelow {
+                    chain: self.best_chain(),
+                    value,
+                }));
+            }
+            Err(e) => return ControlFlow::Break(Stop::Failed(e)),
+        }
+        self.observe()
     }
 
     fn rung(&self, c: usize) -> F {
-        measure::rung(self.a0, self.auto.ladder, c, self.chains.len())
-    }
-
-    fn remaining(&self) -> u64 {
-        self.budget - self.evaluations
-    }
-
-    /// Evaluations kept for the final polish while the best point is not
-    /// a converged minimum: 5% of the budget, whatever a quench may take
-    /// (a quench cut short is why the best is not converged).
-    fn reserve(&self) -> u64 {
-        if self.polished { 0 } else { self.budget / 20 }
+        measure::rung(self.a0, self.tally.auto.ladder, c, self.chains.len())
     }
 
     fn best_chain(&self) -> usize {
         (0..self.chains.len())
             .min_by(|&i, &j| {
-                self.chains[i]
-                    .value
-                    .partial_cmp(&self.chains[j].value)
+                self.chains
+                    .value(i)
+                    .partial_cmp(&self.chains.value(j))
                     .unwrap_or(core::cmp::Ordering::Equal)
             })
             .unwrap_or(0)
     }
 
     fn diverged(&self) -> usize {
-        self.chains.iter().filter(|c| c.diverged).count()
+        (0..self.chains.len())
+            .filter(|&c| self.chains.diverged(c))
+            .count()
     }
 
     fn observe(&mut self) -> Flow {
-        let improved = self.seen.is_none_or(|v| self.best.value < v);
-        self.seen = Some(self.best.value);
-        let progress = AutoProgress {
-            evaluations: self.evaluations,
-            rounds: self.rounds,
-            x: &self.best.x,
-            value: self.best.value,
+        let value = self.tally.best_value;
+        let improved = self.seen.is_none_or(|v| value < v);
+        self.seen = Some(value);
+        let seen = Seen {
+            evaluations: self.tally.evaluations,
+            rounds: self.tally.rounds,
+            x: self.tally.best,
+            value,
             improved,
             inverse_temperature: self.rung(self.chains.len() - 1),
             diverged_chains: self.diverged(),
         };
-        match (self.observer)(&progress) {
+        match (self.observer)(&seen) {
             ControlFlow::Continue(()) => ControlFlow::Continue(()),
             ControlFlow::Break(()) => ControlFlow::Break(Stop::Observer),
         }
     }
 
-    pub(super) fn solution(&self, termination: Termination) -> Solution<F, D> {
-        Solution {
-            x: self.best.x,
-            value: self.best.value,
-            evaluations: self.evaluations,
-            rounds: self.rounds,
+    /// The run's outcome, ended for `termination`.
+    pub(super) fn found(&self, termination: Termination) -> Found<F> {
+        Found {
+            value: self.tally.best_value,
+            evaluations: self.tally.evaluations,
+            rounds: self.tally.rounds,
             step: self.h,
             inverse_temperature: measure::clamp(self.rung(self.chains.len() - 1), A_RANGE),
             termination,
@@ -547,4 +839,13 @@ where
             chains: self.chains.len(),
         }
     }
+}
+
+/// Chain `c` takes the basin `(x, value)`, at rest.
+fn settle<F: Float, R>(chain: ChainMut<'_, F, R>, x: &[F], value: F) {
+    chain.x.copy_from_slice(x);
+    *chain.value = value;
+    chain.grad.fill(F::ZERO);
+    chain.y.fill(F::ZERO);
+    *chain.diverged = false;
 }

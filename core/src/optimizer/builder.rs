@@ -13,7 +13,8 @@ use crate::dim::Dim;
 use crate::domain::{Domain, SliceDomain, Unbounded};
 use crate::error::{Error, floor};
 use crate::float::Float;
-use crate::potential::{BatchPotential, Potential};
+use crate::polish::Arrays;
+use crate::potential::{BatchPotential, Potential, SlicePotential};
 use crate::sampler::Sampler;
 use crate::schedule::Schedule;
 use crate::start::{SliceStart, Start};
@@ -407,9 +408,7 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B> Builder<F, P, S, C, St, 
 
 /// Draws chain `c`'s initial point with `place` (which writes `x` and `y`
 /// from the chain's generator) and evaluates it, drawing again where the
-/// point is infeasible: up to [`START_TRIES`] points, each counted in
-/// `evaluations`, the redraws within `spare`. A point below the floor is
-/// [`Error::UnboundedBelow`], no feasible point [`Error::NonFiniteStart`].
+/// point is infeasible: [`draw_point`] on the chain's arrays.
 pub(crate) fn draw_start<F, P, R, const D: usize>(
     c: usize,
     chain: &mut Chain<F, D, R>,
@@ -422,17 +421,60 @@ where
     F: Float,
     P: Potential<F, D> + ?Sized,
 {
+    let Chain {
+        x,
+        y,
+        grad,
+        rng,
+        value,
+        ..
+    } = chain;
+    *value = draw_point(
+        c,
+        x,
+        grad,
+        rng,
+        &Arrays::<_, D>(potential),
+        spare,
+        evaluations,
+        |rng, x| {
+            if let Ok(x) = <&mut [F; D]>::try_from(x) {
+                place(rng, x, y);
+            }
+        },
+    )?;
+    Ok(())
+}
+
+/// Draws chain `c`'s initial point `x` with `place` (from the chain's
+/// generator) and evaluates it into `grad`, drawing again where the point
+/// is infeasible: up to [`START_TRIES`] points, each counted in
+/// `evaluations`, the redraws within `spare`. Its value, or
+/// [`Error::UnboundedBelow`] for a point below the floor,
+/// [`Error::NonFiniteStart`] when no point was feasible.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn draw_point<F, P, R>(
+    c: usize,
+    x: &mut [F],
+    grad: &mut [F],
+    rng: &mut R,
+    potential: &P,
+    spare: &mut u64,
+    evaluations: &mut u64,
+    mut place: impl FnMut(&mut R, &mut [F]),
+) -> Result<F, Error>
+where
+    F: Float,
+    P: SlicePotential<F> + ?Sized,
+{
     let mut tries = 0;
     loop {
-        place(&mut chain.rng, &mut chain.x, &mut chain.y);
-        let value = potential.value_and_gradient(&chain.x, &mut chain.grad);
+        place(rng, x);
+        let value = potential.value_and_gradient(x, grad);
         *evaluations += 1;
         tries += 1;
-        match judge(&chain.x, value, &chain.grad, floor()) {
-            Verdict::Feasible => {
-                chain.value = value;
-                return Ok(());
-            }
+        match judge(x, value, grad, floor()) {
+            Verdict::Feasible => return Ok(value),
             Verdict::Unbounded => {
                 return Err(Error::UnboundedBelow {
                     chain: c,

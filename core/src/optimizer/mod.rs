@@ -20,7 +20,7 @@ mod stream;
 mod sweep;
 
 pub use algorithm::Optimizer;
-pub(crate) use builder::draw_start;
+pub(crate) use builder::draw_point;
 pub use builder::{Builder, START_TRIES};
 pub use chain::{Best, Chain};
 pub use executor::{Executor, Serial, Split};

@@ -1,0 +1,129 @@
+//! The default solver's constants, and the parts of a round.
+
+use crate::error::Error;
+use crate::float::Float;
+
+/// The most HRLA steps per round [`Auto::steps`] may ask for.
+pub const MAX_STEPS: u64 = 10_000;
+
+/// How a round moves a chain away from its basin before the quench.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Sampling {
+    /// [`Auto::steps`] HRLA steps at the chain's temperature (the default).
+    Langevin,
+    /// The same dynamics with `∇U` set to zero: a Gaussian jump of the law
+    /// of [`Auto::steps`] gradient-free HRLA steps, evaluated once at its
+    /// end. What the gradient in the sampler adds is the difference.
+    Jump,
+    /// No move: the global moves alone leave the basin (every round, not
+    /// at [`Auto::jump_rate`]), and the evaluations go to more rounds.
+    Off,
+}
+
+/// The parts of a round (all on by default); switched off one at a time,
+/// they are the quality benchmark's ablations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Parts {
+    /// How a chain leaves its basin.
+    pub sampling: Sampling,
+    /// The differential moves and the restarts of a stalled run.
+    pub global_moves: bool,
+    /// The quench of every proposal (without it, the proposal's end point
+    /// is the chain's new state; the best point is still polished at the
+    /// end).
+    pub quenches: bool,
+}
+
+impl Default for Parts {
+    fn default() -> Self {
+        Self {
+            sampling: Sampling::Langevin,
+            global_moves: true,
+            quenches: true,
+        }
+    }
+}
+
+/// The default solver's constants (see the module docs of `auto` in the
+/// crate's source, and [`Auto::minimize`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Auto<F> {
+    /// HRLA steps per round, from the chain's basin (1 to [`MAX_STEPS`]).
+    pub steps: u64,
+    /// `h = step_scale / L`, `L` the typical curvature at the basins'
+    /// bottoms.
+    pub step_scale: F,
+    /// Half-width of the ladder of inverse temperatures in `ln a`: chain
+    /// `c` of `N` samples at `a_0 exp(ladder (2c / (N - 1) - 1))`.
+    pub ladder: F,
+    /// Evaluations per quench, at most (it ends earlier when it converges).
+    pub quench: u64,
+    /// Probability that a chain's round starts with a differential move.
+    pub jump_rate: F,
+    /// Rounds without a new best before the hotter half restarts.
+    pub stall: u64,
+    /// The parts of a round: all on, except in ablations.
+    pub parts: Parts,
+}
+
+impl<F: Float> Default for Auto<F> {
+    /// 10 HRLA steps per round at `h = 2 / L`, a ladder of `±3.5` in
+    /// `ln a`, quenches of up to 1000 evaluations, differential moves in
+    /// 10% of the rounds, restarts after 30 rounds without a new best.
+    fn default() -> Self {
+        Self {
+            steps: 10,
+            step_scale: F::TWO,
+            ladder: F::from_f64(3.5),
+            quench: 1000,
+            jump_rate: F::from_f64(0.1),
+            stall: 30,
+            parts: Parts::default(),
+        }
+    }
+}
+
+impl<F: Float> Auto<F> {
+    /// The constants checked: [`Error::Zero`], [`Error::OutOfRange`],
+    /// [`Error::NotPositive`] for a bad one.
+    pub(super) fn validate(&self) -> Result<(), Error> {
+        if self.quench == 0 {
+            return Err(Error::Zero { name: "quench" });
+        }
+        if self.stall == 0 {
+            return Err(Error::Zero { name: "stall" });
+        }
+        if self.steps == 0 && self.parts.sampling != Sampling::Off {
+            return Err(Error::Zero { name: "steps" });
+        }
+        // A jump's steps cost no evaluation: the budget would not bound them.
+        if self.steps > MAX_STEPS {
+            return Err(Error::OutOfRange {
+                name: "steps",
+                value: self.steps as f64,
+                min: 1.0,
+                max: MAX_STEPS as f64,
+            });
+        }
+        if !(self.step_scale.is_finite() && self.step_scale > F::ZERO) {
+            return Err(Error::NotPositive {
+                name: "step_scale",
+                value: self.step_scale.to_f64(),
+            });
+        }
+        // Zero is allowed: a ladder of one temperature.
+        if !(self.ladder.is_finite() && self.ladder >= F::ZERO) {
+            return Err(Error::NotPositive {
+                name: "ladder",
+                value: self.ladder.to_f64(),
+            });
+        }
+        if !(self.jump_rate >= F::ZERO && self.jump_rate <= F::ONE) {
+            return Err(Error::NotPositive {
+                name: "jump_rate (in [0, 1])",
+                value: self.jump_rate.to_f64(),
+            });
+        }
+        Ok(())
+    }
+}
