@@ -34,5 +34,6 @@ fn _hrla(m: &Bound<'_, PyModule>) -> PyResult<()> {
     engine::register(m)?;
     auto::register(m)?;
     m.add("DIMENSIONS", hrla_dyn::dims::SUPPORTED.to_vec())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
