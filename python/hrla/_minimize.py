@@ -92,8 +92,9 @@ def box_of(bounds: Any, dim: Optional[int] = None) -> Box:
         return bounds
     if hasattr(bounds, "lb") and hasattr(bounds, "ub"):
         lb, ub = _real_array(bounds.lb, "bounds.lb"), _real_array(bounds.ub, "bounds.ub")
-        if lb.ndim == 0 and ub.ndim == 0:
-            return Interval(float(lb), float(ub))
+        if lb.size == 1 and ub.size == 1:
+            # scipy keeps scalar sides as arrays of one.
+            return Interval(float(lb.reshape(())), float(ub.reshape(())))
         if lb.ndim > 1 or ub.ndim > 1:
             raise ValueError(f"bounds.lb and bounds.ub must be scalars or 1-D, got shapes {lb.shape} and {ub.shape}")
         try:
@@ -463,10 +464,11 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
     s = Auto().minimize(potential, box, budget, seed, chains=chains, dim=dim, observer=w if observed else None)
     termination = w.reason if s.termination == "Observer" and w.reason else s.termination
     x = np.asarray(s.x)
+    jac = _gradient(x, objective, builtin, fun)
     if watch["disp"]:
         w.show(s.rounds, s.evaluations, s.value, _clock())
     return _result(
-        x=x, fun=s.value, jac=_gradient(x, objective, builtin, fun), nfev=nfev(s.evaluations),
+        x=x, fun=s.value, jac=jac, nfev=nfev(s.evaluations),
         njev=objective.njev if objective is not None else s.evaluations, nit=s.rounds, termination=termination,
         diverged_chains=s.diverged_chains, chains=s.chains, method="auto", seed=seed, step=s.step,
         inverse_temperature=s.inverse_temperature,
@@ -531,10 +533,11 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
         if report.termination != "Observer":
             termination = report.termination
     x, value, _ = opt.best
+    jac = _gradient(x, objective, builtin, fun)
     if disp:
         w.show(report.iterations, opt.evaluations, value, _clock())
     return _result(
-        x=x, fun=value, jac=_gradient(x, objective, builtin, fun), nfev=nfev(opt.evaluations),
+        x=x, fun=value, jac=jac, nfev=nfev(opt.evaluations),
         njev=objective.njev if objective is not None else opt.evaluations, nit=report.iterations,
         termination=termination, diverged_chains=report.diverged_chains, chains=report.chains, method=method,
         seed=seed, message=_message(report.message, termination, report.termination),

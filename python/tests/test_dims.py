@@ -33,13 +33,16 @@ def test_optimizer_runs_any_dimension(d):
 def test_minimize_samplers_run_any_dimension(d):
     calls = []
 
-    def fun(X):
-        calls.append(X.shape)
-        return bowl(X)
+    def fun(x):
+        calls.append(x.shape)
+        u, g = bowl(x.T)
+        return u, g.T
 
     for method in ("hrla", "ula", "ola"):
         calls.clear()
-        r = hrla.minimize(fun, [(-1.0, 2.0)] * d, method=method, chains=2, steps=3, polish=0)
+        r = hrla.minimize(fun, [(-1.0, 2.0)] * d, jac=True, vectorized=True, method=method, chains=2, maxiter=3,
+                          polish=0)
         assert r.x.shape == (d,) and np.isfinite(r.fun)
-        # One call for the initial points, then one per step, each with every chain.
-        assert calls == [(2, d)] * 4
+        # One call for the initial points, then one per step, each with
+        # every chain (a column each).
+        assert calls == [(d, 2)] * 4
