@@ -57,7 +57,7 @@ views), :class:`Builder` (the Rust builder's chain of settings), and
 
 from __future__ import annotations
 
-from typing import Any, Callable, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Optional, Tuple, Union
 
 import numpy as np
 
@@ -120,7 +120,7 @@ class Builder:
 
     def __init__(self, potential: Fun, sampler: Any, schedule: Any, start: Any) -> None:
         self._args = (potential, sampler, schedule, start)
-        self._kw: dict = {}
+        self._kw: Dict[str, Any] = {}
 
     def _with(self, **kw: Any) -> "Builder":
         b = Builder(*self._args)

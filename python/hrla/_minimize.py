@@ -34,7 +34,7 @@ _REASONS = {
     "Callback": "the callback asked to stop",
 }
 
-_SAMPLERS = {"hrla": Hrla, "ula": Ula, "ola": Ola}
+_SAMPLERS: Dict[str, Any] = {"hrla": Hrla, "ula": Ula, "ola": Ola}
 #: The arguments only the samplers use.
 _SAMPLER_ONLY = ("h", "schedule", "start", "polish")
 
@@ -42,7 +42,7 @@ _SAMPLER_ONLY = ("h", "schedule", "start", "polish")
 MAXFUN = 125_000
 
 
-class OptimizeResult(dict):
+class OptimizeResult(Dict[str, Any]):
     """The outcome of :func:`minimize`, as ``scipy.optimize.OptimizeResult``:
     a dict whose keys are also attributes.
 
@@ -69,8 +69,8 @@ class OptimizeResult(dict):
         except KeyError as e:
             raise AttributeError(name) from e
 
-    __setattr__ = dict.__setitem__  # type: ignore[assignment]
-    __delattr__ = dict.__delitem__  # type: ignore[assignment]
+    __setattr__ = dict.__setitem__
+    __delattr__ = dict.__delitem__
 
     def __repr__(self) -> str:
         keys = ("fun", "x", "nfev", "nit", "success", "status", "termination", "message")
@@ -132,12 +132,12 @@ def _count(v: Any, name: str, minimum: int = 0) -> int:
     naming it."""
     if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
         raise TypeError(f"{name} must be an int, got {v!r}")
-    v = int(v)
-    if v < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {v}")
-    if v >= 2 ** 64:
-        raise ValueError(f"{name} must be < 2**64, got {v}")
-    return v
+    count = int(v)
+    if count < minimum:
+        raise ValueError(f"{name} must be >= {minimum}, got {count}")
+    if count >= 2 ** 64:
+        raise ValueError(f"{name} must be < 2**64, got {count}")
+    return count
 
 
 def _number(v: Any, name: str) -> float:
@@ -155,7 +155,8 @@ def seed_of(rng: Any, name: str = "rng") -> int:
     :class:`Optimizer`'s ``seed``), or a ``numpy.random.Generator`` (the
     seed drawn from it)."""
     if rng is None:
-        return int(np.random.SeedSequence().entropy) % 2 ** 64
+        entropy: Any = np.random.SeedSequence().entropy  # an int of 128 bits
+        return int(entropy) % 2 ** 64
     if isinstance(rng, np.random.Generator):
         return int(rng.integers(0, 2 ** 64, dtype=np.uint64))
     if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):

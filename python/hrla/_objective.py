@@ -111,19 +111,24 @@ def difference(f0: np.ndarray, x: np.ndarray, p: np.ndarray, fp: np.ndarray, one
     difference, so that its rounding cancels)."""
     j = np.arange(x.shape[1])
     if scheme == "2-point":
-        return (fp[:, 0] - f0[:, None]) / (p[:, 0, j, j] - x)
+        forward: np.ndarray = (fp[:, 0] - f0[:, None]) / (p[:, 0, j, j] - x)
+        return forward
     f1, f2 = fp[:, 0], fp[:, 1]
     x1, x2 = p[:, 0, j, j], p[:, 1, j, j]
     with np.errstate(invalid="ignore"):
         side = (-3.0 * f0[:, None] + 4 * f1 - f2) / (x2 - x)
         centre = (f2 - f1) / (x2 - x1)
-    return np.where(one_sided, side, centre)
+    both: np.ndarray = np.where(one_sided, side, centre)
+    return both
 
 
 def real(v: Any, what: str) -> np.ndarray:
     """``v`` as a float64 array, refusing what numpy would turn into a
     wrong number silently: booleans, complex numbers, strings, objects."""
-    a = np.asarray(v)
+    try:
+        a = np.asarray(v)
+    except ValueError:  # ragged sequences
+        raise TypeError(f"{what} must be real numbers (floats or ints), got {_show(v)}") from None
     if a.dtype.kind not in "fiu":
         raise TypeError(f"{what} must be real numbers (floats or ints), got {_show(v)} (dtype {a.dtype})")
     return a.astype(np.float64, copy=False)
@@ -289,7 +294,8 @@ class Objective:
         g = real(g, what)
         if g.shape != (d, n):
             raise ValueError(f"{what} must have shape {(d, n)} (a column per point), got {g.shape}")
-        return g.T
+        rows: np.ndarray = g.T
+        return rows
 
 
 def pair(answer: Any) -> Tuple[Any, Any]:
@@ -303,7 +309,10 @@ def pair(answer: Any) -> Tuple[Any, Any]:
 
 def scalar(v: Any) -> float:
     """``fun``'s value at one point: a real number (or an array of one)."""
-    a = np.asarray(v)
+    try:
+        a = np.asarray(v)
+    except ValueError:  # ragged sequences
+        a = np.asarray(None)
     if a.dtype.kind not in "fiu" or a.size != 1:
         hint = " (with its gradient, pass jac=True)" if isinstance(v, tuple) else ""
         raise TypeError(f"fun must return a real number{hint}, got {_show(v)}")

@@ -94,6 +94,16 @@ def case_auto():
     assert res.success
 
 
+def case_scalar():
+    """minimize with a scipy user's fun(x) and finite differences, in
+    each method; the callback and time limit watch the run too."""
+    for method in ("auto", "hrla"):
+        interrupted(lambda: hrla.minimize(lambda x: float(x @ x), [(-5, 5)] * 3, method=method, maxfun=10**12,
+                                          maxtime=10**6, callback=lambda intermediate_result: None))
+    res = hrla.minimize(lambda x: float(x @ x), [(-5, 5)] * 3, maxfun=5_000)
+    assert res.success
+
+
 def case_python_potential():
     def rastrigin(X):
         t = 2 * np.pi * X

@@ -202,7 +202,9 @@ def check_result(res, fun, budget):
     assert res.all_diverged == (res.diverged_chains == res.chains)
     if not res.success:
         return
-    assert not res.all_diverged
+    # "auto" rejects an infeasible proposal and keeps the chain's basin:
+    # every last proposal infeasible is no failure there.
+    assert not res.all_diverged or res.method == "auto"
     assert math.isfinite(res.fun) and res.fun > FLOOR, res
     x = np.asarray(res.x, dtype=np.float64)
     assert np.all(np.isfinite(x)), res

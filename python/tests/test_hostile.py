@@ -238,7 +238,7 @@ def test_two_threads_with_a_builtin_potential_never_panic_or_lose_steps():
 # --- Ctrl-C --------------------------------------------------------------
 
 
-@pytest.mark.parametrize("case", ["run", "step", "minimize", "auto", "python_potential"])
+@pytest.mark.parametrize("case", ["run", "step", "minimize", "auto", "scalar", "python_potential"])
 def test_ctrl_c_interrupts_a_run_that_can_resume(case):
     # A run ignoring the signal would go on for hours: the time limit
     # turns that into a failure.
