@@ -29,7 +29,13 @@ the built-ins' ``global_minimum`` are typed by ``D`` in the kernel:
 ``DIMENSIONS`` lists those compiled in for them (1 to 16, 20, 32, 50,
 100); any other raises ``DimensionError`` there.
 
-Two kinds of potential:
+:func:`minimize` takes a function as ``scipy.optimize`` does:
+``fun(x, *args) -> float`` on one point (or, ``vectorized=True``, on the
+columns of ``x (D, S)``), its gradient from finite differences (scipy's
+``"2-point"`` or ``"3-point"`` steps, kept inside the box), ``jac=True`` or
+a ``jac`` callable, evaluated through ``workers`` where given; it turns
+that into the batch below. The run-time objects take two kinds of
+potential:
 
 - the kernel's built-ins (``Rastrigin()``, ``Quadratic(k, m)``,
   ``DoubleWell()``, ``StyblinskiTang()``, ``Levy()``, ``Ackley()``), run in
@@ -49,7 +55,7 @@ Errors form one hierarchy under :class:`HrlaError` (a ``ValueError``):
 that cannot be allocated raises ``MemoryError``; Ctrl-C stops a run after
 a whole step with ``KeyboardInterrupt``, and the run can go on.
 
-Entry points: :func:`minimize` (scipy.optimize-like, returns an
+Entry points: :func:`minimize` (scipy.optimize's conventions, returns an
 :class:`OptimizeResult`), :class:`Optimizer` (step by step, chains as numpy
 views), :class:`Builder` (the Rust builder's chain of settings), and
 :class:`Auto` (the default solver).
