@@ -31,11 +31,8 @@ pub fn unsigned<T: TryFrom<u64>>(obj: &Bound<'_, PyAny>, name: &str) -> PyResult
             "{name} must be >= 0, got {int}"
         )));
     }
-    let too_large = || {
-        PyOverflowError::new_err(format!(
-            "{name} = {int} is too large (at most 2**64 - 1)"
-        ))
-    };
+    let too_large =
+        || PyOverflowError::new_err(format!("{name} = {int} is too large (at most 2**64 - 1)"));
     let wide: u64 = int.extract().map_err(|_| too_large())?;
     T::try_from(wide).map_err(|_| too_large())
 }
