@@ -297,7 +297,8 @@ def minimize(
     ``"hrla"``, ``"ula"``, ``"ola"`` (Algorithm 1 of the paper with that
     sampler in its paper setting at step ``h`` (default 0.01), the
     ``schedule`` (default ``a = 4``), ``chains`` chains (default 10) from
-    ``start`` (default: uniform in the box), then an L-BFGS polish of the
+    ``start`` (default: uniform in the box), then, unless the target, the
+    time limit or the callback stopped the run, an L-BFGS polish of the
     best point within ``polish`` calls of ``fun``). Every method stops at
     the first of: ``maxfun`` calls of ``fun`` (default 125 000, every call
     counted), ``maxiter`` steps or rounds, the ``target`` value, ``stall =
@@ -525,7 +526,9 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
     if termination == "Observer" and w.reason:
         # A kernel rule that holds too comes first.
         termination = opt.termination() or w.reason
-    if polish_k > 0 and termination not in ("Time", "Callback"):
+    # A run stopped by its target, time limit or callback stops there: the
+    # polish would spend evaluations the user asked not to spend.
+    if polish_k > 0 and termination not in ("Target", "Time", "Callback"):
         opt.polish(opt.best_chain, PolishSettings(polish_k))
         # The report of the polished state: its rule still holds (the
         # polish only adds evaluations and lowers the best), unless a

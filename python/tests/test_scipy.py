@@ -219,6 +219,9 @@ def test_a_run_that_reaches_the_target_stops_there(method):
     res = hrla.minimize(himmelblau, [(-5, 5)] * 2, method=method, rng=1, maxfun=100_000, target=target)
     assert res.termination == "Target" and res.success and res.fun <= target, res
     assert res.nfev < 100_000 / 4, res
+    if method != "auto":
+        # Stopped there: the starts and the steps, no polish after.
+        assert res.njev == 10 * (res.nit + 1), res
     assert res.status == hrla.TERMINATIONS.index("Target")
 
 
