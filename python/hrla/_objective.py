@@ -13,7 +13,9 @@ scipy's conventions, each mapped here once:
   ``"3-point"``) with the steps of ``scipy.optimize.approx_derivative``;
 - ``workers``: an int (a ``multiprocessing.Pool`` of that many processes,
   ``-1`` for every CPU) or a map-like callable, which evaluates the points
-  of a batch (with their finite-difference probes) in parallel.
+  of a batch in parallel, then their finite-difference probes (those of
+  points where ``fun`` is finite: elsewhere the point is infeasible, its
+  gradient unused).
 
 Every call of ``fun`` on a point counts in ``nfev``; every gradient (one
 per point of the batch) in ``njev``. The best point seen is kept for the
@@ -229,12 +231,23 @@ class Objective:
         x = np.asarray(x, dtype=np.float64)
         n, d = x.shape
         if self.scheme is not None:
+            k = SCHEMES[self.scheme]
             h, one_sided = steps(x, self.lb, self.ub, self.scheme)
             p = probes(x, h, one_sided, self.scheme)
-            everything = self.values(np.concatenate([x, p.reshape(-1, d)]))
-            u = everything[:n]
-            g = difference(u, x, p, everything[n:].reshape(n, SCHEMES[self.scheme], d), one_sided,
-                           self.scheme)
+            if self.vectorized:
+                # One call for the points and their probes.
+                everything = self.values(np.concatenate([x, p.reshape(-1, d)]))
+                u, fp = everything[:n], everything[n:].reshape(n, k, d)
+            else:
+                # The probes of feasible points only: where fun is NaN or
+                # infinite the point is refused whatever its gradient, and
+                # each probe may cost as much as a failed solve.
+                u = self.values(x)
+                feasible = np.isfinite(u)
+                fp = np.full((n, k, d), np.nan)
+                if feasible.any():
+                    fp[feasible] = self.values(p[feasible].reshape(-1, d)).reshape(-1, k, d)
+            g = difference(u, x, p, fp, one_sided, self.scheme)
         elif self.jac is True:
             u, g = self.values_and_gradients(x)
         else:

@@ -90,6 +90,26 @@ def test_no_call_leaves_the_box(method, jac):
     np.testing.assert_allclose(res.x, [1.0, 3.0], atol=1e-6)
 
 
+def test_an_infeasible_point_costs_one_call():
+    """Where fun is NaN or infinite the point is refused whatever its
+    gradient: its probes are not evaluated (a vectorized fun gets them in
+    the same call, evaluated)."""
+    def f(x):
+        return float(np.sum(x * x)) if x[0] > 0 else np.nan
+
+    rows = np.array([[0.5, 0.1, 0.2], [-0.5, 0.1, 0.2], [0.25, -1.0, 0.0], [-1.0, 0.0, 0.0]])
+    for scheme, k in _objective.SCHEMES.items():
+        obj = _objective.Objective(f, (), scheme, False, _objective.Mapper(1), -2.0, 2.0)
+        u, g = obj(rows)
+        assert obj.nfev == 2 * (1 + 3 * k) + 2 and obj.njev == 4
+        assert np.all(np.isfinite(g[[0, 2]])) and np.isnan(u[[1, 3]]).all()
+        columns = _objective.Objective(lambda x: np.where(x[0] > 0, np.sum(x * x, axis=0), np.nan), (), scheme,
+                                       True, _objective.Mapper(1), -2.0, 2.0)
+        cu, cg = columns(rows)
+        assert columns.nfev == 4 * (1 + 3 * k)
+        np.testing.assert_array_equal(cg[[0, 2]], g[[0, 2]])
+
+
 # --- scalar fun, args, jac: as scipy.optimize.minimize ---------------------
 
 
@@ -355,8 +375,8 @@ def test_workers_evaluate_in_parallel_with_the_same_bits():
         custom = hrla.minimize(square_sum, method=method, workers=mapper, **run)
         assert custom.fun == serial.fun and sum(mapped) == custom.nfev
         if method == "hrla":
-            # A batch a map: the 10 starts and their probes, in one.
-            assert mapped[0] == 10 * 4
+            # A batch, two maps: the 10 starts, then their 3 probes each.
+            assert mapped[:2] == [10, 10 * 3]
 
 
 # --- bad arguments, each named ---------------------------------------------
