@@ -399,6 +399,8 @@ def minimize(
                                                  lb, ub)
                 potential = objective
         elif callable(fun):
+            if vectorized and (callable(workers) or workers != 1):
+                raise ValueError("workers is not used with vectorized=True: fun evaluates each batch in one call")
             mapper = _objective.Mapper(workers)
             objective = _objective.Objective(fun, args, jac, bool(vectorized), mapper, lb, ub)
             potential = objective

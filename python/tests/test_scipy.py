@@ -400,6 +400,8 @@ def test_workers_evaluate_in_parallel_with_the_same_bits():
     ({"stall": 5}, TypeError, "stall must be a pair"),
     ({"workers": 0}, ValueError, "workers must be >= 1, -1"),
     ({"workers": "4"}, TypeError, "workers must be an int or a map-like callable"),
+    ({"workers": 2, "vectorized": True}, ValueError, "workers is not used with vectorized=True"),
+    ({"workers": map, "vectorized": True}, ValueError, "workers is not used with vectorized=True"),
     ({"jac": "5-point"}, ValueError, "jac must be None, True, a callable, '2-point' or '3-point'"),
     ({"callback": 3}, TypeError, "callback must be callable"),
     ({"x0": [0.0, 0.0, 0.0], "method": "hrla"}, ValueError, "x0 has dimension 3 but bounds has 2"),
