@@ -419,6 +419,13 @@ def minimize(
         budget_k = maxfun // cost - spare
         if budget_k < 1:
             raise ValueError(f"maxfun={maxfun} leaves no evaluation: each gradient costs {cost} calls of fun")
+        if method == "auto":
+            n = chains if chains is not None else Auto.chains_for(budget_k)
+            if budget_k < 2 * n:
+                raise ValueError(f"maxfun={maxfun} is too small for method='auto' with {n} chains: it needs "
+                                 f"{2 * n} gradients of {cost} calls of fun each"
+                                 f"{' and one more for the result' if spare else ''}, "
+                                 f"maxfun >= {(2 * n + spare) * cost}")
 
         def nfev(evaluations: int) -> int:
             return objective.nfev if objective is not None else evaluations
@@ -501,7 +508,7 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
         sampling = (budget - polish_k - n - (x0 is not None)) // max(n, 1)
         if sampling < 1:
             raise ValueError(f"maxfun leaves no step to {n} chains before a polish of {polish_k} gradients "
-                             f"({cost} calls of fun each)")
+                             f"({cost} calls of fun each): raise maxfun, or lower polish or chains")
         steps = sampling if steps is None else min(steps, sampling)
     if steps is not None:
         stop = stop.steps(steps)

@@ -414,6 +414,9 @@ def test_workers_evaluate_in_parallel_with_the_same_bits():
     ({"maxfun": 10, "budget": 10}, TypeError, "give maxfun or its older name budget"),
     ({"method": "nelder-mead"}, ValueError, "unknown method 'nelder-mead'"),
     ({"maxfun": 2}, ValueError, "maxfun=2 leaves no evaluation: each gradient costs 3 calls of fun"),
+    ({"maxfun": 20}, ValueError, "maxfun=20 is too small for method='auto' with 4 chains: it needs 8 gradients "
+                                 "of 3 calls of fun each and one more for the result, maxfun >= 27"),
+    ({"maxfun": 20, "method": "hrla"}, ValueError, "maxfun leaves no step to 10 chains"),
 ])
 def test_each_bad_argument_is_named(kw, error, text):
     with pytest.raises(error, match=text):
