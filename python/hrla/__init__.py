@@ -27,7 +27,13 @@ Each chain ``c`` draws from its own ``Xoshiro256PlusPlus`` seeded with
 ``minimize``, ``Optimizer`` and the built-ins' ``global_minimum`` run any
 dimension ``D >= 1``.
 
-Two kinds of potential:
+:func:`minimize` takes a function as ``scipy.optimize`` does:
+``fun(x, *args) -> float`` on one point (or, ``vectorized=True``, on the
+columns of ``x (D, S)``), its gradient from finite differences (scipy's
+``"2-point"`` or ``"3-point"`` steps, kept inside the box), ``jac=True`` or
+a ``jac`` callable, evaluated through ``workers`` where given; it turns
+that into the batch below. The run-time objects take two kinds of
+potential:
 
 - the kernel's built-ins (``Rastrigin()``, ``Quadratic(k, m)``,
   ``DoubleWell()``, ``StyblinskiTang()``, ``Levy()``, ``Ackley()``), run in
@@ -47,7 +53,7 @@ Errors form one hierarchy under :class:`HrlaError` (a ``ValueError``):
 that cannot be allocated raises ``MemoryError``; Ctrl-C stops a run after
 a whole step with ``KeyboardInterrupt``, and the run can go on.
 
-Entry points: :func:`minimize` (scipy.optimize-like, returns an
+Entry points: :func:`minimize` (scipy.optimize's conventions, returns an
 :class:`OptimizeResult`), :class:`Optimizer` (step by step, chains as numpy
 views), :class:`Builder` (the Rust builder's chain of settings), and
 :class:`Auto` (the default solver).
@@ -55,11 +61,12 @@ views), :class:`Builder` (the Rust builder's chain of settings), and
 
 from __future__ import annotations
 
-from typing import Any, Callable, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Optional, Tuple, Union
 
 import numpy as np
 
 from ._hrla import (
+    __version__,
     BUILTINS,
     Ackley,
     Auto,
@@ -90,189 +97,17 @@ from ._hrla import (
     Ula,
     UnboundedBelowError,
 )
+from ._minimize import TERMINATIONS, OptimizeResult, minimize
 
 __all__ = [
-    "BUILTINS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
+    "__version__", "BUILTINS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
     "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla",
     "HrlaError", "InternalError", "Interval", "Levy", "Linear", "Ola", "OptimizeResult",
     "Optimizer", "Point", "Polished", "PolishSettings", "Potential", "Quadratic", "Rastrigin",
     "Report", "Solution", "Stop", "StyblinskiTang", "Ula", "UnboundedBelowError", "minimize",
 ]
 
-#: Why a run ended, indexed by :class:`OptimizeResult`'s ``status``: the
-#: kernel's ``Termination`` names.
-TERMINATIONS = ("Steps", "Evaluations", "Target", "Stalled", "Observer")
-
 Fun = Union[Potential, Callable[[np.ndarray], Tuple[Any, Any]]]
-
-
-class OptimizeResult(dict):
-    """The outcome of :func:`minimize`, as ``scipy.optimize.OptimizeResult``:
-    a dict whose keys are also attributes.
-
-    ``x`` the best point, ``fun`` ``U(x)``, ``nfev`` the evaluations of
-    ``U`` (all counted: initial points, steps, polish), ``njev`` the same
-    (every evaluation computes ``U`` and ``∇U`` together), ``nit`` the
-    steps (``"auto"``: rounds), ``success``, ``termination`` (why it ended:
-    the kernel's ``Termination`` name, ``"Steps"``, ``"Evaluations"``,
-    ``"Target"`` or ``"Stalled"``), ``status`` (its index in
-    :data:`TERMINATIONS`), ``all_diverged`` (whether every chain had
-    diverged at the end: ``x`` is then the last feasible best found
-    before), ``diverged_chains``, ``chains``, ``message`` (the kernel's
-    report of the final state, after the polish), ``method``, ``seed``.
-    ``success`` is ``True`` only when ``fun`` is finite, some chain is
-    still alive and a stopping rule ended the run.
-    """
-
-    def __getattr__(self, name: str) -> Any:
-        try:
-            return self[name]
-        except KeyError as e:
-            raise AttributeError(name) from e
-
-    __setattr__ = dict.__setitem__  # type: ignore[assignment]
-    __delattr__ = dict.__delitem__  # type: ignore[assignment]
-
-    def __repr__(self) -> str:
-        keys = ("fun", "x", "nfev", "nit", "success", "status", "termination", "message")
-        return "OptimizeResult(" + ", ".join(f"{k}={self[k]!r}" for k in keys if k in self) + ")"
-
-
-def _box(bounds: Any) -> Union[None, Interval, List[Tuple[float, float]]]:
-    """``bounds`` as a box: ``(lo, hi)`` in every coordinate, or a sequence
-    of ``D`` pairs ``(lo_i, hi_i)`` as ``scipy.optimize.dual_annealing``
-    takes (their number fixes ``D``; the run-time layer checks them)."""
-    if bounds is None:
-        return None
-    if isinstance(bounds, Interval):
-        return bounds
-    b = np.asarray(bounds)
-    if b.dtype.kind not in "fiu":
-        raise TypeError(f"bounds must be real numbers (floats or ints), got {bounds!r} (dtype {b.dtype})")
-    b = b.astype(np.float64)
-    if b.shape == (2,):
-        return Interval(float(b[0]), float(b[1]))
-    if b.ndim == 2 and b.shape[1] == 2 and b.shape[0] >= 1:
-        return [(float(lo), float(hi)) for lo, hi in b]
-    raise ValueError(f"bounds must be (lo, hi) or a sequence of D (lo, hi) pairs, got {bounds!r}")
-
-
-_SAMPLERS = {"hrla": Hrla, "ula": Ula, "ola": Ola}
-
-
-def minimize(
-    fun: Fun,
-    bounds: Any = None,
-    *,
-    dim: Optional[int] = None,
-    method: str = "auto",
-    budget: int = 125_000,
-    seed: int = 0,
-    chains: Optional[int] = None,
-    h: float = 0.01,
-    schedule: Any = 4.0,
-    start: Any = None,
-    steps: Optional[int] = None,
-    target: Optional[float] = None,
-    stall: Optional[Tuple[int, float]] = None,
-    polish: int = 1000,
-) -> OptimizeResult:
-    """Minimises ``fun`` globally by Langevin sampling.
-
-    ``fun`` is a built-in potential (``hrla.Rastrigin()``, ...) or a Python
-    function ``fun(X) -> (U, G)`` evaluating ``U`` and ``∇U`` on the rows of
-    ``X`` (shape ``(N, D)``; ``U`` of shape ``(N,)``, ``G`` of shape
-    ``(N, D)``). ``bounds`` is ``(lo, hi)`` (then give ``dim``) or ``D``
-    pairs ``(lo_i, hi_i)``, each coordinate with its own sides; the chains
-    stay in the box by reflection.
-
-    ``method="auto"`` (the default; needs ``bounds``) is the kernel's
-    :class:`Auto` solver: no setting to tune, ``budget`` evaluations in
-    all, ``chains`` defaulting to ``Auto.chains_for(budget)``; it calls a
-    Python ``fun`` with one row at a time.
-
-    ``method="hrla"``, ``"ula"`` or ``"ola"`` runs Algorithm 1 of the paper
-    with that sampler in its paper setting at step ``h``, the schedule
-    ``schedule`` (a float ``a``, or ``Linear``/``Geometric`` annealing),
-    ``chains`` chains (default 10) from ``start`` (default: uniform in the
-    box), until ``budget`` evaluations, ``steps`` steps, the ``target``
-    value or the ``stall = (window, tolerance)`` rule; then an L-BFGS
-    polish of the best point with at most ``polish`` evaluations (0: none),
-    kept out of the sampling's share of the budget. A Python ``fun`` is called once per step for all
-    chains.
-
-    Returns an :class:`OptimizeResult`. Bad input and failed runs raise
-    :class:`HrlaError` (with the kernel's message) or a subclass.
-    """
-    if not isinstance(method, str):
-        raise TypeError(f"method must be a str (auto hrla ula ola), got {type(method).__name__}")
-    box = _box(bounds)
-    method = method.lower()
-    if polish < 0:
-        raise ValueError(f"polish must be >= 0 evaluations, got {polish}")
-    if method == "auto":
-        if box is None:
-            raise ValueError('method="auto" needs bounds: (lo, hi) with dim=, or D (lo, hi) pairs')
-        s = Auto().minimize(fun, box, budget, seed, chains=chains, dim=dim)
-        return _result(
-            x=np.asarray(s.x), fun=s.value, nfev=s.evaluations, nit=s.rounds, termination=s.termination,
-            diverged_chains=s.diverged_chains, chains=s.chains, message=s.message,
-            method="auto", seed=seed, step=s.step, inverse_temperature=s.inverse_temperature,
-            # Auto's chains always hold a feasible basin: an infeasible
-            # last proposal is rejected, not a failure.
-            holds_basins=True,
-        )
-    if method not in _SAMPLERS:
-        raise ValueError(f"unknown method {method!r}; expected one of: auto hrla ula ola")
-    if start is None:
-        if box is None:
-            raise ValueError("give bounds or a start (hrla.Gaussian, hrla.Point, hrla.Interval)")
-        start = box
-    n = 10 if chains is None else chains
-    stop = Stop().evaluations(budget)
-    if polish > 0:
-        # The sampling leaves `polish` evaluations of the budget to the polish.
-        sampling = (budget - polish - n) // max(n, 1)
-        if sampling < 1:
-            raise ValueError(f"a budget of {budget} leaves no step to {n} chains before a polish of {polish}")
-        steps = sampling if steps is None else min(steps, sampling)
-    if steps is not None:
-        stop = stop.steps(steps)
-    if target is not None:
-        stop = stop.target(target)
-    if stall is not None:
-        stop = stop.stall(*stall)
-    opt = Optimizer(fun, _SAMPLERS[method].paper(h), schedule, start,
-                    chains=n, seed=seed, stop=stop,
-                    domain=box, dim=dim)
-    report = opt.run()
-    if polish > 0:
-        opt.polish(opt.best_chain, PolishSettings(polish))
-        # The report of the polished state: its rule still holds (the
-        # polish only adds evaluations and lowers the best), unless a
-        # target is now reached, which comes first.
-        report = opt.report() or report
-    x, value, _ = opt.best
-    return _result(
-        x=x, fun=value, nfev=opt.evaluations, nit=report.iterations, termination=report.termination,
-        diverged_chains=report.diverged_chains, chains=report.chains, message=report.message,
-        method=method, seed=seed,
-    )
-
-
-def _result(*, fun: float, nfev: int, termination: str, diverged_chains: int, chains: int,
-            holds_basins: bool = False, **rest: Any) -> OptimizeResult:
-    """An :class:`OptimizeResult` whose ``success`` and ``status`` follow
-    from the termination and the value (and, for the samplers, from whether
-    any chain is still alive)."""
-    alive = holds_basins or diverged_chains < chains
-    return OptimizeResult(
-        fun=fun, nfev=nfev, njev=nfev,
-        success=termination != "Observer" and alive and bool(np.isfinite(fun)),
-        status=TERMINATIONS.index(termination), termination=termination,
-        all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
-        **rest,
-    )
 
 
 class Builder:
@@ -287,7 +122,7 @@ class Builder:
 
     def __init__(self, potential: Fun, sampler: Any, schedule: Any, start: Any) -> None:
         self._args = (potential, sampler, schedule, start)
-        self._kw: dict = {}
+        self._kw: Dict[str, Any] = {}
 
     def _with(self, **kw: Any) -> "Builder":
         b = Builder(*self._args)

@@ -6,6 +6,7 @@ use hrla::Auto;
 use hrla_dyn::auto::{self, Problem};
 use hrla_dyn::{Progress, termination_name};
 use numpy::PyArray1;
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
 use crate::config;
@@ -71,71 +72,88 @@ impl PyAuto {
     #[new]
     #[pyo3(signature = (*, steps = None, step_scale = None, ladder = None, quench = None, jump_rate = None, stall = None))]
     fn new(
-        steps: Option<u64>,
+        steps: Option<&Bound<'_, PyAny>>,
         step_scale: Option<f64>,
         ladder: Option<f64>,
-        quench: Option<u64>,
+        quench: Option<&Bound<'_, PyAny>>,
         jump_rate: Option<f64>,
-        stall: Option<u64>,
-    ) -> Self {
+        stall: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
         let d = Auto::<f64>::default();
-        Self {
+        let steps = config::unsigned_opt(steps, "steps")?;
+        let quench = config::unsigned_opt(quench, "quench")?;
+        let stall = config::unsigned_opt(stall, "stall")?;
+        Ok(Self {
             steps: steps.unwrap_or(d.steps),
             step_scale: step_scale.unwrap_or(d.step_scale),
             ladder: ladder.unwrap_or(d.ladder),
             quench: quench.unwrap_or(d.quench),
             jump_rate: jump_rate.unwrap_or(d.jump_rate),
             stall: stall.unwrap_or(d.stall),
-        }
+        })
     }
 
     /// The number of chains measured best for an evaluation budget:
     /// `budget / 4000` within `[8, 32]`.
     #[staticmethod]
-    fn chains_for(budget: u64) -> usize {
-        Auto::<f64>::chains_for(budget)
+    fn chains_for(budget: &Bound<'_, PyAny>) -> PyResult<usize> {
+        Ok(Auto::<f64>::chains_for(config::unsigned(budget, "budget")?))
     }
 
     /// Minimises `potential` over the box `domain` within `budget`
     /// evaluations (all counted), with `chains` chains (default
     /// `chains_for(budget)`); chain `c` draws from the generator of
     /// `(seed, c)`. A Python potential is called with one row at a time.
-    #[pyo3(signature = (potential, domain, budget, seed = 0, *, chains = None, dim = None))]
+    ///
+    /// `observer(rounds, evaluations, best_value)`, when given, is called
+    /// as the run goes (a Python potential's run: after every step of the
+    /// chains, quench and restart; a built-in's: at every new round and
+    /// every new best); a true answer ends the run, whose termination is
+    /// then `"Observer"`, and an exception ends it with that exception.
+    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, observer = None))]
     #[allow(clippy::too_many_arguments)]
     fn minimize(
         &self,
         py: Python<'_>,
         potential: &Bound<'_, PyAny>,
         domain: &Bound<'_, PyAny>,
-        budget: u64,
-        seed: u64,
-        chains: Option<usize>,
-        dim: Option<usize>,
+        budget: &Bound<'_, PyAny>,
+        seed: Option<&Bound<'_, PyAny>>,
+        chains: Option<&Bound<'_, PyAny>>,
+        dim: Option<&Bound<'_, PyAny>>,
+        observer: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PySolution> {
-        guard(|| self.solve(py, potential, domain, budget, seed, chains, dim))
+        guard(|| {
+            let problem = Problem {
+                potential: potential::from_py(potential)?,
+                domain: config::domain(domain)?,
+                budget: config::unsigned(budget, "budget")?,
+                seed: config::unsigned_opt(seed, "seed")?.unwrap_or(0),
+                chains: config::unsigned_opt(chains, "chains")?,
+                dim: config::unsigned_opt(dim, "dim")?,
+            };
+            self.solve(py, &problem, observer.filter(|o| !o.is_none()))
+        })
     }
 }
 
 impl PyAuto {
-    #[allow(clippy::too_many_arguments)]
     fn solve(
         &self,
         py: Python<'_>,
-        potential: &Bound<'_, PyAny>,
-        domain: &Bound<'_, PyAny>,
-        budget: u64,
-        seed: u64,
-        chains: Option<usize>,
-        dim: Option<usize>,
+        problem: &Problem,
+        observer: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PySolution> {
-        let problem = Problem {
-            potential: potential::from_py(potential)?,
-            domain: config::domain(domain)?,
-            budget,
-            seed,
-            chains,
-            dim,
-        };
+        if let Some(o) = observer
+            && !o.is_callable()
+        {
+            return Err(PyTypeError::new_err(format!(
+                "observer must be callable, got {}",
+                o.get_type().name()?
+            )));
+        }
+        let observer = observer.map(|o| o.clone().unbind());
+        let user = auto::is_user(&problem.potential);
         let auto = Auto {
             steps: self.steps,
             step_scale: self.step_scale,
@@ -148,8 +166,30 @@ impl PyAuto {
         // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated
         // (counted, so where it looks is the same on every machine).
         let mut checked = 0;
+        let mut seen: Option<(u64, f64)> = None;
         let mut stopped: Option<PyErr> = None;
         let mut observe = |p: &Progress| {
+            // The user's observer: whenever a Python potential has run (its
+            // cost dwarfs the call), else at a new round or a new best.
+            let news = seen.is_none_or(|(rounds, best)| p.iteration != rounds || p.value < best);
+            if let Some(o) = &observer
+                && (user || news)
+            {
+                seen = Some((p.iteration, p.value));
+                let answer = Python::attach(|py| {
+                    o.bind(py)
+                        .call1((p.iteration, p.evaluations, p.value))?
+                        .is_truthy()
+                });
+                match answer {
+                    Ok(false) => {}
+                    Ok(true) => return ControlFlow::Break(()),
+                    Err(e) => {
+                        stopped = Some(e);
+                        return ControlFlow::Break(());
+                    }
+                }
+            }
             let every = (SIGNAL_WORK / p.dim as u64).max(1);
             if p.evaluations - checked < every {
                 return ControlFlow::Continue(());
@@ -163,10 +203,10 @@ impl PyAuto {
                 }
             }
         };
-        let found = if auto::is_user(&problem.potential) {
-            auto::solve(&auto, &problem, &mut observe)
+        let found = if user {
+            auto::solve(&auto, problem, &mut observe)
         } else {
-            py.detach(|| auto::solve(&auto, &problem, &mut observe))
+            py.detach(|| auto::solve(&auto, problem, &mut observe))
         };
         if let Some(e) = stopped {
             return Err(e);

@@ -8,10 +8,44 @@ use hrla::{
     PolishEnd, PolishSettings, Stop, Ula, UlaParams,
 };
 use hrla_dyn::{BoxSpec, StartSpec, termination_name};
-use pyo3::exceptions::PyTypeError;
+use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::errors::kernel;
+
+/// A count or seed argument `name`: a Python integer (or anything with
+/// `__index__`, a numpy integer say) in `0..=T::MAX`. A negative value is
+/// `ValueError` and one too large `OverflowError`, each naming the
+/// argument (Python's own conversion names neither).
+pub fn unsigned<T: TryFrom<u64>>(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<T> {
+    let int = obj.call_method0("__index__").map_err(|_| {
+        PyTypeError::new_err(format!(
+            "{name} must be an int, got {}",
+            obj.get_type()
+                .name()
+                .map_or_else(|_| "?".into(), |s| s.to_string())
+        ))
+    })?;
+    if int.lt(0)? {
+        return Err(PyValueError::new_err(format!(
+            "{name} must be >= 0, got {int}"
+        )));
+    }
+    let too_large =
+        || PyOverflowError::new_err(format!("{name} = {int} is too large (at most 2**64 - 1)"));
+    let wide: u64 = int.extract().map_err(|_| too_large())?;
+    T::try_from(wide).map_err(|_| too_large())
+}
+
+/// [`unsigned`] for an optional argument (`None` is `None`).
+pub fn unsigned_opt<T: TryFrom<u64>>(
+    obj: Option<&Bound<'_, PyAny>>,
+    name: &str,
+) -> PyResult<Option<T>> {
+    obj.filter(|o| !o.is_none())
+        .map(|o| unsigned(o, name))
+        .transpose()
+}
 
 /// HRLA, the paper's sampler: the exact step of the high-resolution
 /// Langevin dynamics with the gradient frozen over the step,
@@ -297,12 +331,12 @@ impl PyStop {
         Self(Stop::new())
     }
     /// At most `k` steps.
-    fn steps(&self, k: u64) -> Self {
-        Self(self.0.steps(k))
+    fn steps(&self, k: &Bound<'_, PyAny>) -> PyResult<Self> {
+        Ok(Self(self.0.steps(unsigned(k, "steps")?)))
     }
     /// At most `n` potential-and-gradient evaluations in all.
-    fn evaluations(&self, n: u64) -> Self {
-        Self(self.0.evaluations(n))
+    fn evaluations(&self, n: &Bound<'_, PyAny>) -> PyResult<Self> {
+        Ok(Self(self.0.evaluations(unsigned(n, "evaluations")?)))
     }
     /// As soon as the best value is `<= target`.
     fn target(&self, target: f64) -> Self {
@@ -310,8 +344,8 @@ impl PyStop {
     }
     /// When the best value has not fallen by more than `tolerance` over
     /// the last `window` steps.
-    fn stall(&self, window: u64, tolerance: f64) -> Self {
-        Self(self.0.stall(window, tolerance))
+    fn stall(&self, window: &Bound<'_, PyAny>, tolerance: f64) -> PyResult<Self> {
+        Ok(Self(self.0.stall(unsigned(window, "window")?, tolerance)))
     }
     /// Whether no rule is set.
     fn is_empty(&self) -> bool {
@@ -332,18 +366,18 @@ impl PyPolishSettings {
     #[new]
     #[pyo3(signature = (evaluations, *, gradient_tolerance = None, value_tolerance = None))]
     fn new(
-        evaluations: u64,
+        evaluations: &Bound<'_, PyAny>,
         gradient_tolerance: Option<f64>,
         value_tolerance: Option<f64>,
-    ) -> Self {
-        let mut s = PolishSettings::new(evaluations);
+    ) -> PyResult<Self> {
+        let mut s = PolishSettings::new(unsigned(evaluations, "evaluations")?);
         if let Some(g) = gradient_tolerance {
             s.gradient_tolerance = g;
         }
         if let Some(v) = value_tolerance {
             s.value_tolerance = v;
         }
-        Self(s)
+        Ok(Self(s))
     }
     #[getter]
     fn evaluations(&self) -> u64 {

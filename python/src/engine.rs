@@ -9,6 +9,7 @@ use std::sync::{Mutex, MutexGuard, TryLockError};
 use hrla::PolishSettings;
 use hrla_dyn::{Engine, Layout, Settings};
 use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
 use crate::config::{self, PyPolishSettings, PyPolished, PyReport, PyStop};
@@ -55,8 +56,16 @@ fn step(py: Python<'_>, engine: &mut dyn Engine, steps: u64) -> PyResult<()> {
 /// Runs the engine to its end: the layer's loop, with the GIL released for
 /// a built-in; its observer looks for Ctrl-C (a built-in's every
 /// `signal_steps`, a Python function's after every step) and ends the run
-/// after a whole step when one came.
-fn run(py: Python<'_>, engine: &mut dyn Engine) -> PyResult<PyReport> {
+/// after a whole step when one came. The user's `observer`, when given,
+/// is called at the same steps (once a step), after the check:
+/// `observer(iteration, evaluations, best_value)`; a true answer ends the
+/// run ([`hrla::Termination::Observer`]), an exception ends it with that
+/// exception.
+fn run(
+    py: Python<'_>,
+    engine: &mut dyn Engine,
+    user_observer: Option<&Py<PyAny>>,
+) -> PyResult<PyReport> {
     let user = engine.is_user();
     let every = if user {
         1
@@ -64,12 +73,27 @@ fn run(py: Python<'_>, engine: &mut dyn Engine) -> PyResult<PyReport> {
         signal_steps(engine.len(), engine.dim())
     };
     let mut interrupted = None;
+    let mut last = None;
     let mut observer = |p: &hrla_dyn::Progress| {
-        if !p.iteration.is_multiple_of(every) {
+        // Called at every improvement too: only the multiples of `every`
+        // count, each once.
+        if !p.iteration.is_multiple_of(every) || last == Some(p.iteration) {
             return ControlFlow::Continue(());
         }
-        match Python::attach(|py| py.check_signals()) {
-            Ok(()) => ControlFlow::Continue(()),
+        last = Some(p.iteration);
+        let answer = Python::attach(|py| {
+            py.check_signals()?;
+            match user_observer {
+                Some(o) => o
+                    .bind(py)
+                    .call1((p.iteration, p.evaluations, p.value))?
+                    .is_truthy(),
+                None => Ok(false),
+            }
+        });
+        match answer {
+            Ok(false) => ControlFlow::Continue(()),
+            Ok(true) => ControlFlow::Break(()),
             Err(e) => {
                 interrupted = Some(e);
                 ControlFlow::Break(())
@@ -158,21 +182,25 @@ impl PyOptimizer {
 #[pymethods]
 impl PyOptimizer {
     #[new]
-    #[pyo3(signature = (potential, sampler, schedule, start, *, chains = 10, seed = 0, stride = 1, stop = None, domain = None, dim = None))]
+    #[pyo3(signature = (potential, sampler, schedule, start, *, chains = None, seed = None, stride = None, stop = None, domain = None, dim = None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         potential: &Bound<'_, PyAny>,
         sampler: &Bound<'_, PyAny>,
         schedule: &Bound<'_, PyAny>,
         start: &Bound<'_, PyAny>,
-        chains: usize,
-        seed: u64,
-        stride: u64,
+        chains: Option<&Bound<'_, PyAny>>,
+        seed: Option<&Bound<'_, PyAny>>,
+        stride: Option<&Bound<'_, PyAny>>,
         stop: Option<PyStop>,
         domain: Option<&Bound<'_, PyAny>>,
-        dim: Option<usize>,
+        dim: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         guard(|| {
+            let chains = config::unsigned_opt(chains, "chains")?.unwrap_or(10);
+            let seed = config::unsigned_opt(seed, "seed")?.unwrap_or(0);
+            let stride = config::unsigned_opt(stride, "stride")?.unwrap_or(1);
+            let dim = config::unsigned_opt(dim, "dim")?;
             let settings = Settings {
                 potential: potential::from_py(potential)?,
                 sampler: config::sampler(sampler)?,
@@ -200,16 +228,34 @@ impl PyOptimizer {
     /// consulting the stopping rules. Ctrl-C interrupts it after a whole
     /// step (`KeyboardInterrupt`); calling it again goes on as if
     /// uninterrupted.
-    #[pyo3(signature = (steps = 1))]
-    fn step(&self, py: Python<'_>, steps: u64) -> PyResult<()> {
+    #[pyo3(signature = (steps = None))]
+    fn step(&self, py: Python<'_>, steps: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+        let steps = config::unsigned_opt(steps, "steps")?.unwrap_or(1);
         self.with(|e| step(py, e, steps))
     }
 
     /// Steps until a stopping rule holds; returns the `Report`. Ctrl-C
     /// interrupts it after a whole step (`KeyboardInterrupt`); calling it
     /// again goes on as if uninterrupted.
-    fn run(&self, py: Python<'_>) -> PyResult<PyReport> {
-        self.with(|e| run(py, e))
+    ///
+    /// `observer(iteration, evaluations, best_value)`, when given, is
+    /// called after every step of a Python potential's run and every few
+    /// thousand coordinate-steps of a built-in's; a true answer ends the
+    /// run (termination `"Observer"`), an exception ends it with that
+    /// exception. The bits of the run do not depend on it.
+    #[pyo3(signature = (observer = None))]
+    fn run(&self, py: Python<'_>, observer: Option<&Bound<'_, PyAny>>) -> PyResult<PyReport> {
+        let observer = observer.filter(|o| !o.is_none());
+        if let Some(o) = observer
+            && !o.is_callable()
+        {
+            return Err(PyTypeError::new_err(format!(
+                "observer must be callable, got {}",
+                o.get_type().name()?
+            )));
+        }
+        let observer = observer.map(|o| o.clone().unbind());
+        self.with(|e| run(py, e, observer.as_ref()))
     }
 
     /// The first stopping rule that holds now (`"Steps"`, `"Evaluations"`,

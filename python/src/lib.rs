@@ -32,5 +32,6 @@ fn _hrla(m: &Bound<'_, PyModule>) -> PyResult<()> {
     potential::register(m)?;
     engine::register(m)?;
     auto::register(m)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -82,15 +82,25 @@ def case_step():
 
 def case_minimize():
     interrupted(lambda: hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 10, method="hrla", chains=1000,
-                                      budget=10**10))
+                                      maxfun=10**10))
     # The package is still usable.
-    res = hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 2, method="hrla", budget=5_000)
+    res = hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 2, method="hrla", maxfun=5_000)
     assert res.success
 
 
 def case_auto():
-    interrupted(lambda: hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 10, budget=10**10))
-    res = hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 2, budget=5_000)
+    interrupted(lambda: hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 10, maxfun=10**10))
+    res = hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 2, maxfun=5_000)
+    assert res.success
+
+
+def case_scalar():
+    """minimize with a scipy user's fun(x) and finite differences, in
+    each method; the callback and time limit watch the run too."""
+    for method in ("auto", "hrla"):
+        interrupted(lambda: hrla.minimize(lambda x: float(x @ x), [(-5, 5)] * 3, method=method, maxfun=10**12,
+                                          maxtime=10**6, callback=lambda intermediate_result: None))
+    res = hrla.minimize(lambda x: float(x @ x), [(-5, 5)] * 3, maxfun=5_000)
     assert res.success
 
 

@@ -72,6 +72,22 @@ def test_batched_python_potential_matches_the_builtin(golden):
     assert calls == [(8, 2)] * 201
 
 
+def test_minimize_with_a_vectorized_gradient_is_algorithm_1s_bits(golden):
+    """The same quadratic through minimize's scipy conventions (columns,
+    jac=True) and the same settings: the Rust crate's best, bit for bit."""
+    g = golden["hrla_quadratic"]
+
+    def columns(x):
+        u = 0.5 * ((0.0 + x[0] * x[0]) + x[1] * x[1])
+        return u, x.copy()
+
+    res = hrla.minimize(columns, None, jac=True, vectorized=True, method="hrla", h=0.05, schedule=1.0,
+                        start=hrla.Gaussian([1.0, -1.0], 1.0), chains=8, rng=5, maxiter=200, polish=0, dim=2)
+    assert res.termination == g["termination"] and res.nit == g["iterations"]
+    assert res.nfev == res.njev == g["evaluations"]
+    assert bits([res.fun]) == [g["best_value"]] and bits(res.x) == g["best_x"]
+
+
 def test_ola_box_ackley_and_polish(golden):
     g = golden["ola_box_ackley_polish"]
     box = hrla.Interval(-5.0, 5.0)

@@ -33,6 +33,14 @@ def sphere(X):
     return np.sum(X * X, axis=1), 2 * X
 
 
+def pointwise(batch):
+    """A batched potential as minimize's fun with jac=True: x (D,) -> (f, g)."""
+    def fun(x):
+        u, g = batch(np.asarray(x)[None, :])
+        return u[0], g[0]
+    return fun
+
+
 # --- the values a potential returns ------------------------------------
 
 
@@ -48,9 +56,23 @@ def test_a_potential_must_return_real_numbers(fun, what):
     # The batched call (initial points and steps), and one row at a time
     # (Auto, the polish).
     with pytest.raises(TypeError, match=f"the potential's {what}"):
-        hrla.minimize(fun, [(-1, 1)] * 2, method="hrla", budget=2_000, polish=0)
+        hrla.Optimizer(fun, hrla.Hrla.paper(0.01), 1.0, hrla.Interval(-1, 1), dim=2)
     with pytest.raises(TypeError, match="must be real numbers"):
-        hrla.minimize(fun, [(-1, 1)] * 2, budget=2_000)
+        hrla.Auto().minimize(fun, hrla.Interval(-1, 1), 2_000, dim=2)
+    # minimize's vectorized fun with jac=True (columns).
+    def columns(x):
+        u, g = fun(x.T)
+        return u, np.asarray(g).T
+
+    with pytest.raises(TypeError, match="fun's (values|gradient) must be real numbers"):
+        hrla.minimize(columns, [(-1, 1)] * 2, jac=True, vectorized=True, maxfun=2_000)
+
+
+@pytest.mark.parametrize("value", [1j, True, "1.5", None, np.array([1.0, 2.0]), object()])
+def test_a_scalar_fun_must_return_one_real_number(value):
+    for method in ("auto", "hrla"):
+        with pytest.raises(TypeError, match="fun must return a real number"):
+            hrla.minimize(lambda x: value, [(-1, 1)] * 2, method=method, maxfun=2_000)
 
 
 def test_real_values_of_every_real_dtype_are_accepted():
@@ -70,7 +92,7 @@ def test_real_values_of_every_real_dtype_are_accepted():
 def test_bounds_must_be_real_numbers():
     for bounds in ([("-1", "1")] * 2, [(-1 + 0j, 1)] * 2, [(False, True)] * 2, ("0", "1")):
         with pytest.raises(TypeError, match="bounds must be real numbers"):
-            hrla.minimize(sphere, bounds, dim=2, method="hrla", budget=2_000)
+            hrla.minimize(sphere, bounds, dim=2, method="hrla", maxfun=2_000)
 
 
 # --- huge chain counts ---------------------------------------------------
@@ -99,11 +121,28 @@ except MemoryError as e:
     assert len(lines) == 2 and all(line.startswith(f"MemoryError: chains={chains}:") for line in lines), p.stdout
 
 
-def test_a_chain_count_too_large_for_an_int_is_an_overflow_error():
-    with pytest.raises(OverflowError):
+def test_a_count_out_of_range_is_an_error_naming_it():
+    with pytest.raises(OverflowError, match="chains = 18446744073709551616 is too large"):
         hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.0]), chains=2**64)
-    with pytest.raises(OverflowError):
-        hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.0]), chains=-1)
+    # Negative: ValueError naming the argument, not Python's OverflowError
+    # ("can't convert negative int to unsigned").
+    for name in ("chains", "seed", "stride", "dim"):
+        with pytest.raises(ValueError, match=f"{name} must be >= 0, got -1"):
+            hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.0]), **{name: -1})
+    for name in ("seed", "chains", "dim"):
+        with pytest.raises(ValueError, match=f"{name} must be >= 0, got -1"):
+            hrla.Auto().minimize(hrla.Rastrigin(), hrla.Interval(-1, 1), 1_000, **{name: -1})
+    with pytest.raises(ValueError, match="budget must be >= 0, got -5"):
+        hrla.Auto().minimize(hrla.Rastrigin(), hrla.Interval(-1, 1), -5, dim=2)
+    for name in ("steps", "quench", "stall"):
+        with pytest.raises(ValueError, match=f"{name} must be >= 0, got -2"):
+            hrla.Auto(**{name: -2})
+    with pytest.raises(ValueError, match="steps must be >= 0, got -1"):
+        hrla.Stop().steps(-1)
+    with pytest.raises(ValueError, match="evaluations must be >= 0, got -1"):
+        hrla.PolishSettings(-1)
+    with pytest.raises(TypeError, match="chains must be an int, got float"):
+        hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.0]), chains=2.0)
 
 
 # --- one call at a time --------------------------------------------------
@@ -199,7 +238,7 @@ def test_two_threads_with_a_builtin_potential_never_panic_or_lose_steps():
 # --- Ctrl-C --------------------------------------------------------------
 
 
-@pytest.mark.parametrize("case", ["run", "step", "minimize", "auto", "python_potential"])
+@pytest.mark.parametrize("case", ["run", "step", "minimize", "auto", "scalar", "python_potential"])
 def test_ctrl_c_interrupts_a_run_that_can_resume(case):
     # A run ignoring the signal would go on for hours: the time limit
     # turns that into a failure.
@@ -229,7 +268,8 @@ def test_polish_on_a_potential_unbounded_below_raises():
         opt.quench(1)
     # The same through minimize's polish.
     with pytest.raises(hrla.UnboundedBelowError):
-        hrla.minimize(minus_exp, None, dim=1, start=hrla.Point([0.0]), method="ola", budget=1_000, polish=500)
+        hrla.minimize(pointwise(minus_exp), None, jac=True, dim=1, start=hrla.Point([0.0]), method="ola",
+                      maxfun=1_000, polish=500)
 
 
 def log_well(X):
@@ -242,7 +282,7 @@ def log_well(X):
 
 
 def test_a_start_where_the_potential_is_undefined_is_redrawn():
-    res = hrla.minimize(log_well, [(-2, 3)] * 2)
+    res = hrla.minimize(pointwise(log_well), [(-2, 3)] * 2, jac=True)
     assert res.success, res
     assert res.fun < 1e-12 and np.allclose(res.x, [1.0, 0.5], atol=1e-5), res
 
@@ -265,13 +305,13 @@ def best_u(message):
 
 
 def test_the_result_says_why_it_ended_after_the_polish():
-    res = hrla.minimize(hrla.Rastrigin(), [(-5.12, 5.12)] * 3, method="hrla", seed=1, budget=20_000)
+    res = hrla.minimize(hrla.Rastrigin(), [(-5.12, 5.12)] * 3, method="hrla", seed=1, maxfun=20_000)
     assert res.success and res.status == 0 and res.termination == "Steps", res
     assert not res.all_diverged and res.diverged_chains == 0
     # The message is the polished result's.
     assert best_u(res.message) == res.fun, res.message
     assert hrla.TERMINATIONS[res.status] == res.termination
-    res = hrla.minimize(hrla.Rastrigin(), [(-5.12, 5.12)] * 3, seed=1, budget=20_000)
+    res = hrla.minimize(hrla.Rastrigin(), [(-5.12, 5.12)] * 3, seed=1, maxfun=20_000)
     assert res.success and hrla.TERMINATIONS[res.status] == res.termination == "Evaluations", res
     assert best_u(res.message) == res.fun and not res.all_diverged, res.message
 

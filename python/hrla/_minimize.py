@@ -1,0 +1,595 @@
+"""``hrla.minimize``: the front door, in ``scipy.optimize``'s shape."""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+import warnings
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _objective
+from ._hrla import Auto, Hrla, Interval, Ola, Optimizer, PolishSettings, Potential, Stop, Ula
+
+#: The clock of ``maxtime`` and of the progress line's rate (seconds); a
+#: test may replace it with a fake one.
+_clock: Callable[[], float] = time.monotonic
+
+#: Why a run ended, indexed by :class:`OptimizeResult`'s ``status``: the
+#: kernel's ``Termination`` names (``"Steps"``: the step budget, or
+#: ``maxiter``; ``"Evaluations"``: ``maxfun``; ``"Target"``; ``"Stalled"``;
+#: ``"Observer"``: an observer of :meth:`Optimizer.run` or
+#: :meth:`Auto.minimize`), then ``"Time"`` (``maxtime``) and
+#: ``"Callback"`` (the callback asked to stop).
+TERMINATIONS = ("Steps", "Evaluations", "Target", "Stalled", "Observer", "Time", "Callback")
+
+#: The sentence of each reason :func:`minimize` itself stops a run for.
+_REASONS = {
+    "Steps": "the round budget (maxiter) is spent",
+    "Target": "the target value is reached",
+    "Stalled": "the best value stalled",
+    "Time": "the time limit (maxtime) is reached",
+    "Callback": "the callback asked to stop",
+}
+
+_SAMPLERS: Dict[str, Any] = {"hrla": Hrla, "ula": Ula, "ola": Ola}
+#: The arguments only the samplers use.
+_SAMPLER_ONLY = ("h", "schedule", "start", "polish")
+
+#: The default of ``maxfun``.
+MAXFUN = 125_000
+
+
+class OptimizeResult(Dict[str, Any]):
+    """The outcome of :func:`minimize`, as ``scipy.optimize.OptimizeResult``:
+    a dict whose keys are also attributes.
+
+    - ``x``: the best point; ``fun``: ``f(x)``; ``jac``: the gradient there
+      (finite differences when ``jac`` was not given);
+    - ``nfev``: the calls of ``fun`` on a point, all counted (the
+      finite-difference probes, the starts, the polish); ``njev``: the
+      gradients computed; ``nit``: the steps (samplers) or rounds
+      (``"auto"``);
+    - ``success``: ``True`` only when ``fun`` is finite, some chain is still
+      alive and a stopping rule other than the callback ended the run;
+      ``status``: the index of ``termination`` in :data:`TERMINATIONS`;
+      ``termination``: why it ended (``"Evaluations"``, ``"Steps"``,
+      ``"Target"``, ``"Stalled"``, ``"Time"``, ``"Callback"``);
+    - ``all_diverged``, ``diverged_chains``, ``chains``, ``method``,
+      ``seed`` (the seed the run used: the same call with ``rng=seed``
+      gives the same bits);
+    - ``message``: the kernel's report of the final state, written last.
+    """
+
+    def __getattr__(self, name: str) -> Any:
+        try:
+            return self[name]
+        except KeyError as e:
+            raise AttributeError(name) from e
+
+    __setattr__ = dict.__setitem__
+    __delattr__ = dict.__delitem__
+
+    def __repr__(self) -> str:
+        keys = ("fun", "x", "nfev", "nit", "success", "status", "termination", "message")
+        return "OptimizeResult(" + ", ".join(f"{k}={self[k]!r}" for k in keys if k in self) + ")"
+
+
+Box = Union[None, Interval, List[Tuple[float, float]]]
+
+
+def box_of(bounds: Any, dim: Optional[int] = None) -> Box:
+    """``bounds`` as a box for the run-time layer: ``(lo, hi)`` in every
+    coordinate (an :class:`Interval`), a sequence of ``D`` pairs
+    ``(lo_i, hi_i)`` (their number fixes ``D``), or a
+    ``scipy.optimize.Bounds`` (anything with ``lb`` and ``ub``; scalars
+    are the same side in every coordinate)."""
+    if bounds is None:
+        return None
+    if isinstance(bounds, Interval):
+        return bounds
+    if hasattr(bounds, "lb") and hasattr(bounds, "ub"):
+        lb, ub = _real_array(bounds.lb, "bounds.lb"), _real_array(bounds.ub, "bounds.ub")
+        if lb.size == 1 and ub.size == 1:
+            # scipy keeps scalar sides as arrays of one.
+            return Interval(float(lb.reshape(())), float(ub.reshape(())))
+        if lb.ndim > 1 or ub.ndim > 1:
+            raise ValueError(f"bounds.lb and bounds.ub must be scalars or 1-D, got shapes {lb.shape} and {ub.shape}")
+        try:
+            lb, ub = np.broadcast_arrays(lb, ub)
+        except ValueError:
+            raise ValueError(f"bounds.lb and bounds.ub differ in length: {lb.shape} and {ub.shape}") from None
+        return [(float(lo), float(hi)) for lo, hi in zip(lb, ub)]
+    b = _real_array(bounds, "bounds")
+    if b.shape == (2,):
+        return Interval(float(b[0]), float(b[1]))
+    if b.ndim == 2 and b.shape[1] == 2 and b.shape[0] >= 1:
+        return [(float(lo), float(hi)) for lo, hi in b]
+    raise ValueError(f"bounds must be (lo, hi), a sequence of D (lo, hi) pairs or scipy.optimize.Bounds, "
+                     f"got {bounds!r}")
+
+
+def _real_array(v: Any, name: str) -> np.ndarray:
+    b = np.asarray(v)
+    if b.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must be real numbers (floats or ints), got {v!r} (dtype {b.dtype})")
+    return b.astype(np.float64)
+
+
+def _sides(box: Box, d: Optional[int]) -> Tuple[Any, Any]:
+    """The box's lower and upper sides, for the finite differences."""
+    if box is None:
+        return -np.inf, np.inf
+    if isinstance(box, Interval):
+        return box.lo, box.hi
+    return np.array([lo for lo, _ in box]), np.array([hi for _, hi in box])
+
+
+def _count(v: Any, name: str, minimum: int = 0) -> int:
+    """A count argument: an int in ``[minimum, 2**64)``, else an error
+    naming it."""
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+        raise TypeError(f"{name} must be an int, got {v!r}")
+    count = int(v)
+    if count < minimum:
+        raise ValueError(f"{name} must be >= {minimum}, got {count}")
+    if count >= 2 ** 64:
+        raise ValueError(f"{name} must be < 2**64, got {count}")
+    return count
+
+
+def _number(v: Any, name: str) -> float:
+    """A real argument that is not NaN."""
+    if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a real number, got {v!r}")
+    if math.isnan(v):
+        raise ValueError(f"{name} must be a number, got NaN")
+    return float(v)
+
+
+def seed_of(rng: Any, name: str = "rng") -> int:
+    """The run's 64-bit seed from scipy's ``rng``: ``None`` (fresh entropy
+    from the operating system), an int (the seed itself, as
+    :class:`Optimizer`'s ``seed``), or a ``numpy.random.Generator`` (the
+    seed drawn from it)."""
+    if rng is None:
+        entropy: Any = np.random.SeedSequence().entropy  # an int of 128 bits
+        return int(entropy) % 2 ** 64
+    if isinstance(rng, np.random.Generator):
+        return int(rng.integers(0, 2 ** 64, dtype=np.uint64))
+    if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
+        return _count(rng, name)
+    raise TypeError(f"{name} must be None, an int or a numpy.random.Generator, got {rng!r}")
+
+
+class _Watch:
+    """What :func:`minimize` checks as a run goes, besides the kernel's
+    own rules: the target, stall and round budget of ``"auto"``, the time
+    limit, the callback and the progress line. Called as the observer of
+    :meth:`Optimizer.run` or :meth:`Auto.minimize`; returns ``True`` to
+    stop, and keeps why in ``reason``."""
+
+    def __init__(self, method: str, *, target: Optional[float], stall: Optional[Tuple[int, float]],
+                 maxiter: Optional[int], maxtime: Optional[float], callback: Optional[Callable[..., Any]],
+                 disp: bool, best: Callable[[], Tuple[Optional[np.ndarray], float]],
+                 nfev: Callable[[int], int]) -> None:
+        self.method = method
+        self.target = target
+        self.stall = stall
+        self.maxiter = maxiter
+        self.maxtime = maxtime
+        self.callback = callback
+        self.intermediate = callback is not None and _objective.returns_intermediate_result(callback)
+        self.disp = disp
+        self.best = best
+        self.nfev = nfev
+        self.reason: Optional[str] = None
+        self.start = _clock()
+        self.shown: Optional[float] = None
+        self.by_round: Dict[int, float] = {}
+        self.called_at: Optional[int] = None
+
+    def __call__(self, iteration: int, evaluations: int, value: float) -> bool:
+        if self.target is not None and value <= self.target:
+            return self.stop("Target")
+        if self.stall is not None:
+            window, tolerance = self.stall
+            self.by_round[iteration] = value
+            then = self.by_round.get(iteration - window)
+            if then is not None and then - value <= tolerance:
+                return self.stop("Stalled")
+            self.by_round.pop(iteration - window - 1, None)
+        if self.maxiter is not None and iteration >= self.maxiter:
+            return self.stop("Steps")
+        now = _clock()
+        if self.disp and (self.shown is None or now - self.shown >= 1.0):
+            self.shown = now
+            self.show(iteration, evaluations, value, now)
+        if self.maxtime is not None and now - self.start >= self.maxtime:
+            return self.stop("Time")
+        if self.callback is not None and iteration != self.called_at:
+            self.called_at = iteration
+            x, f = self.best()
+            try:
+                if self.intermediate:
+                    answer = self.callback(OptimizeResult(x=x, fun=f, nfev=self.nfev(evaluations), nit=iteration))
+                else:
+                    answer = self.callback(None if x is None else np.copy(x))
+            except StopIteration:
+                return self.stop("Callback")
+            if answer is True:
+                return self.stop("Callback")
+        return False
+
+    def stop(self, reason: str) -> bool:
+        self.reason = reason
+        return True
+
+    def show(self, iteration: int, evaluations: int, value: float, now: float) -> None:
+        nfev = self.nfev(evaluations)
+        elapsed = now - self.start
+        rate = f", {nfev / elapsed:.3g} evaluations/s" if elapsed > 0 else ""
+        word = "round" if self.method == "auto" else "step"
+        print(f"hrla {self.method}: {word} {iteration}, {nfev} evaluations, best {value:.10g}{rate}",
+              file=sys.stdout, flush=True)
+
+
+def minimize(
+    fun: Any,
+    bounds: Any = None,
+    args: Sequence[Any] = (),
+    *,
+    jac: Any = None,
+    x0: Any = None,
+    method: str = "auto",
+    maxfun: Optional[int] = None,
+    maxiter: Optional[int] = None,
+    maxtime: Optional[float] = None,
+    target: Optional[float] = None,
+    stall: Optional[Tuple[int, float]] = None,
+    rng: Any = None,
+    seed: Any = None,
+    callback: Optional[Callable[..., Any]] = None,
+    vectorized: bool = False,
+    workers: Any = 1,
+    disp: bool = False,
+    dim: Optional[int] = None,
+    chains: Optional[int] = None,
+    h: Optional[float] = None,
+    schedule: Any = None,
+    start: Any = None,
+    polish: Optional[int] = None,
+    budget: Optional[int] = None,
+    steps: Optional[int] = None,
+) -> OptimizeResult:
+    """Minimises ``fun`` globally over a box by Langevin sampling, with
+    ``scipy.optimize``'s conventions.
+
+    The function:
+
+    - ``fun(x, *args) -> float`` at one point ``x`` of shape ``(D,)``, as
+      scipy calls it; or a built-in potential (``hrla.Rastrigin()``, ...),
+      which runs in Rust;
+    - ``jac``: ``None`` or ``"2-point"`` (forward differences, ``D``
+      calls of ``fun`` per gradient), ``"3-point"`` (central differences,
+      ``2 D`` calls), both with the steps of
+      ``scipy.optimize.approx_derivative`` and turned inward at the box's
+      faces so that no call leaves the box; ``True`` (``fun`` returns
+      ``(f, g)``); or a callable ``jac(x, *args)`` returning ``g``;
+    - ``vectorized=True``: ``fun`` is called once per batch with ``x`` of
+      shape ``(D, S)``, a column per point, and returns ``S`` values
+      (``differential_evolution``'s convention; with ``jac=True``, ``(f,
+      g)`` with ``g`` of shape ``(D, S)``); the finite differences' probes
+      go in the same call;
+    - ``workers``: an int (a process pool of that many, ``-1`` one per
+      CPU; ``fun`` must then pickle) or a map-like callable
+      (``pool.map``) that evaluates a batch's points in parallel.
+
+    The problem: ``bounds`` is ``D`` pairs ``(lo_i, hi_i)``, a
+    ``scipy.optimize.Bounds`` or ``(lo, hi)`` with ``dim``; ``x0`` (shape
+    ``(D,)``, inside the box) seeds chain 0 of a sampler (``"auto"`` draws
+    its own starts: it warns that ``x0`` is not used).
+
+    The run: ``method`` is ``"auto"`` (the default: :class:`Auto`, no
+    setting to tune; ``chains`` defaults to ``Auto.chains_for``) or
+    ``"hrla"``, ``"ula"``, ``"ola"`` (Algorithm 1 of the paper with that
+    sampler in its paper setting at step ``h`` (default 0.01), the
+    ``schedule`` (default ``a = 4``), ``chains`` chains (default 10) from
+    ``start`` (default: uniform in the box), then, unless the target, the
+    time limit or the callback stopped the run, an L-BFGS polish of the
+    best point within ``polish`` calls of ``fun``). Every method stops at
+    the first of: ``maxfun`` calls of ``fun`` (default 125 000, every call
+    counted), ``maxiter`` steps or rounds, the ``target`` value, ``stall =
+    (window, tolerance)`` (the best has not fallen by more than
+    ``tolerance`` over ``window`` steps or rounds), ``maxtime`` seconds,
+    the callback, Ctrl-C (``KeyboardInterrupt``).
+
+    ``rng`` (or ``seed``) is ``None`` (fresh entropy), an int or a
+    ``numpy.random.Generator``; the result's ``seed`` repeats the run.
+    ``callback(intermediate_result)`` gets an :class:`OptimizeResult`
+    (``x``, ``fun``: the best so far; ``nfev``, ``nit``) once per step or
+    round (a callback with another parameter name gets ``x``, as scipy's
+    older convention) and stops the run by raising ``StopIteration`` or
+    returning ``True``. ``disp=True`` prints a progress line (steps or
+    rounds, evaluations, best value, rate) at most once a second.
+
+    ``budget`` and ``steps`` are the older names of ``maxfun`` and
+    ``maxiter`` (deprecated). An argument the method does not use raises
+    ``ValueError`` naming it.
+
+    Returns an :class:`OptimizeResult`. Bad input raises ``TypeError`` or
+    ``ValueError`` naming the argument; failed runs raise
+    :class:`HrlaError` (with the kernel's message) or a subclass.
+    """
+    if not isinstance(method, str):
+        raise TypeError(f"method must be a str (auto hrla ula ola), got {type(method).__name__}")
+    method = method.lower()
+    if method != "auto" and method not in _SAMPLERS:
+        raise ValueError(f"unknown method {method!r}; expected one of: auto hrla ula ola")
+    maxfun = _renamed(maxfun, budget, "maxfun", "budget")
+    maxiter = _renamed(maxiter, steps, "maxiter", "steps")
+    if method == "auto":
+        given = {"h": h, "schedule": schedule, "start": start, "polish": polish}
+        for name in _SAMPLER_ONLY:
+            if given[name] is not None:
+                raise ValueError(f"{name} is not used by method='auto' (it sets the samplers "
+                                 f"'hrla', 'ula' and 'ola')")
+        if x0 is not None:
+            warnings.warn("x0 is not used by method='auto', which draws its own starts; "
+                          "a sampler method (e.g. method='hrla') starts a chain there", UserWarning, stacklevel=2)
+            x0 = None
+    maxfun = MAXFUN if maxfun is None else _count(maxfun, "maxfun", 1)
+    maxiter = None if maxiter is None else _count(maxiter, "maxiter")
+    chains = None if chains is None else _count(chains, "chains", 1)
+    dim = None if dim is None else _count(dim, "dim", 1)
+    polish = None if polish is None else _count(polish, "polish")
+    maxtime = None if maxtime is None else _number(maxtime, "maxtime")
+    if maxtime is not None and maxtime < 0:
+        raise ValueError(f"maxtime must be >= 0 seconds, got {maxtime}")
+    target = None if target is None else _number(target, "target")
+    if stall is not None:
+        try:
+            window, tolerance = stall
+        except (TypeError, ValueError):
+            raise TypeError(f"stall must be a pair (window, tolerance), got {stall!r}") from None
+        stall = (_count(window, "stall's window", 1), _number(tolerance, "stall's tolerance"))
+        if stall[1] < 0:
+            raise ValueError(f"stall's tolerance must be >= 0, got {stall[1]}")
+    if callback is not None and not callable(callback):
+        raise TypeError(f"callback must be callable, got {callback!r}")
+    if rng is not None and seed is not None:
+        raise TypeError("give rng or seed (its older name), not both")
+    run_seed = seed_of(seed, "seed") if seed is not None else seed_of(rng, "rng")
+    if not isinstance(args, tuple):
+        args = (args,) if not isinstance(args, list) else tuple(args)
+    box = box_of(bounds)
+    if x0 is not None:
+        x0 = _real_array(x0, "x0")
+        if x0.ndim != 1:
+            raise ValueError(f"x0 must have shape (D,), got {x0.shape}")
+    d = dim
+    for name, size in (("bounds", len(box) if isinstance(box, list) else None),
+                       ("x0", None if x0 is None else len(x0))):
+        if size is not None:
+            if d is not None and d != size:
+                raise ValueError(f"{name} has dimension {size} but "
+                                 f"{'dim' if dim is not None else 'bounds'} has {d}")
+            d = size
+    lb, ub = _sides(box, d)
+    if x0 is not None and (np.any(x0 < lb) or np.any(x0 > ub)):
+        raise ValueError(f"x0 must lie in the box, got {x0}")
+
+    builtin = isinstance(fun, Potential)
+    mapper: Optional[_objective.Mapper] = None
+    objective: Optional[_objective.Objective] = None
+    try:
+        if builtin:
+            for name, value, default in (("args", args, ()), ("jac", jac, None), ("vectorized", vectorized, False),
+                                         ("workers", workers, 1)):
+                if callable(value) or value != default:
+                    raise ValueError(f"{name} is not used with a built-in potential (it runs in Rust, "
+                                     f"with its own gradient)")
+            potential: Any = fun
+            cost = 1
+            if method == "auto" and callback is not None:
+                # The callback's best point: Auto reports its value only.
+                objective = _objective.Objective(_builtin_columns(fun), (), True, True, _objective.Mapper(1),
+                                                 lb, ub)
+                potential = objective
+        elif callable(fun):
+            if vectorized and (callable(workers) or workers != 1):
+                raise ValueError("workers is not used with vectorized=True: fun evaluates each batch in one call")
+            mapper = _objective.Mapper(workers)
+            objective = _objective.Objective(fun, args, jac, bool(vectorized), mapper, lb, ub)
+            potential = objective
+            if objective.scheme is None:
+                cost = 1
+            elif d is None:
+                raise ValueError("the dimension is unknown: give bounds as D pairs, x0, or dim=")
+            else:
+                cost = objective.cost(d)
+        else:
+            raise TypeError(f"fun must be callable or a built-in potential (hrla.Rastrigin(), ...), "
+                            f"got {type(fun).__name__}")
+        # One gradient is kept back for the result's jac, if the run did
+        # not compute it at x.
+        spare = 1 if objective is not None and not builtin else 0
+        budget_k = maxfun // cost - spare
+        if budget_k < 1:
+            raise ValueError(f"maxfun={maxfun} leaves no evaluation: each gradient costs {cost} calls of fun")
+        if method == "auto":
+            n = chains if chains is not None else Auto.chains_for(budget_k)
+            if budget_k < 2 * n:
+                raise ValueError(f"maxfun={maxfun} is too small for method='auto' with {n} chains: it needs "
+                                 f"{2 * n} gradients of {cost} calls of fun each"
+                                 f"{' and one more for the result' if spare else ''}, "
+                                 f"maxfun >= {(2 * n + spare) * cost}")
+
+        def nfev(evaluations: int) -> int:
+            return objective.nfev if objective is not None else evaluations
+
+        if method == "auto":
+            return _auto(potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
+                         target=target, stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
+        return _sampler(method, potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
+                        cost=cost, h=h, schedule=schedule, start=start, polish=polish, x0=x0, target=target,
+                        stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
+    finally:
+        if mapper is not None:
+            mapper.close()
+
+
+def _renamed(new: Any, old: Any, name: str, old_name: str) -> Any:
+    """``new``, or ``old`` (with a deprecation warning) where only that is given."""
+    if old is None:
+        return new
+    if new is not None:
+        raise TypeError(f"give {name} or its older name {old_name}, not both")
+    warnings.warn(f"{old_name}= is deprecated: it is {name}= (the same count)", DeprecationWarning, stacklevel=3)
+    return old
+
+
+def _builtin_columns(potential: Potential) -> Callable[[np.ndarray], Tuple[np.ndarray, np.ndarray]]:
+    """A built-in as a vectorized ``fun`` with ``jac=True`` (columns)."""
+    def columns(xt: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+        u, g = potential.value_and_gradient(np.ascontiguousarray(xt.T))
+        return u, g.T
+    return columns
+
+
+def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int], dim: Optional[int],
+          objective: Optional[_objective.Objective], builtin: bool, fun: Any, nfev: Callable[[int], int],
+          **watch: Any) -> OptimizeResult:
+    if box is None:
+        raise ValueError('method="auto" needs bounds: D (lo, hi) pairs, scipy.optimize.Bounds, or (lo, hi) with dim=')
+
+    def best() -> Tuple[Optional[np.ndarray], float]:
+        if objective is None or objective.best is None:
+            return None, math.inf
+        return objective.best[0].copy(), objective.best[1]
+
+    w = _Watch("auto", best=best, nfev=nfev, **watch)
+    observed = any(watch[k] is not None for k in ("target", "stall", "maxiter", "maxtime", "callback")) or watch["disp"]
+    s = Auto().minimize(potential, box, budget, seed, chains=chains, dim=dim, observer=w if observed else None)
+    termination = w.reason if s.termination == "Observer" and w.reason else s.termination
+    x = np.asarray(s.x)
+    jac = _gradient(x, objective, builtin, fun)
+    if watch["disp"]:
+        w.show(s.rounds, s.evaluations, s.value, _clock())
+    return _result(
+        x=x, fun=s.value, jac=jac, nfev=nfev(s.evaluations),
+        njev=objective.njev if objective is not None else s.evaluations, nit=s.rounds, termination=termination,
+        diverged_chains=s.diverged_chains, chains=s.chains, method="auto", seed=seed, step=s.step,
+        inverse_temperature=s.inverse_temperature,
+        # Auto's chains always hold a feasible basin: an infeasible last
+        # proposal is rejected, not a failure.
+        holds_basins=True, message=_message(s.message, termination, s.termination),
+    )
+
+
+def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chains: Optional[int],
+             dim: Optional[int], objective: Optional[_objective.Objective], builtin: bool, fun: Any,
+             nfev: Callable[[int], int], *, cost: int, h: Optional[float], schedule: Any, start: Any,
+             polish: Optional[int], x0: Optional[np.ndarray], target: Optional[float],
+             stall: Optional[Tuple[int, float]], maxiter: Optional[int], maxtime: Optional[float],
+             callback: Optional[Callable[..., Any]], disp: bool) -> OptimizeResult:
+    if start is None:
+        if box is None:
+            raise ValueError("give bounds or a start (hrla.Gaussian, hrla.Point, hrla.Interval)")
+        start = box
+    n = 10 if chains is None else chains
+    polish_k = min(1000, budget // 4) if polish is None else polish // cost
+    stop = Stop().evaluations(budget)
+    steps = maxiter
+    if polish_k > 0:
+        # The sampling leaves the polish its share of the budget.
+        sampling = (budget - polish_k - n - (x0 is not None)) // max(n, 1)
+        if sampling < 1:
+            raise ValueError(f"maxfun leaves no step to {n} chains before a polish of {polish_k} gradients "
+                             f"({cost} calls of fun each): raise maxfun, or lower polish or chains")
+        steps = sampling if steps is None else min(steps, sampling)
+    if steps is not None:
+        stop = stop.steps(steps)
+    if target is not None:
+        stop = stop.target(target)
+    if stall is not None:
+        stop = stop.stall(*stall)
+    opt = Optimizer(potential, _SAMPLERS[method].paper(0.01 if h is None else h),
+                    4.0 if schedule is None else schedule, start, chains=n, seed=seed, stop=stop, domain=box, dim=dim)
+    if x0 is not None:
+        opt.restart(0, [float(v) for v in x0])
+
+    def best() -> Tuple[Optional[np.ndarray], float]:
+        # The views need no lock: readable while the run runs.
+        values = opt.best_value
+        i = int(np.argmin(values))
+        return np.array(opt.best_x[i]), float(values[i])
+
+    w = _Watch(method, target=None, stall=None, maxiter=None, maxtime=maxtime, callback=callback, disp=disp,
+               best=best, nfev=nfev)
+    observed = maxtime is not None or callback is not None or disp
+    report = opt.run(w if observed else None)
+    termination = report.termination
+    if termination == "Observer" and w.reason:
+        # A kernel rule that holds too comes first.
+        termination = opt.termination() or w.reason
+    # A run stopped by its target, time limit or callback stops there: the
+    # polish would spend evaluations the user asked not to spend.
+    if polish_k > 0 and termination not in ("Target", "Time", "Callback"):
+        opt.polish(opt.best_chain, PolishSettings(polish_k))
+        # The report of the polished state: its rule still holds (the
+        # polish only adds evaluations and lowers the best), unless a
+        # target is now reached, which comes first.
+        report = opt.report() or report
+        if report.termination != "Observer":
+            termination = report.termination
+    x, value, _ = opt.best
+    jac = _gradient(x, objective, builtin, fun)
+    if disp:
+        w.show(report.iterations, opt.evaluations, value, _clock())
+    return _result(
+        x=x, fun=value, jac=jac, nfev=nfev(opt.evaluations),
+        njev=objective.njev if objective is not None else opt.evaluations, nit=report.iterations,
+        termination=termination, diverged_chains=report.diverged_chains, chains=report.chains, method=method,
+        seed=seed, message=_message(report.message, termination, report.termination),
+    )
+
+
+def _gradient(x: np.ndarray, objective: Optional[_objective.Objective], builtin: bool, fun: Any) -> np.ndarray:
+    """The gradient at the result's ``x``: the one computed there in the
+    run, else computed now (one gradient, counted)."""
+    if builtin:
+        return np.asarray(fun.value_and_gradient(np.asarray(x, dtype=np.float64)[None, :])[1][0])
+    assert objective is not None
+    if objective.best is not None and np.array_equal(objective.best[0], x):
+        return objective.best[2].copy()
+    _, g = objective(np.asarray(x, dtype=np.float64)[None, :])
+    return np.asarray(g[0])
+
+
+def _message(kernel: str, termination: str, kernel_termination: str) -> str:
+    """The kernel's report, with the reason when :func:`minimize` stopped
+    the run itself."""
+    if termination == kernel_termination or termination not in _REASONS:
+        return kernel
+    # The kernel's sentence opens with its reason ("stopped by the
+    # observer: best U = ..."): the observer's own reason replaces it.
+    return f"{_REASONS[termination]}: {kernel.split(': ', 1)[-1]}"
+
+
+def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, message: str,
+            holds_basins: bool = False, **rest: Any) -> OptimizeResult:
+    """An :class:`OptimizeResult` whose ``success`` and ``status`` follow
+    from the termination and the value (and, for the samplers, from whether
+    any chain is still alive); ``message`` last."""
+    alive = holds_basins or diverged_chains < chains
+    r = OptimizeResult(fun=fun, **rest)
+    r.update(
+        success=termination not in ("Observer", "Callback") and alive and bool(np.isfinite(fun)),
+        status=TERMINATIONS.index(termination), termination=termination,
+        all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
+    )
+    r["message"] = message
+    return r
