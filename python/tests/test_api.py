@@ -236,7 +236,7 @@ def test_a_box_per_coordinate_is_the_layers_to_check():
         x1 = grid[np.argmin(term)]
         assert abs(x[0]) < 1e-8 and abs(x[1] - x1) < 1e-5
         assert fun == pytest.approx(term.min(), abs=1e-10)
-    with pytest.raises(ValueError, match="dim has dimension 3 but the box has 2"):
+    with pytest.raises(ValueError, match="bounds has dimension 2 but dim has 3"):
         hrla.minimize(hrla.Rastrigin(), [(-1.0, 1.0)] * 2, dim=3, maxfun=10_000)
     with pytest.raises(TypeError, match="a box must be"):
         hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Point([0.0]), domain="box")
