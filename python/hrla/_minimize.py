@@ -27,7 +27,7 @@ TERMINATIONS = ("Steps", "Evaluations", "Target", "Stalled", "Observer", "Time",
 
 #: The sentence of each reason :func:`minimize` itself stops a run for.
 _REASONS = {
-    "Steps": "the round budget (maxiter) is spent",
+    "Steps": "the step budget is spent (maxiter, or the steps maxfun leaves before the polish)",
     "Target": "the target value is reached",
     "Stalled": "the best value stalled",
     "Time": "the time limit (maxtime) is reached",
@@ -485,7 +485,7 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
         inverse_temperature=s.inverse_temperature,
         # Auto's chains always hold a feasible basin: an infeasible last
         # proposal is rejected, not a failure.
-        holds_basins=True, message=_message(s.message, termination, s.termination),
+        holds_basins=True, kernel_message=s.message,
     )
 
 
@@ -553,7 +553,7 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
         x=x, fun=value, jac=jac, nfev=nfev(opt.evaluations),
         njev=objective.njev if objective is not None else opt.evaluations, nit=report.iterations,
         termination=termination, diverged_chains=report.diverged_chains, chains=report.chains, method=method,
-        seed=seed, message=_message(report.message, termination, report.termination),
+        seed=seed, kernel_message=report.message,
     )
 
 
@@ -569,17 +569,23 @@ def _gradient(x: np.ndarray, objective: Optional[_objective.Objective], builtin:
     return np.asarray(g[0])
 
 
-def _message(kernel: str, termination: str, kernel_termination: str) -> str:
-    """The kernel's report, with the reason when :func:`minimize` stopped
-    the run itself."""
-    if termination == kernel_termination or termination not in _REASONS:
-        return kernel
-    # The kernel's sentence opens with its reason ("stopped by the
-    # observer: best U = ..."): the observer's own reason replaces it.
-    return f"{_REASONS[termination]}: {kernel.split(': ', 1)[-1]}"
+def _message(kernel: str, termination: str, r: OptimizeResult) -> str:
+    """Why the run ended and what it found, in the user's units: calls of
+    ``fun`` (the kernel counts gradients, each of which may be several
+    calls), and ``f`` to its last digit."""
+    reason = _REASONS.get(termination) or kernel.split(": ", 1)[0]
+    unit = "rounds" if r["method"] == "auto" else "steps"
+    text = (f"{reason}: best f = {float(r['fun'])!r} after {r['nfev']} calls of fun "
+            f"({r['njev']} gradients) in {r['nit']} {unit}")
+    k, n = r["diverged_chains"], r["chains"]
+    if k and r["method"] == "auto":
+        text += f"; the last proposal of {k} of {n} chains met a point where f is not finite (rejected)"
+    elif k:
+        text += f"; {k} of {n} chains diverged"
+    return text
 
 
-def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, message: str,
+def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, kernel_message: str,
             holds_basins: bool = False, **rest: Any) -> OptimizeResult:
     """An :class:`OptimizeResult` whose ``success`` and ``status`` follow
     from the termination and the value (and, for the samplers, from whether
@@ -591,5 +597,5 @@ def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, 
         status=TERMINATIONS.index(termination), termination=termination,
         all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
     )
-    r["message"] = message
+    r["message"] = _message(kernel_message, termination, r)
     return r

@@ -300,8 +300,8 @@ def test_redrawn_starts_of_a_batched_potential_get_their_own_answers():
 
 
 def best_u(message):
-    """The number after "best U = " in a message."""
-    return float(message.split("best U = ", 1)[1].split()[0])
+    """The number after "best f = " in a message."""
+    return float(message.split("best f = ", 1)[1].split()[0])
 
 
 def test_the_result_says_why_it_ended_after_the_polish():

@@ -124,6 +124,10 @@ def test_a_scalar_function_as_scipy_takes_it(method):
     for key in ("x", "fun", "jac", "nfev", "njev", "nit", "status", "success", "message"):
         assert key in res and (key in peer or key == "jac"), key
     assert list(res)[-1] == "message"
+    # The message counts what the user counts (calls of fun, not the
+    # kernel's gradients), with f to the last digit.
+    assert f"after {res.nfev} calls of fun ({res.njev} gradients)" in res.message, res.message
+    assert f"best f = {res.fun!r} " in res.message and "e-" in res.message, res.message
     assert res.x.shape == (2,) and res.jac.shape == (2,)
     # jac is the gradient at x (forward differences there: within their error).
     np.testing.assert_allclose(res.jac, himmelblau_grad(res.x), atol=1e-5)
