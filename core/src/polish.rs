@@ -181,11 +181,20 @@ fn unbounded<F: Float>(value: F) -> Result<(), Error> {
 }
 
 /// A point of the line: step, value, directional derivative.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 struct LinePoint<F> {
     step: F,
     value: F,
     slope: F,
+}
+
+impl<F: Float> LinePoint<F> {
+    /// A placeholder before the line search sets it.
+    const ORIGIN: Self = Self {
+        step: F::ZERO,
+        value: F::ZERO,
+        slope: F::ZERO,
+    };
 }
 
 impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
@@ -507,21 +516,20 @@ impl<F: Float> Memory<'_, F> {
         }
     }
 
-    /// Evaluates `U` and its slope along the direction at `x + step d`, into
-    /// the trial buffers; a non-finite value counts as `+inf`, except below
-    /// the floor at a finite point (`-inf` included), kept as it is.
-    fn probe<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
-        &mut self,
-        potential: &P,
-        domain: &B,
-        x: &[F],
-        step: F,
-    ) -> LinePoint<F> {
+    /// `trial = x + step d`, projected onto the domain: the point a probe
+    /// asks for.
+    fn set_trial<B: SliceDomain<F> + ?Sized>(&mut self, domain: &B, x: &[F], step: F) {
         for ((t, &xi), &di) in self.trial.iter_mut().zip(x).zip(&*self.direction) {
             *t = xi + step * di;
         }
         domain.project(self.trial);
-        let value = potential.value_and_gradient(self.trial, self.trial_grad);
+    }
+
+    /// The probe at `step` with `U(trial) = value` (its gradient in the
+    /// trial buffer) as a point of the line: a non-finite value counts as
+    /// `+inf`, except below the floor at a finite point (`-inf` included),
+    /// kept as it is.
+    fn line_point(&self, step: F, value: F) -> LinePoint<F> {
         // Along the path actually taken (the projection may have shortened
         // the step in some coordinates): the derivative in the direction.
         let slope = dot(self.trial_grad, self.direction);
@@ -537,98 +545,332 @@ impl<F: Float> Memory<'_, F> {
         }
     }
 
-    /// A step satisfying the strong Wolfe conditions from `(0, f0, d0)`,
-    /// with the trial buffers holding its point and gradient; `None` when
-    /// none was found within the trials or the budget. A point below the
-    /// floor ends the search at once, returned as it is.
-    #[allow(clippy::too_many_arguments)]
-    fn line_search<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+    /// Starts L-BFGS from `x` within the domain: the algorithm of every
+    /// polish, by reverse communication. Each [`Next::Evaluate`] asks for
+    /// `U` and `∇U` at the trial point, the gradient written into the
+    /// trial gradient buffer and the value
+    /// handed to [`tell`](Self::tell), until [`Next::Done`]. Between the
+    /// calls the search is the [`Search`] and these buffers (and `x`, the
+    /// current point, which ends at the best point found).
+    pub(crate) fn begin<B: SliceDomain<F> + ?Sized>(
         &mut self,
-        potential: &P,
         domain: &B,
-        x: &[F],
-        f0: F,
-        d0: F,
-        first: F,
-        budget: &mut u64,
-    ) -> Option<LinePoint<F>> {
-        let (c1, c2) = (F::from_f64(C1), F::from_f64(C2));
-        let floor = floor::<F>();
-        let armijo = |p: &LinePoint<F>| p.value <= f0 + c1 * p.step * d0;
-        let curvature = |p: &LinePoint<F>| p.slope.abs() <= -c2 * d0;
-        let mut prev = LinePoint {
+        x: &mut [F],
+        settings: PolishSettings<F>,
+    ) -> (Search<F>, Next<F>) {
+        let mut search = Search {
+            settings,
+            phase: Phase::Start,
+            budget: 0,
+            iterations: 0,
+            value: F::ZERO,
             step: F::ZERO,
-            value: f0,
-            slope: d0,
+            f0: F::ZERO,
+            d0: F::ZERO,
+            prev: LinePoint::ORIGIN,
+            lo: LinePoint::ORIGIN,
+            hi: LinePoint::ORIGIN,
+            trials: 0,
         };
-        let mut step = first;
-        let (mut lo, mut hi) = (None, None);
-        for i in 0..BRACKET_TRIALS {
-            if *budget == 0 {
-                return None;
-            }
-            *budget -= 1;
-            let p = self.probe(potential, domain, x, step);
-            if p.value < floor {
-                return Some(p);
-            }
-            if !armijo(&p) || (i > 0 && p.value >= prev.value) {
-                (lo, hi) = (Some(prev), Some(p));
-                break;
-            }
-            if curvature(&p) {
-                return Some(p);
-            }
-            if p.slope >= F::ZERO {
-                (lo, hi) = (Some(p), Some(prev));
-                break;
-            }
-            prev = p;
-            step *= F::TWO;
-        }
-        let (mut lo, mut hi) = (lo?, hi?);
-        for _ in 0..ZOOM_TRIALS {
-            if *budget == 0 {
-                return None;
-            }
-            let step = if hi.value.is_finite() {
-                cubic_step(lo.step, lo.value, lo.slope, hi.step, hi.value, hi.slope)
-            } else {
-                (lo.step + hi.step) * F::HALF
+        if settings.evaluations == 0 {
+            search.phase = Phase::Done;
+            let e = Error::Zero {
+                name: "polish budget",
             };
-            if step == lo.step || step == hi.step {
-                break;
-            }
-            *budget -= 1;
-            let p = self.probe(potential, domain, x, step);
-            if p.value < floor {
-                return Some(p);
-            }
-            if !armijo(&p) || p.value >= lo.value {
-                hi = p;
-            } else {
-                if curvature(&p) {
-                    return Some(p);
-                }
-                if p.slope * (hi.step - lo.step) >= F::ZERO {
-                    hi = lo;
-                }
-                lo = p;
-            }
+            return (search, Next::Done(Err(e)));
         }
-        // The bracket collapsed: accept the best point found if it lowers
-        // U enough (its pair may still have s'y > 0), else fail.
-        if lo.step > F::ZERO && *budget > 0 {
-            *budget -= 1;
-            let p = self.probe(potential, domain, x, lo.step);
-            if armijo(&p) {
-                return Some(p);
-            }
+        if let Some(e) = x.iter().find_map(|&v| finite("x", v).err()) {
+            search.phase = Phase::Done;
+            return (search, Next::Done(Err(e)));
         }
-        None
+        domain.project(x);
+        self.reset();
+        // U(x), evaluated at a copy of x: the same bits.
+        self.trial.copy_from_slice(x);
+        (search, Next::Evaluate)
     }
 
-    /// L-BFGS from `x` within the domain: the algorithm of every polish.
+    /// `U` at the trial point (its gradient already in the trial gradient
+    /// buffer): the search goes on to its next evaluation or its end.
+    pub(crate) fn tell<B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        s: &mut Search<F>,
+        domain: &B,
+        x: &mut [F],
+        value: F,
+    ) -> Next<F> {
+        match s.phase {
+            Phase::Start => {
+                let checked = unbounded(value)
+                    .and_then(|()| finite("U(x)", value))
+                    .and_then(|v| {
+                        for &g in &*self.trial_grad {
+                            finite("gradient", g)?;
+                        }
+                        Ok(v)
+                    });
+                match checked {
+                    Ok(v) => {
+                        self.grad.copy_from_slice(self.trial_grad);
+                        s.value = v;
+                        s.budget = s.settings.evaluations - 1;
+                        self.iterate(s, domain, x)
+                    }
+                    Err(e) => Self::end(s, Err(e)),
+                }
+            }
+            Phase::Bracket => {
+                let p = self.line_point(s.step, value);
+                self.bracketed(s, domain, x, p)
+            }
+            Phase::Zoom => {
+                let p = self.line_point(s.step, value);
+                self.zoomed(s, domain, x, p)
+            }
+            Phase::Last => {
+                let p = self.line_point(s.step, value);
+                if s.armijo(&p) {
+                    self.accept(s, domain, x, p)
+                } else {
+                    self.fail(s)
+                }
+            }
+            Phase::Done => Next::Done(Ok(s.polished(PolishEnd::Budget))),
+        }
+    }
+
+    fn end(s: &mut Search<F>, result: Result<Polished<F>, Error>) -> Next<F> {
+        s.phase = Phase::Done;
+        Next::Done(result)
+    }
+
+    /// The top of an L-BFGS iteration: the convergence and budget checks,
+    /// the direction, and the line search's first probe.
+    fn iterate<B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        s: &mut Search<F>,
+        domain: &B,
+        x: &mut [F],
+    ) -> Next<F> {
+        if max_abs(self.grad) <= s.settings.gradient_tolerance {
+            return Self::end(s, Ok(s.polished(PolishEnd::Gradient)));
+        }
+        if s.budget == 0 {
+            return Self::end(s, Ok(s.polished(PolishEnd::Budget)));
+        }
+        self.direction();
+        domain.feasible_direction(x, self.direction);
+        let mut slope = dot(self.grad, self.direction);
+        if slope >= F::ZERO || !slope.is_finite() {
+            // Not a descent direction (rounding in a stale memory, or
+            // one the domain's faces cut): restart from steepest
+            // descent.
+            self.reset();
+            self.direction();
+            domain.feasible_direction(x, self.direction);
+            slope = dot(self.grad, self.direction);
+            if slope >= F::ZERO || !slope.is_finite() {
+                return Self::end(s, Ok(s.polished(PolishEnd::Gradient)));
+            }
+        }
+        // Unit steps for quasi-Newton directions; the first, along
+        // -grad, is scaled to move x by at most 1 in any coordinate.
+        let first = if *self.len == 0 {
+            let m = max_abs(self.direction);
+            if m > F::ONE { F::ONE / m } else { F::ONE }
+        } else {
+            F::ONE
+        };
+        // A step satisfying the strong Wolfe conditions from (0, f0, d0):
+        // first a bracket, doubling the step, then a zoom into it.
+        s.f0 = s.value;
+        s.d0 = slope;
+        s.prev = LinePoint {
+            step: F::ZERO,
+            value: s.value,
+            slope,
+        };
+        s.trials = 0;
+        self.bracket_probe(s, domain, x, first)
+    }
+
+    /// The bracket's next probe at `step`, within the budget.
+    fn bracket_probe<B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        s: &mut Search<F>,
+        domain: &B,
+        x: &[F],
+        step: F,
+    ) -> Next<F> {
+        if s.budget == 0 {
+            return self.fail(s);
+        }
+        s.budget -= 1;
+        self.set_trial(domain, x, step);
+        s.step = step;
+        s.phase = Phase::Bracket;
+        Next::Evaluate
+    }
+
+    /// A bracket's probe `p` answered.
+    fn bracketed<B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        s: &mut Search<F>,
+        domain: &B,
+        x: &mut [F],
+        p: LinePoint<F>,
+    ) -> Next<F> {
+        if p.value < floor() {
+            return self.accept(s, domain, x, p);
+        }
+        if !s.armijo(&p) || (s.trials > 0 && p.value >= s.prev.value) {
+            (s.lo, s.hi) = (s.prev, p);
+            s.trials = 0;
+            return self.zoom_probe(s, domain, x);
+        }
+        if s.curvature(&p) {
+            return self.accept(s, domain, x, p);
+        }
+        if p.slope >= F::ZERO {
+            (s.lo, s.hi) = (p, s.prev);
+            s.trials = 0;
+            return self.zoom_probe(s, domain, x);
+        }
+        s.prev = p;
+        s.trials += 1;
+        if s.trials >= BRACKET_TRIALS {
+            return self.fail(s);
+        }
+        self.bracket_probe(s, domain, x, p.step * F::TWO)
+    }
+
+    /// The zoom's next probe, inside the bracket `[lo, hi]`.
+    fn zoom_probe<B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        s: &mut Search<F>,
+        domain: &B,
+        x: &[F],
+    ) -> Next<F> {
+        if s.trials >= ZOOM_TRIALS {
+            return self.last(s, domain, x);
+        }
+        if s.budget == 0 {
+            return self.fail(s);
+        }
+        let (lo, hi) = (s.lo, s.hi);
+        let step = if hi.value.is_finite() {
+            cubic_step(lo.step, lo.value, lo.slope, hi.step, hi.value, hi.slope)
+        } else {
+            (lo.step + hi.step) * F::HALF
+        };
+        if step == lo.step || step == hi.step {
+            return self.last(s, domain, x);
+        }
+        s.budget -= 1;
+        self.set_trial(domain, x, step);
+        s.step = step;
+        s.phase = Phase::Zoom;
+        Next::Evaluate
+    }
+
+    /// A zoom's probe `p` answered.
+    fn zoomed<B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        s: &mut Search<F>,
+        domain: &B,
+        x: &mut [F],
+        p: LinePoint<F>,
+    ) -> Next<F> {
+        if p.value < floor() {
+            return self.accept(s, domain, x, p);
+        }
+        if !s.armijo(&p) || p.value >= s.lo.value {
+            s.hi = p;
+        } else {
+            if s.curvature(&p) {
+                return self.accept(s, domain, x, p);
+            }
+            if p.slope * (s.hi.step - s.lo.step) >= F::ZERO {
+                s.hi = s.lo;
+            }
+            s.lo = p;
+        }
+        s.trials += 1;
+        self.zoom_probe(s, domain, x)
+    }
+
+    /// The bracket collapsed: the best point found, if it lowers U enough
+    /// (its pair may still have s'y > 0), else a failed search.
+    fn last<B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        s: &mut Search<F>,
+        domain: &B,
+        x: &[F],
+    ) -> Next<F> {
+        if s.lo.step > F::ZERO && s.budget > 0 {
+            s.budget -= 1;
+            self.set_trial(domain, x, s.lo.step);
+            s.step = s.lo.step;
+            s.phase = Phase::Last;
+            return Next::Evaluate;
+        }
+        self.fail(s)
+    }
+
+    /// No step was found: the budget is spent, or the line search failed.
+    fn fail(&mut self, s: &mut Search<F>) -> Next<F> {
+        let end = if s.budget == 0 {
+            PolishEnd::Budget
+        } else {
+            PolishEnd::LineSearch
+        };
+        Self::end(s, Ok(s.polished(end)))
+    }
+
+    /// The line search's step `p` (its point and gradient in the trial
+    /// buffers): the new pair, the move, and the value tolerance.
+    fn accept<B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        s: &mut Search<F>,
+        domain: &B,
+        x: &mut [F],
+        p: LinePoint<F>,
+    ) -> Next<F> {
+        if let Err(e) = unbounded(p.value) {
+            return Self::end(s, Err(e));
+        }
+        // The new pair, kept when its curvature is positive.
+        let (k, d) = (*self.next, self.d);
+        let sk = &mut self.s[k * d..(k + 1) * d];
+        let yk = &mut self.y[k * d..(k + 1) * d];
+        for j in 0..d {
+            sk[j] = self.trial[j] - x[j];
+            yk[j] = self.trial_grad[j] - self.grad[j];
+        }
+        let sy = dot(sk, yk);
+        if sy > F::ZERO && sy.is_finite() {
+            self.rho[k] = F::ONE / sy;
+            *self.next = (k + 1) % self.m;
+            *self.len = (*self.len + 1).min(self.m);
+        }
+        let drop = s.value - p.value;
+        x.copy_from_slice(self.trial);
+        self.grad.copy_from_slice(self.trial_grad);
+        s.value = p.value;
+        s.iterations += 1;
+        let scale = if s.value.abs() > F::ONE {
+            s.value.abs()
+        } else {
+            F::ONE
+        };
+        if drop <= s.settings.value_tolerance * scale {
+            return Self::end(s, Ok(s.polished(PolishEnd::Value)));
+        }
+        self.iterate(s, domain, x)
+    }
+
+    /// L-BFGS from `x` within the domain, `potential` answering each of
+    /// the search's requests at once.
     fn minimize_in<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
         &mut self,
         potential: &P,
@@ -636,96 +878,84 @@ impl<F: Float> Memory<'_, F> {
         x: &mut [F],
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
-        if settings.evaluations == 0 {
-            return Err(Error::Zero {
-                name: "polish budget",
-            });
-        }
-        for &v in x.iter() {
-            finite("x", v)?;
-        }
-        domain.project(x);
-        self.reset();
-        let value = potential.value_and_gradient(x, self.grad);
-        unbounded(value)?;
-        let mut value = finite("U(x)", value)?;
-        for &g in &*self.grad {
-            finite("gradient", g)?;
-        }
-        let mut budget = settings.evaluations - 1;
-        let mut iterations = 0;
-        let end = loop {
-            if max_abs(self.grad) <= settings.gradient_tolerance {
-                break PolishEnd::Gradient;
-            }
-            if budget == 0 {
-                break PolishEnd::Budget;
-            }
-            self.direction();
-            domain.feasible_direction(x, self.direction);
-            let mut slope = dot(self.grad, self.direction);
-            if slope >= F::ZERO || !slope.is_finite() {
-                // Not a descent direction (rounding in a stale memory, or
-                // one the domain's faces cut): restart from steepest
-                // descent.
-                self.reset();
-                self.direction();
-                domain.feasible_direction(x, self.direction);
-                slope = dot(self.grad, self.direction);
-                if slope >= F::ZERO || !slope.is_finite() {
-                    break PolishEnd::Gradient;
+        let (mut search, mut next) = self.begin(domain, x, settings);
+        loop {
+            match next {
+                Next::Evaluate => {
+                    let value = potential.value_and_gradient(self.trial, self.trial_grad);
+                    next = self.tell(&mut search, domain, x, value);
                 }
+                Next::Done(result) => return result,
             }
-            // Unit steps for quasi-Newton directions; the first, along
-            // -grad, is scaled to move x by at most 1 in any coordinate.
-            let first = if *self.len == 0 {
-                let m = max_abs(self.direction);
-                if m > F::ONE { F::ONE / m } else { F::ONE }
-            } else {
-                F::ONE
-            };
-            let Some(p) = self.line_search(potential, domain, x, value, slope, first, &mut budget)
-            else {
-                break if budget == 0 {
-                    PolishEnd::Budget
-                } else {
-                    PolishEnd::LineSearch
-                };
-            };
-            unbounded(p.value)?;
-            // The new pair, kept when its curvature is positive.
-            let (k, d) = (*self.next, self.d);
-            let sk = &mut self.s[k * d..(k + 1) * d];
-            let yk = &mut self.y[k * d..(k + 1) * d];
-            for j in 0..d {
-                sk[j] = self.trial[j] - x[j];
-                yk[j] = self.trial_grad[j] - self.grad[j];
-            }
-            let sy = dot(sk, yk);
-            if sy > F::ZERO && sy.is_finite() {
-                self.rho[k] = F::ONE / sy;
-                *self.next = (k + 1) % self.m;
-                *self.len = (*self.len + 1).min(self.m);
-            }
-            let drop = value - p.value;
-            x.copy_from_slice(self.trial);
-            self.grad.copy_from_slice(self.trial_grad);
-            value = p.value;
-            iterations += 1;
-            let scale = if value.abs() > F::ONE {
-                value.abs()
-            } else {
-                F::ONE
-            };
-            if drop <= settings.value_tolerance * scale {
-                break PolishEnd::Value;
-            }
-        };
-        Ok(Polished {
-            value,
-            evaluations: settings.evaluations - budget,
-            iterations,
+        }
+    }
+}
+
+/// What a search asks for next.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Next<F> {
+    /// `U` and `∇U` at the trial point.
+    Evaluate,
+    /// The search ended.
+    Done(Result<Polished<F>, Error>),
+}
+
+/// The stage of a search.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Phase {
+    /// Waiting for `U(x)` at the start.
+    Start,
+    /// A probe of the bracketing phase.
+    Bracket,
+    /// A probe of the zoom.
+    Zoom,
+    /// The last probe, at the bracket's best step.
+    Last,
+    /// Ended.
+    Done,
+}
+
+/// The scalars of an L-BFGS search between two evaluations (its vectors
+/// are the [`Memory`]'s).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Search<F> {
+    settings: PolishSettings<F>,
+    phase: Phase,
+    /// Evaluations left (the one in flight charged).
+    budget: u64,
+    iterations: u64,
+    /// `U` at the current point.
+    value: F,
+    /// The step of the probe in flight.
+    step: F,
+    /// The line search's origin: value and slope.
+    f0: F,
+    d0: F,
+    /// The bracket's previous point, and the zoom's ends.
+    prev: LinePoint<F>,
+    lo: LinePoint<F>,
+    hi: LinePoint<F>,
+    /// Probes of the current phase so far.
+    trials: usize,
+}
+
+impl<F: Float> Search<F> {
+    /// Sufficient decrease from the line search's origin.
+    fn armijo(&self, p: &LinePoint<F>) -> bool {
+        p.value <= self.f0 + F::from_f64(C1) * p.step * self.d0
+    }
+
+    /// The strong Wolfe curvature condition.
+    fn curvature(&self, p: &LinePoint<F>) -> bool {
+        p.slope.abs() <= -F::from_f64(C2) * self.d0
+    }
+
+    fn polished(&self, end: PolishEnd) -> Polished<F> {
+        Polished {
+            value: self.value,
+            evaluations: self.settings.evaluations - self.budget,
+            iterations: self.iterations,
             end,
-        })
+        }
     }
 }
