@@ -64,7 +64,7 @@ step "firmware: Algorithm 1 on an emulated Cortex-M3, Cortex-M4F and RISC-V core
 step "wasm wrapper and demo page (bit-identity in Node, the page in Chromium), firmware computation in wasm"
 ./scripts/test-web.sh 2>&1 | tee -a "$LOG"
 
-step "Python package: pip install from source into a virtualenv, pytest (bit-identity with the Rust crate)"
+step "Python package: the abi3 wheel built from source, pytest on it (bit-identity with the Rust crate), mypy, the wheel in a fresh virtualenv"
 ./scripts/test-python.sh 2>&1 | tee -a "$LOG"
 
 # cargo prints "test result: ok. N passed; M failed; K ignored; ...", node's
