@@ -310,6 +310,7 @@ fn auto_runs_in_a_box_per_coordinate() {
         seed: 1,
         chains: Some(4),
         dim: None,
+        x0: None,
     };
     let sides = wide_and_narrow();
     let found = solve(
@@ -355,6 +356,7 @@ fn auto_runs_at_any_dimension() {
             seed: 2,
             chains: Some(4),
             dim: Some(d),
+            x0: None,
         };
         let s = solve(&Auto::default(), &problem, &mut |_| {
             ControlFlow::Continue(())
@@ -368,6 +370,60 @@ fn auto_runs_at_any_dimension() {
             assert_eq!(s.message, kernel.to_string());
         }
     }
+}
+
+/// `x0` is chain 0's start in the layer as in the kernel (the same bits
+/// as `Auto::minimize_from` over `Chain<f64, 17>`), and its length fixes
+/// the dimension like the box's does.
+#[test]
+fn auto_starts_chain_0_at_x0() {
+    let mut chains: Vec<Chain<f64, 17>> = (0..4).map(|_| Chain::new()).collect();
+    let mut lbfgs: Lbfgs<f64, 17, 8> = Lbfgs::new();
+    let domain = Interval::new(-5.12, 5.12).unwrap();
+    let x0: [f64; 17] = std::array::from_fn(|i| 0.25 * i as f64 - 2.0);
+    let kernel = Auto::default()
+        .minimize_from(
+            &Rastrigin,
+            domain,
+            &x0,
+            5_000,
+            2,
+            &mut chains,
+            &mut lbfgs,
+            |_| ControlFlow::Continue(()),
+        )
+        .unwrap();
+    let mut problem = Problem {
+        potential: rastrigin(),
+        domain: domain.into(),
+        budget: 5_000,
+        seed: 2,
+        chains: Some(4),
+        dim: None,
+        x0: Some(x0.to_vec()),
+    };
+    let s = solve(&Auto::default(), &problem, &mut |_| {
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    assert_eq!(s.x, kernel.x);
+    assert_eq!(s.value.to_bits(), kernel.value.to_bits());
+    assert_eq!(s.message, kernel.to_string());
+    problem.dim = Some(16);
+    let got = solve(&Auto::default(), &problem, &mut |_| {
+        ControlFlow::Continue(())
+    });
+    assert!(
+        matches!(
+            got,
+            Err(Error::DimensionMismatch {
+                other: "x0",
+                other_dim: 17,
+                ..
+            })
+        ),
+        "{got:?}"
+    );
 }
 
 #[test]
@@ -389,6 +445,7 @@ fn auto_is_the_kernels() {
             seed: 3,
             chains: Some(8),
             dim: Some(10),
+            x0: None,
         };
         let s = solve(&Auto::default(), &problem, &mut |_| {
             ControlFlow::Continue(())

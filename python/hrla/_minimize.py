@@ -289,8 +289,10 @@ def minimize(
 
     The problem: ``bounds`` is ``D`` pairs ``(lo_i, hi_i)``, a
     ``scipy.optimize.Bounds`` or ``(lo, hi)`` with ``dim``; ``x0`` (shape
-    ``(D,)``, inside the box) seeds chain 0 of a sampler (``"auto"`` draws
-    its own starts: it warns that ``x0`` is not used).
+    ``(D,)``, inside the box) is chain 0's initial point (the other chains
+    draw theirs); a point where ``fun`` is not finite raises
+    :class:`HrlaError` with ``"auto"`` (the samplers mark that chain
+    diverged).
 
     The run: ``method`` is ``"auto"`` (the default: :class:`Auto`, no
     setting to tune; ``chains`` defaults to ``Auto.chains_for``) or
@@ -336,10 +338,6 @@ def minimize(
             if given[name] is not None:
                 raise ValueError(f"{name} is not used by method='auto' (it sets the samplers "
                                  f"'hrla', 'ula' and 'ola')")
-        if x0 is not None:
-            warnings.warn("x0 is not used by method='auto', which draws its own starts; "
-                          "a sampler method (e.g. method='hrla') starts a chain there", UserWarning, stacklevel=2)
-            x0 = None
     maxfun = MAXFUN if maxfun is None else _count(maxfun, "maxfun", 1)
     maxiter = None if maxiter is None else _count(maxiter, "maxiter")
     chains = None if chains is None else _count(chains, "chains", 1)
@@ -431,7 +429,7 @@ def minimize(
             return objective.nfev if objective is not None else evaluations
 
         if method == "auto":
-            return _auto(potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
+            return _auto(potential, box, budget_k, run_seed, chains, dim, x0, objective, builtin, fun, nfev,
                          target=target, stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
         return _sampler(method, potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
                         cost=cost, h=h, schedule=schedule, start=start, polish=polish, x0=x0, target=target,
@@ -460,7 +458,7 @@ def _builtin_columns(potential: Potential) -> Callable[[np.ndarray], Tuple[np.nd
 
 
 def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int], dim: Optional[int],
-          objective: Optional[_objective.Objective], builtin: bool, fun: Any, nfev: Callable[[int], int],
+          x0: Optional[np.ndarray], objective: Optional[_objective.Objective], builtin: bool, fun: Any, nfev: Callable[[int], int],
           **watch: Any) -> OptimizeResult:
     if box is None:
         raise ValueError('method="auto" needs bounds: D (lo, hi) pairs, scipy.optimize.Bounds, or (lo, hi) with dim=')
@@ -472,7 +470,8 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
 
     w = _Watch("auto", best=best, nfev=nfev, **watch)
     observed = any(watch[k] is not None for k in ("target", "stall", "maxiter", "maxtime", "callback")) or watch["disp"]
-    s = Auto().minimize(potential, box, budget, seed, chains=chains, dim=dim, observer=w if observed else None)
+    s = Auto().minimize(potential, box, budget, seed, chains=chains, dim=dim,
+                        x0=None if x0 is None else [float(v) for v in x0], observer=w if observed else None)
     termination = w.reason if s.termination == "Observer" and w.reason else s.termination
     x = np.asarray(s.x)
     jac = _gradient(x, objective, builtin, fun)

@@ -105,12 +105,16 @@ impl PyAuto {
     /// `chains_for(budget)`); chain `c` draws from the generator of
     /// `(seed, c)`. A Python potential is called with one row at a time.
     ///
+    /// `x0` (a sequence of `D` floats, in the box) is chain 0's initial
+    /// point instead of a uniform draw; where `potential` is not finite
+    /// there, the run raises rather than redraw it.
+    ///
     /// `observer(rounds, evaluations, best_value)`, when given, is called
     /// as the run goes (a Python potential's run: after every step of the
     /// chains, quench and restart; a built-in's: at every new round and
     /// every new best); a true answer ends the run, whose termination is
     /// then `"Observer"`, and an exception ends it with that exception.
-    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, observer = None))]
+    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, x0 = None, observer = None))]
     #[allow(clippy::too_many_arguments)]
     fn minimize(
         &self,
@@ -121,6 +125,7 @@ impl PyAuto {
         seed: Option<&Bound<'_, PyAny>>,
         chains: Option<&Bound<'_, PyAny>>,
         dim: Option<&Bound<'_, PyAny>>,
+        x0: Option<Vec<f64>>,
         observer: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PySolution> {
         guard(|| {
@@ -131,6 +136,7 @@ impl PyAuto {
                 seed: config::unsigned_opt(seed, "seed")?.unwrap_or(0),
                 chains: config::unsigned_opt(chains, "chains")?,
                 dim: config::unsigned_opt(dim, "dim")?,
+                x0,
             };
             self.solve(py, &problem, observer.filter(|o| !o.is_none()))
         })

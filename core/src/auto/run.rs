@@ -415,13 +415,16 @@ where
 {
     /// Draws every chain's initial point uniformly in the box (redrawn
     /// where infeasible, up to [`START_TRIES`](crate::START_TRIES), within
-    /// the budget). `budget` is at least twice the number of chains, and
-    /// every slice has the run's dimension.
+    /// the budget), but chain 0's where the caller gave `x0` (in the box):
+    /// that point itself, an error where it is infeasible. `budget` is at
+    /// least twice the number of chains, and every slice has the run's
+    /// dimension.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn start(
         auto: &'a Auto<F>,
         potential: &'a P,
         domain: &'a B,
+        x0: Option<&[F]>,
         budget: u64,
         seed: u64,
         chains: &'a mut S,
@@ -448,16 +451,22 @@ where
             *chain.rng = S::Rng::seed_from_u64(chain_seed(seed, c as u64));
             chain.y.fill(F::ZERO);
             *chain.diverged = false;
-            *chain.value = draw_point(
-                c,
-                chain.x,
-                chain.grad,
-                chain.rng,
-                &one,
-                &mut spare,
-                &mut evaluations,
-                |rng, x| domain.uniform(rng, x),
-            )?;
+            *chain.value = match x0 {
+                Some(x0) if c == 0 => given_point(x0, chain.x, chain.grad, &one)?,
+                _ => draw_point(
+                    c,
+                    chain.x,
+                    chain.grad,
+                    chain.rng,
+                    &one,
+                    &mut spare,
+                    &mut evaluations,
+                    |rng, x| domain.uniform(rng, x),
+                )?,
+            };
+            if x0.is_some() && c == 0 {
+                evaluations += 1;
+            }
             if *chain.value < best_value {
                 best_value = *chain.value;
                 best.copy_from_slice(chain.x);
@@ -838,6 +847,41 @@ where
             diverged_chains: self.diverged(),
             chains: self.chains.len(),
         }
+    }
+}
+
+/// `U` at the caller's start `x0`, copied into `x` (one evaluation):
+/// where it is infeasible, an error naming `x0` rather than a redraw, since
+/// the caller chose that point.
+fn given_point<F, P>(x0: &[F], x: &mut [F], grad: &mut [F], potential: &P) -> Result<F, Error>
+where
+    F: Float,
+    P: SlicePotential<F> + ?Sized,
+{
+    x.copy_from_slice(x0);
+    let value = potential.value_and_gradient(x, grad);
+    match judge(x, value, grad, floor()) {
+        Verdict::Feasible => Ok(value),
+        Verdict::Unbounded => Err(Error::UnboundedBelow {
+            chain: 0,
+            value: value.to_f64(),
+        }),
+        Verdict::Infeasible(what) => Err(Error::NotFinite {
+            name: if what == "gradient" {
+                "the gradient at x0"
+            } else {
+                "U at x0"
+            },
+            value: if what == "gradient" {
+                grad.iter()
+                    .copied()
+                    .find(|g| !g.is_finite())
+                    .unwrap_or(F::INFINITY)
+                    .to_f64()
+            } else {
+                value.to_f64()
+            },
+        }),
     }
 }
 
