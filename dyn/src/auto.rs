@@ -92,6 +92,7 @@ pub fn solve(
             iteration: p.rounds,
             evaluations: p.evaluations,
             value: p.value,
+            x: p.x,
             dim: d,
             chains: n,
         })

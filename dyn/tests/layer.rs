@@ -138,6 +138,55 @@ fn the_observer_ends_the_run() {
     }
 }
 
+/// The observer sees the best point of the run, borrowed: `U` there is
+/// the best value, for the engine (a built-in and a user's function) and
+/// for Auto.
+#[test]
+fn the_observer_sees_the_best_point() {
+    let check = |p: &hrla_dyn::Progress<'_>| {
+        let x: [f64; 10] = p.x.try_into().unwrap();
+        assert_eq!(Rastrigin.value(&x), p.value, "{p:?}");
+    };
+    for user in [false, true] {
+        let potential = if user {
+            PotentialSpec::User(Arc::new(Batched(AtomicUsize::new(0))))
+        } else {
+            rastrigin()
+        };
+        let mut engine = settings(potential).build().unwrap();
+        let mut calls = 0;
+        engine
+            .run(1, &mut |p| {
+                check(p);
+                calls += 1;
+                ControlFlow::Continue(())
+            })
+            .unwrap();
+        assert!(calls >= 200, "{calls}");
+    }
+    let problem = Problem {
+        potential: rastrigin(),
+        domain: BoxSpec::Uniform {
+            lo: -5.12,
+            hi: 5.12,
+        },
+        budget: 3_000,
+        seed: 4,
+        chains: Some(4),
+        dim: Some(10),
+        x0: None,
+    };
+    let mut calls = 0;
+    let s = solve(&Auto::default(), &problem, &mut |p| {
+        check(p);
+        calls += 1;
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    assert!(calls > 100, "{calls}");
+    assert!(s.value.is_finite());
+}
+
 #[derive(Debug)]
 struct Refused;
 

@@ -495,3 +495,34 @@ def test_version_and_help():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         hrla.minimize(himmelblau, [(-5, 5)] * 2, maxfun=1_000, rng=1)
+
+
+def test_observers_get_the_best_point_with_x():
+    """``with_x=True``: the observer's fourth argument is the best point,
+    where the potential's value is the third, for Auto and the samplers."""
+    rastrigin = hrla.Rastrigin()
+    seen = []
+
+    def observer(iteration, evaluations, value, x):
+        seen.append((value, np.array(x)))
+
+    hrla.Auto().minimize(rastrigin, hrla.Interval(-5.12, 5.12), 3_000, 1, dim=3, observer=observer, with_x=True)
+    # A Python potential: the observer is called after every step.
+    opt = hrla.Optimizer(lambda x: rastrigin.value_and_gradient(x), hrla.Hrla.paper(0.01), 4.0, hrla.Interval(-5.12, 5.12), chains=4, seed=1,
+                         stop=hrla.Stop().steps(50), dim=3)
+    looked = len(seen)
+    opt.run(observer, with_x=True)
+    assert looked > 0 and len(seen) == looked + 50
+    for value, x in seen:
+        assert x.shape == (3,) and rastrigin.value_and_gradient(x[None, :])[0][0] == value
+    # Without it, three arguments as before.
+    opt.run(lambda iteration, evaluations, value: None)
+
+
+def test_a_builtin_under_auto_runs_in_rust_with_a_callback():
+    """The callback's point comes from the run: a built-in stays a
+    built-in (the same bits and count as without a callback)."""
+    run = dict(bounds=[(-5.12, 5.12)] * 3, rng=2, maxfun=4_000)
+    quiet = hrla.minimize(hrla.Rastrigin(), **run)
+    looked = hrla.minimize(hrla.Rastrigin(), callback=lambda intermediate_result: None, **run)
+    assert np.array_equal(quiet.x, looked.x) and quiet.fun == looked.fun and quiet.nfev == looked.nfev
