@@ -36,6 +36,13 @@
 //! at the basins' bottoms, where it is positive even on landscapes with
 //! flat stretches.
 //!
+//! In a box whose sides differ, the sampling, the quenches, the polish
+//! and the curvature probes run in the box's **unit coordinates**
+//! (`u_i = x_i / w_i`, `w_i` the side of coordinate `i` over the widest:
+//! every side as long as the widest), so that one step `h` suits every
+//! coordinate; the map is linear, so `exp(-a U)` is the same law there.
+//! In a box of equal sides the unit coordinates are the box's own.
+//!
 //! The evaluation budget covers everything: initial points, probes,
 //! steps, quenches, restarts and the final polish. The constants of
 //! [`Auto::default`] were chosen on the quality benchmark
@@ -45,6 +52,7 @@
 mod measure;
 mod moves;
 mod run;
+mod scale;
 mod settings;
 
 use core::fmt;
