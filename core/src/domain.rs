@@ -79,8 +79,10 @@ impl<F: Float, B: SliceDomain<F> + ?Sized> SliceDomain<F> for &B {
 
 /// A box read side by side: `[lo_i, hi_i]` in coordinate `i`, each finite.
 /// [`Auto`](crate::Auto) scales by it what it does per coordinate: its
-/// curvature probes, its restarts (uniform in the box) and the cap on its
-/// step. [`Interval`] (every side the same) and [`Bounds`] implement it.
+/// dynamics, quenches and curvature probes run in the box's unit
+/// coordinates (every side stretched to the widest), and its restarts are
+/// uniform in the box. [`Interval`] (every side the same) and [`Bounds`]
+/// implement it.
 pub trait Sides<F: Float>: SliceDomain<F> {
     /// The ends `(lo_i, hi_i)` of coordinate `i` (below the dimension).
     fn side(&self, i: usize) -> (F, F);
@@ -259,7 +261,7 @@ fn floor<F: Float>(v: F) -> F {
 /// velocity where an odd number of reflections reversed it: the one
 /// confinement of [`Interval`] and [`Bounds`].
 #[inline(always)]
-fn confine_each<F: Float>(
+pub(crate) fn confine_each<F: Float>(
     x: &mut [F],
     y: &mut [F],
     lo: impl Fn(usize) -> F,
@@ -275,7 +277,11 @@ fn confine_each<F: Float>(
 }
 
 #[inline(always)]
-fn project_each<F: Float>(x: &mut [F], lo: impl Fn(usize) -> F, hi: impl Fn(usize) -> F) {
+pub(crate) fn project_each<F: Float>(
+    x: &mut [F],
+    lo: impl Fn(usize) -> F,
+    hi: impl Fn(usize) -> F,
+) {
     for (i, xi) in x.iter_mut().enumerate() {
         if xi.is_finite() {
             *xi = clamp(*xi, lo(i), hi(i));
@@ -284,7 +290,12 @@ fn project_each<F: Float>(x: &mut [F], lo: impl Fn(usize) -> F, hi: impl Fn(usiz
 }
 
 #[inline(always)]
-fn feasible_each<F: Float>(x: &[F], d: &mut [F], lo: impl Fn(usize) -> F, hi: impl Fn(usize) -> F) {
+pub(crate) fn feasible_each<F: Float>(
+    x: &[F],
+    d: &mut [F],
+    lo: impl Fn(usize) -> F,
+    hi: impl Fn(usize) -> F,
+) {
     for (i, (&xi, di)) in x.iter().zip(d.iter_mut()).enumerate() {
         if (xi <= lo(i) && *di < F::ZERO) || (xi >= hi(i) && *di > F::ZERO) {
             *di = F::ZERO;

@@ -108,6 +108,20 @@ pub enum Error {
         /// The largest value allowed.
         max: f64,
     },
+    /// A point outside the box in one coordinate (or NaN there), such as
+    /// a start the caller gave.
+    OutsideBox {
+        /// The point (`x0`).
+        name: &'static str,
+        /// The coordinate.
+        index: usize,
+        /// Its value.
+        value: f64,
+        /// The box's side in that coordinate.
+        lo: f64,
+        /// The side's upper end.
+        hi: f64,
+    },
     /// An evaluation budget smaller than the evaluations of the initial
     /// points (one per chain).
     Budget {
@@ -199,6 +213,19 @@ impl fmt::Display for Error {
                 f,
                 "`{name}` = {} is outside [{min:e}, {max:e}], the range the step's accuracy is tested for",
                 value(v)
+            ),
+            Error::OutsideBox {
+                name,
+                index,
+                value: v,
+                lo,
+                hi,
+            } => write!(
+                f,
+                "`{name}[{index}]` = {} is outside the box's side [{}, {}]",
+                value(v),
+                value(lo),
+                value(hi)
             ),
             Error::Budget { budget, chains } => write!(
                 f,

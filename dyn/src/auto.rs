@@ -53,11 +53,15 @@ pub struct Problem {
     pub chains: Option<usize>,
     /// The dimension, when neither the potential nor the box fixes it.
     pub dim: Option<usize>,
+    /// Chain 0's initial point (scipy's `x0`), in the box and where the
+    /// potential is finite; the other chains draw theirs uniformly. None:
+    /// every chain draws.
+    pub x0: Option<Vec<f64>>,
 }
 
 /// Minimises `problem` with `auto` at the problem's dimension, any
 /// `d >= 1`, in a box with the same sides in every coordinate or its own
-/// in each. `observer` sees the run after every step of the chains,
+/// in each, chain 0 from `problem.x0` where given. `observer` sees the run after every step of the chains,
 /// quench and restart (`iteration` counts rounds) and ends it by
 /// returning `Break`: the solution is then the best so far,
 /// [`Termination::Observer`]. A user's function that fails ends the run
@@ -71,6 +75,7 @@ pub fn solve(
         ("dim", problem.dim),
         ("the potential", problem.potential.dimension()),
         ("the box", problem.domain.dimension()),
+        ("x0", problem.x0.as_ref().map(Vec::len)),
     ])?;
     let n = problem
         .chains
@@ -87,18 +92,30 @@ pub fn solve(
             iteration: p.rounds,
             evaluations: p.evaluations,
             value: p.value,
+            x: p.x,
             dim: d,
             chains: n,
         })
     };
-    let found = auto.minimize_flat_with(
-        &pot,
-        &domain,
-        problem.budget,
-        problem.seed,
-        &mut lent,
-        observe,
-    );
+    let found = match &problem.x0 {
+        Some(x0) => auto.minimize_flat_from(
+            &pot,
+            &domain,
+            x0,
+            problem.budget,
+            problem.seed,
+            &mut lent,
+            observe,
+        ),
+        None => auto.minimize_flat_with(
+            &pot,
+            &domain,
+            problem.budget,
+            problem.seed,
+            &mut lent,
+            observe,
+        ),
+    };
     pot.finish()?;
     let s = found?;
     Ok(Solution {

@@ -353,11 +353,13 @@ impl Run {
         }
     }
 
-    fn progress(&self) -> Progress {
+    fn progress(&self) -> Progress<'_> {
+        let best = self.opt.best();
         Progress {
             iteration: self.opt.iteration(),
             evaluations: self.opt.evaluations(),
-            value: self.opt.best().value,
+            value: best.value,
+            x: best.x,
             dim: self.opt.chains().dim(),
             chains: self.opt.chains().len(),
         }
@@ -391,6 +393,7 @@ impl Engine for Run {
                     iteration: p.iteration,
                     evaluations: p.evaluations,
                     value: p.best.value,
+                    x: p.best.x,
                     dim,
                     chains,
                 })

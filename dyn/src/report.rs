@@ -29,15 +29,18 @@ pub fn termination_code(t: Option<Termination>) -> f64 {
     t.map_or(0.0, |t| (index(t) + 1) as f64)
 }
 
-/// What an observer of a run sees, whatever the dimension.
+/// What an observer of a run sees, whatever the dimension: the best point
+/// borrowed from the run's own storage (no copy per step).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Progress {
+pub struct Progress<'a> {
     /// Steps done ([`crate::auto::solve`]: rounds done).
     pub iteration: u64,
     /// Evaluations so far, all counted.
     pub evaluations: u64,
     /// The best value so far.
     pub value: f64,
+    /// The best point so far (`U` there is `value`).
+    pub x: &'a [f64],
     /// The run's dimension.
     pub dim: usize,
     /// The run's chains.

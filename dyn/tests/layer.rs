@@ -138,6 +138,55 @@ fn the_observer_ends_the_run() {
     }
 }
 
+/// The observer sees the best point of the run, borrowed: `U` there is
+/// the best value, for the engine (a built-in and a user's function) and
+/// for Auto.
+#[test]
+fn the_observer_sees_the_best_point() {
+    let check = |p: &hrla_dyn::Progress<'_>| {
+        let x: [f64; 10] = p.x.try_into().unwrap();
+        assert_eq!(Rastrigin.value(&x), p.value, "{p:?}");
+    };
+    for user in [false, true] {
+        let potential = if user {
+            PotentialSpec::User(Arc::new(Batched(AtomicUsize::new(0))))
+        } else {
+            rastrigin()
+        };
+        let mut engine = settings(potential).build().unwrap();
+        let mut calls = 0;
+        engine
+            .run(1, &mut |p| {
+                check(p);
+                calls += 1;
+                ControlFlow::Continue(())
+            })
+            .unwrap();
+        assert!(calls >= 200, "{calls}");
+    }
+    let problem = Problem {
+        potential: rastrigin(),
+        domain: BoxSpec::Uniform {
+            lo: -5.12,
+            hi: 5.12,
+        },
+        budget: 3_000,
+        seed: 4,
+        chains: Some(4),
+        dim: Some(10),
+        x0: None,
+    };
+    let mut calls = 0;
+    let s = solve(&Auto::default(), &problem, &mut |p| {
+        check(p);
+        calls += 1;
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    assert!(calls > 100, "{calls}");
+    assert!(s.value.is_finite());
+}
+
 #[derive(Debug)]
 struct Refused;
 
@@ -310,6 +359,7 @@ fn auto_runs_in_a_box_per_coordinate() {
         seed: 1,
         chains: Some(4),
         dim: None,
+        x0: None,
     };
     let sides = wide_and_narrow();
     let found = solve(
@@ -355,6 +405,7 @@ fn auto_runs_at_any_dimension() {
             seed: 2,
             chains: Some(4),
             dim: Some(d),
+            x0: None,
         };
         let s = solve(&Auto::default(), &problem, &mut |_| {
             ControlFlow::Continue(())
@@ -368,6 +419,60 @@ fn auto_runs_at_any_dimension() {
             assert_eq!(s.message, kernel.to_string());
         }
     }
+}
+
+/// `x0` is chain 0's start in the layer as in the kernel (the same bits
+/// as `Auto::minimize_from` over `Chain<f64, 17>`), and its length fixes
+/// the dimension like the box's does.
+#[test]
+fn auto_starts_chain_0_at_x0() {
+    let mut chains: Vec<Chain<f64, 17>> = (0..4).map(|_| Chain::new()).collect();
+    let mut lbfgs: Lbfgs<f64, 17, 8> = Lbfgs::new();
+    let domain = Interval::new(-5.12, 5.12).unwrap();
+    let x0: [f64; 17] = std::array::from_fn(|i| 0.25 * i as f64 - 2.0);
+    let kernel = Auto::default()
+        .minimize_from(
+            &Rastrigin,
+            domain,
+            &x0,
+            5_000,
+            2,
+            &mut chains,
+            &mut lbfgs,
+            |_| ControlFlow::Continue(()),
+        )
+        .unwrap();
+    let mut problem = Problem {
+        potential: rastrigin(),
+        domain: domain.into(),
+        budget: 5_000,
+        seed: 2,
+        chains: Some(4),
+        dim: None,
+        x0: Some(x0.to_vec()),
+    };
+    let s = solve(&Auto::default(), &problem, &mut |_| {
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    assert_eq!(s.x, kernel.x);
+    assert_eq!(s.value.to_bits(), kernel.value.to_bits());
+    assert_eq!(s.message, kernel.to_string());
+    problem.dim = Some(16);
+    let got = solve(&Auto::default(), &problem, &mut |_| {
+        ControlFlow::Continue(())
+    });
+    assert!(
+        matches!(
+            got,
+            Err(Error::DimensionMismatch {
+                other: "x0",
+                other_dim: 17,
+                ..
+            })
+        ),
+        "{got:?}"
+    );
 }
 
 #[test]
@@ -389,6 +494,7 @@ fn auto_is_the_kernels() {
             seed: 3,
             chains: Some(8),
             dim: Some(10),
+            x0: None,
         };
         let s = solve(&Auto::default(), &problem, &mut |_| {
             ControlFlow::Continue(())

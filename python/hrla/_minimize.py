@@ -168,13 +168,13 @@ class _Watch:
     """What :func:`minimize` checks as a run goes, besides the kernel's
     own rules: the target, stall and round budget of ``"auto"``, the time
     limit, the callback and the progress line. Called as the observer of
-    :meth:`Optimizer.run` or :meth:`Auto.minimize`; returns ``True`` to
-    stop, and keeps why in ``reason``."""
+    :meth:`Optimizer.run` or :meth:`Auto.minimize` (with ``with_x=True``
+    where the callback needs the best point); returns ``True`` to stop, and
+    keeps why in ``reason``."""
 
     def __init__(self, method: str, *, target: Optional[float], stall: Optional[Tuple[int, float]],
                  maxiter: Optional[int], maxtime: Optional[float], callback: Optional[Callable[..., Any]],
-                 disp: bool, best: Callable[[], Tuple[Optional[np.ndarray], float]],
-                 nfev: Callable[[int], int]) -> None:
+                 disp: bool, nfev: Callable[[int], int]) -> None:
         self.method = method
         self.target = target
         self.stall = stall
@@ -183,7 +183,6 @@ class _Watch:
         self.callback = callback
         self.intermediate = callback is not None and _objective.returns_intermediate_result(callback)
         self.disp = disp
-        self.best = best
         self.nfev = nfev
         self.reason: Optional[str] = None
         self.start = _clock()
@@ -191,7 +190,7 @@ class _Watch:
         self.by_round: Dict[int, float] = {}
         self.called_at: Optional[int] = None
 
-    def __call__(self, iteration: int, evaluations: int, value: float) -> bool:
+    def __call__(self, iteration: int, evaluations: int, value: float, x: Optional[np.ndarray] = None) -> bool:
         if self.target is not None and value <= self.target:
             return self.stop("Target")
         if self.stall is not None:
@@ -211,12 +210,11 @@ class _Watch:
             return self.stop("Time")
         if self.callback is not None and iteration != self.called_at:
             self.called_at = iteration
-            x, f = self.best()
             try:
                 if self.intermediate:
-                    answer = self.callback(OptimizeResult(x=x, fun=f, nfev=self.nfev(evaluations), nit=iteration))
+                    answer = self.callback(OptimizeResult(x=x, fun=value, nfev=self.nfev(evaluations), nit=iteration))
                 else:
-                    answer = self.callback(None if x is None else np.copy(x))
+                    answer = self.callback(x)
             except StopIteration:
                 return self.stop("Callback")
             if answer is True:
@@ -289,8 +287,10 @@ def minimize(
 
     The problem: ``bounds`` is ``D`` pairs ``(lo_i, hi_i)``, a
     ``scipy.optimize.Bounds`` or ``(lo, hi)`` with ``dim``; ``x0`` (shape
-    ``(D,)``, inside the box) seeds chain 0 of a sampler (``"auto"`` draws
-    its own starts: it warns that ``x0`` is not used).
+    ``(D,)``, inside the box) is chain 0's initial point (the other chains
+    draw theirs); a point where ``fun`` is not finite raises
+    :class:`HrlaError` with ``"auto"`` (the samplers mark that chain
+    diverged).
 
     The run: ``method`` is ``"auto"`` (the default: :class:`Auto`, no
     setting to tune; ``chains`` defaults to ``Auto.chains_for``) or
@@ -336,10 +336,6 @@ def minimize(
             if given[name] is not None:
                 raise ValueError(f"{name} is not used by method='auto' (it sets the samplers "
                                  f"'hrla', 'ula' and 'ola')")
-        if x0 is not None:
-            warnings.warn("x0 is not used by method='auto', which draws its own starts; "
-                          "a sampler method (e.g. method='hrla') starts a chain there", UserWarning, stacklevel=2)
-            x0 = None
     maxfun = MAXFUN if maxfun is None else _count(maxfun, "maxfun", 1)
     maxiter = None if maxiter is None else _count(maxiter, "maxiter")
     chains = None if chains is None else _count(chains, "chains", 1)
@@ -393,11 +389,6 @@ def minimize(
                                      f"with its own gradient)")
             potential: Any = fun
             cost = 1
-            if method == "auto" and callback is not None:
-                # The callback's best point: Auto reports its value only.
-                objective = _objective.Objective(_builtin_columns(fun), (), True, True, _objective.Mapper(1),
-                                                 lb, ub)
-                potential = objective
         elif callable(fun):
             if vectorized and (callable(workers) or workers != 1):
                 raise ValueError("workers is not used with vectorized=True: fun evaluates each batch in one call")
@@ -431,7 +422,7 @@ def minimize(
             return objective.nfev if objective is not None else evaluations
 
         if method == "auto":
-            return _auto(potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
+            return _auto(potential, box, budget_k, run_seed, chains, dim, x0, objective, builtin, fun, nfev,
                          target=target, stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
         return _sampler(method, potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
                         cost=cost, h=h, schedule=schedule, start=start, polish=polish, x0=x0, target=target,
@@ -451,28 +442,17 @@ def _renamed(new: Any, old: Any, name: str, old_name: str) -> Any:
     return old
 
 
-def _builtin_columns(potential: Potential) -> Callable[[np.ndarray], Tuple[np.ndarray, np.ndarray]]:
-    """A built-in as a vectorized ``fun`` with ``jac=True`` (columns)."""
-    def columns(xt: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
-        u, g = potential.value_and_gradient(np.ascontiguousarray(xt.T))
-        return u, g.T
-    return columns
-
-
 def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int], dim: Optional[int],
-          objective: Optional[_objective.Objective], builtin: bool, fun: Any, nfev: Callable[[int], int],
+          x0: Optional[np.ndarray], objective: Optional[_objective.Objective], builtin: bool, fun: Any, nfev: Callable[[int], int],
           **watch: Any) -> OptimizeResult:
     if box is None:
         raise ValueError('method="auto" needs bounds: D (lo, hi) pairs, scipy.optimize.Bounds, or (lo, hi) with dim=')
 
-    def best() -> Tuple[Optional[np.ndarray], float]:
-        if objective is None or objective.best is None:
-            return None, math.inf
-        return objective.best[0].copy(), objective.best[1]
-
-    w = _Watch("auto", best=best, nfev=nfev, **watch)
+    w = _Watch("auto", nfev=nfev, **watch)
     observed = any(watch[k] is not None for k in ("target", "stall", "maxiter", "maxtime", "callback")) or watch["disp"]
-    s = Auto().minimize(potential, box, budget, seed, chains=chains, dim=dim, observer=w if observed else None)
+    s = Auto().minimize(potential, box, budget, seed, chains=chains, dim=dim,
+                        x0=None if x0 is None else [float(v) for v in x0], observer=w if observed else None,
+                        with_x=watch["callback"] is not None)
     termination = w.reason if s.termination == "Observer" and w.reason else s.termination
     x = np.asarray(s.x)
     jac = _gradient(x, objective, builtin, fun)
@@ -521,16 +501,10 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
     if x0 is not None:
         opt.restart(0, [float(v) for v in x0])
 
-    def best() -> Tuple[Optional[np.ndarray], float]:
-        # The views need no lock: readable while the run runs.
-        values = opt.best_value
-        i = int(np.argmin(values))
-        return np.array(opt.best_x[i]), float(values[i])
-
     w = _Watch(method, target=None, stall=None, maxiter=None, maxtime=maxtime, callback=callback, disp=disp,
-               best=best, nfev=nfev)
+               nfev=nfev)
     observed = maxtime is not None or callback is not None or disp
-    report = opt.run(w if observed else None)
+    report = opt.run(w if observed else None, with_x=callback is not None)
     termination = report.termination
     if termination == "Observer" and w.reason:
         # A kernel rule that holds too comes first.

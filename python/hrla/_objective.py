@@ -18,8 +18,8 @@ scipy's conventions, each mapped here once:
   gradient unused).
 
 Every call of ``fun`` on a point counts in ``nfev``; every gradient (one
-per point of the batch) in ``njev``. The best point seen is kept for the
-progress display and the callback.
+per point of the batch) in ``njev``. The lowest point seen is kept with
+its gradient, the result's ``jac`` when the run ends there.
 """
 
 from __future__ import annotations

@@ -105,12 +105,18 @@ impl PyAuto {
     /// `chains_for(budget)`); chain `c` draws from the generator of
     /// `(seed, c)`. A Python potential is called with one row at a time.
     ///
+    /// `x0` (a sequence of `D` floats, in the box) is chain 0's initial
+    /// point instead of a uniform draw; where `potential` is not finite
+    /// there, the run raises rather than redraw it.
+    ///
     /// `observer(rounds, evaluations, best_value)`, when given, is called
     /// as the run goes (a Python potential's run: after every step of the
     /// chains, quench and restart; a built-in's: at every new round and
     /// every new best); a true answer ends the run, whose termination is
     /// then `"Observer"`, and an exception ends it with that exception.
-    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, observer = None))]
+    /// With `with_x=True` it gets the best point too, a copy:
+    /// `observer(rounds, evaluations, best_value, best_x)`.
+    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, x0 = None, observer = None, with_x = false))]
     #[allow(clippy::too_many_arguments)]
     fn minimize(
         &self,
@@ -121,7 +127,9 @@ impl PyAuto {
         seed: Option<&Bound<'_, PyAny>>,
         chains: Option<&Bound<'_, PyAny>>,
         dim: Option<&Bound<'_, PyAny>>,
+        x0: Option<Vec<f64>>,
         observer: Option<&Bound<'_, PyAny>>,
+        with_x: bool,
     ) -> PyResult<PySolution> {
         guard(|| {
             let problem = Problem {
@@ -131,8 +139,9 @@ impl PyAuto {
                 seed: config::unsigned_opt(seed, "seed")?.unwrap_or(0),
                 chains: config::unsigned_opt(chains, "chains")?,
                 dim: config::unsigned_opt(dim, "dim")?,
+                x0,
             };
-            self.solve(py, &problem, observer.filter(|o| !o.is_none()))
+            self.solve(py, &problem, observer.filter(|o| !o.is_none()), with_x)
         })
     }
 }
@@ -143,6 +152,7 @@ impl PyAuto {
         py: Python<'_>,
         problem: &Problem,
         observer: Option<&Bound<'_, PyAny>>,
+        with_x: bool,
     ) -> PyResult<PySolution> {
         if let Some(o) = observer
             && !o.is_callable()
@@ -176,11 +186,7 @@ impl PyAuto {
                 && (user || news)
             {
                 seen = Some((p.iteration, p.value));
-                let answer = Python::attach(|py| {
-                    o.bind(py)
-                        .call1((p.iteration, p.evaluations, p.value))?
-                        .is_truthy()
-                });
+                let answer = Python::attach(|py| observe(py, o, p, with_x));
                 match answer {
                     Ok(false) => {}
                     Ok(true) => return ControlFlow::Break(()),
@@ -226,6 +232,24 @@ impl PyAuto {
             message: s.message,
         })
     }
+}
+
+/// A user's observer called on `p`: `observer(iteration, evaluations,
+/// best_value)`, and the best point (copied) after them when `with_x`;
+/// whether it answered true.
+pub fn observe(py: Python<'_>, o: &Py<PyAny>, p: &Progress<'_>, with_x: bool) -> PyResult<bool> {
+    let o = o.bind(py);
+    let answer = if with_x {
+        o.call1((
+            p.iteration,
+            p.evaluations,
+            p.value,
+            PyArray1::from_slice(py, p.x),
+        ))?
+    } else {
+        o.call1((p.iteration, p.evaluations, p.value))?
+    };
+    answer.is_truthy()
 }
 
 #[pymethods]

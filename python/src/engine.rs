@@ -58,13 +58,14 @@ fn step(py: Python<'_>, engine: &mut dyn Engine, steps: u64) -> PyResult<()> {
 /// `signal_steps`, a Python function's after every step) and ends the run
 /// after a whole step when one came. The user's `observer`, when given,
 /// is called at the same steps (once a step), after the check:
-/// `observer(iteration, evaluations, best_value)`; a true answer ends the
+/// `observer(iteration, evaluations, best_value[, best_x])`; a true answer ends the
 /// run ([`hrla::Termination::Observer`]), an exception ends it with that
 /// exception.
 fn run(
     py: Python<'_>,
     engine: &mut dyn Engine,
     user_observer: Option<&Py<PyAny>>,
+    with_x: bool,
 ) -> PyResult<PyReport> {
     let user = engine.is_user();
     let every = if user {
@@ -84,10 +85,7 @@ fn run(
         let answer = Python::attach(|py| {
             py.check_signals()?;
             match user_observer {
-                Some(o) => o
-                    .bind(py)
-                    .call1((p.iteration, p.evaluations, p.value))?
-                    .is_truthy(),
+                Some(o) => crate::auto::observe(py, o, p, with_x),
                 None => Ok(false),
             }
         });
@@ -242,9 +240,16 @@ impl PyOptimizer {
     /// called after every step of a Python potential's run and every few
     /// thousand coordinate-steps of a built-in's; a true answer ends the
     /// run (termination `"Observer"`), an exception ends it with that
-    /// exception. The bits of the run do not depend on it.
-    #[pyo3(signature = (observer = None))]
-    fn run(&self, py: Python<'_>, observer: Option<&Bound<'_, PyAny>>) -> PyResult<PyReport> {
+    /// exception. The bits of the run do not depend on it. With
+    /// `with_x=True` it gets the best point too, a copy:
+    /// `observer(iteration, evaluations, best_value, best_x)`.
+    #[pyo3(signature = (observer = None, *, with_x = false))]
+    fn run(
+        &self,
+        py: Python<'_>,
+        observer: Option<&Bound<'_, PyAny>>,
+        with_x: bool,
+    ) -> PyResult<PyReport> {
         let observer = observer.filter(|o| !o.is_none());
         if let Some(o) = observer
             && !o.is_callable()
@@ -255,7 +260,7 @@ impl PyOptimizer {
             )));
         }
         let observer = observer.map(|o| o.clone().unbind());
-        self.with(|e| run(py, e, observer.as_ref()))
+        self.with(|e| run(py, e, observer.as_ref(), with_x))
     }
 
     /// The first stopping rule that holds now (`"Steps"`, `"Evaluations"`,

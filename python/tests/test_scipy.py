@@ -2,6 +2,7 @@
 convention is checked against the same call made to scipy."""
 
 import importlib.metadata
+import math
 import pydoc
 import warnings
 
@@ -354,8 +355,45 @@ def test_x0_starts_a_chain():
                         method="hrla", rng=1, maxfun=5_000)
     assert any(np.array_equal(p, x0) for p in seen)
     assert res.success
-    with pytest.warns(UserWarning, match="x0 is not used by method='auto'"):
-        hrla.minimize(himmelblau, [(-5, 5)] * 2, x0=x0, rng=1, maxfun=2_000)
+
+
+CENTRE = np.array([0.5, -1.5, 2.0, -0.5, 1.0, -2.0])
+
+
+def shifted_rastrigin(x):
+    """6-D Rastrigin, its global minimum 0 at CENTRE among 11^6 local ones."""
+    z = x - CENTRE
+    return float(10 * len(z) + np.sum(z * z - 10 * np.cos(2 * np.pi * z)))
+
+
+def test_x0_starts_auto_there():
+    # Tiny budget (30 gradients of 7 calls): from x0 at the global minimum
+    # auto returns it; without x0 none of these seeds comes near it.
+    run = dict(bounds=[(-5.12, 5.12)] * 6, maxfun=7 * 31)
+    for seed in range(3):
+        res = hrla.minimize(shifted_rastrigin, x0=CENTRE, rng=seed, **run)
+        assert res.fun < 1e-9 and np.allclose(res.x, CENTRE, atol=1e-6), res
+        assert res.nfev <= run["maxfun"]
+        without = hrla.minimize(shifted_rastrigin, rng=seed, **run)
+        assert without.fun > 0.5, without
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        hrla.minimize(himmelblau, [(-5, 5)] * 2, x0=np.array([2.9, 2.1]), rng=1, maxfun=2_000)
+
+
+def test_a_bad_x0_for_auto_is_named():
+    with pytest.raises(ValueError, match="x0 must lie in the box"):
+        hrla.minimize(himmelblau, [(-5, 5)] * 2, x0=[9.0, 0.0], rng=1, maxfun=2_000)
+    with pytest.raises(hrla.HrlaError, match=r"`x0\[1\]` = NaN is outside the box's side \[-5, 5\]"):
+        hrla.minimize(himmelblau, [(-5, 5)] * 2, x0=[0.0, float("nan")], rng=1, maxfun=2_000)
+
+    def holed(x):
+        return math.nan if x[0] > 4 else himmelblau(x)
+
+    with pytest.raises(hrla.HrlaError, match="`U at x0` must be finite, got NaN"):
+        hrla.minimize(holed, [(-5, 5)] * 2, x0=[4.5, 0.0], rng=1, maxfun=2_000)
+    with pytest.raises(ValueError, match="dim has dimension 3 but x0 has 2"):
+        hrla.Auto().minimize(hrla.Rastrigin(), hrla.Interval(-5, 5), 1_000, 1, dim=3, x0=[0.0, 0.0])
 
 
 def square_sum(x):
@@ -457,3 +495,34 @@ def test_version_and_help():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         hrla.minimize(himmelblau, [(-5, 5)] * 2, maxfun=1_000, rng=1)
+
+
+def test_observers_get_the_best_point_with_x():
+    """``with_x=True``: the observer's fourth argument is the best point,
+    where the potential's value is the third, for Auto and the samplers."""
+    rastrigin = hrla.Rastrigin()
+    seen = []
+
+    def observer(iteration, evaluations, value, x):
+        seen.append((value, np.array(x)))
+
+    hrla.Auto().minimize(rastrigin, hrla.Interval(-5.12, 5.12), 3_000, 1, dim=3, observer=observer, with_x=True)
+    # A Python potential: the observer is called after every step.
+    opt = hrla.Optimizer(lambda x: rastrigin.value_and_gradient(x), hrla.Hrla.paper(0.01), 4.0, hrla.Interval(-5.12, 5.12), chains=4, seed=1,
+                         stop=hrla.Stop().steps(50), dim=3)
+    looked = len(seen)
+    opt.run(observer, with_x=True)
+    assert looked > 0 and len(seen) == looked + 50
+    for value, x in seen:
+        assert x.shape == (3,) and rastrigin.value_and_gradient(x[None, :])[0][0] == value
+    # Without it, three arguments as before.
+    opt.run(lambda iteration, evaluations, value: None)
+
+
+def test_a_builtin_under_auto_runs_in_rust_with_a_callback():
+    """The callback's point comes from the run: a built-in stays a
+    built-in (the same bits and count as without a callback)."""
+    run = dict(bounds=[(-5.12, 5.12)] * 3, rng=2, maxfun=4_000)
+    quiet = hrla.minimize(hrla.Rastrigin(), **run)
+    looked = hrla.minimize(hrla.Rastrigin(), callback=lambda intermediate_result: None, **run)
+    assert np.array_equal(quiet.x, looked.x) and quiet.fun == looked.fun and quiet.nfev == looked.nfev

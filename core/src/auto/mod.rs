@@ -36,6 +36,13 @@
 //! at the basins' bottoms, where it is positive even on landscapes with
 //! flat stretches.
 //!
+//! In a box whose sides differ, the sampling, the quenches, the polish
+//! and the curvature probes run in the box's **unit coordinates**
+//! (`u_i = x_i / w_i`, `w_i` the side of coordinate `i` over the widest:
+//! every side as long as the widest), so that one step `h` suits every
+//! coordinate; the map is linear, so `exp(-a U)` is the same law there.
+//! In a box of equal sides the unit coordinates are the box's own.
+//!
 //! The evaluation budget covers everything: initial points, probes,
 //! steps, quenches, restarts and the final polish. The constants of
 //! [`Auto::default`] were chosen on the quality benchmark
@@ -45,6 +52,7 @@
 mod measure;
 mod moves;
 mod run;
+mod scale;
 mod settings;
 
 use core::fmt;
@@ -343,6 +351,90 @@ impl<F: Float> Auto<F> {
         seed: u64,
         chains: &mut [Chain<F, D, R>],
         lbfgs: &mut Lbfgs<F, D, M>,
+        observer: O,
+    ) -> Result<Solution<F, D>, Error>
+    where
+        P: Potential<F, D> + ?Sized,
+        R: Rng + SeedableRng + 'static,
+        O: FnMut(&AutoProgress<'_, F, D>) -> ControlFlow<()>,
+    {
+        self.solve_const(
+            potential, domain, None, budget, seed, chains, lbfgs, observer,
+        )
+    }
+
+    /// [`minimize_with`](Auto::minimize_with) with chain 0 starting at
+    /// `x0` instead of a uniform draw (the other chains draw theirs as
+    /// without it): a guess the run starts from, as scipy's `x0`. It costs
+    /// the one evaluation chain 0's draw would have. The other chains, and
+    /// so the run, differ from a run without `x0` only through chain 0.
+    ///
+    /// ```
+    /// use core::ops::ControlFlow;
+    /// use hrla::{Auto, Chain, Interval, Lbfgs, Rastrigin};
+    ///
+    /// let mut chains: Vec<Chain<f64, 6>> = (0..4).map(|_| Chain::new()).collect();
+    /// let mut lbfgs: Lbfgs<f64, 6, 8> = Lbfgs::new();
+    /// // Started at the global minimum, a tiny budget keeps it.
+    /// let found = Auto::default().minimize_from(
+    ///     &Rastrigin,
+    ///     Interval::new(-5.12, 5.12)?,
+    ///     &[0.0; 6],
+    ///     100,
+    ///     1,
+    ///     &mut chains,
+    ///     &mut lbfgs,
+    ///     |_| ControlFlow::Continue(()),
+    /// )?;
+    /// assert_eq!(found.value, 0.0);
+    /// # Ok::<(), hrla::Error>(())
+    /// ```
+    ///
+    /// Errors: those of [`minimize`](Auto::minimize), and a start that is
+    /// not one the caller can mean: outside the box or NaN in a
+    /// coordinate ([`Error::OutsideBox`]), or a point where `U` or its
+    /// gradient is not finite ([`Error::NotFinite`] naming `x0`: it is
+    /// not redrawn, since the caller chose it).
+    #[allow(clippy::too_many_arguments)]
+    pub fn minimize_from<P, const D: usize, R, const M: usize, O>(
+        &self,
+        potential: &P,
+        domain: Interval<F>,
+        x0: &[F; D],
+        budget: u64,
+        seed: u64,
+        chains: &mut [Chain<F, D, R>],
+        lbfgs: &mut Lbfgs<F, D, M>,
+        observer: O,
+    ) -> Result<Solution<F, D>, Error>
+    where
+        P: Potential<F, D> + ?Sized,
+        R: Rng + SeedableRng + 'static,
+        O: FnMut(&AutoProgress<'_, F, D>) -> ControlFlow<()>,
+    {
+        self.solve_const(
+            potential,
+            domain,
+            Some(x0),
+            budget,
+            seed,
+            chains,
+            lbfgs,
+            observer,
+        )
+    }
+
+    /// The const-generic entry points' run.
+    #[allow(clippy::too_many_arguments)]
+    fn solve_const<P, const D: usize, R, const M: usize, O>(
+        &self,
+        potential: &P,
+        domain: Interval<F>,
+        x0: Option<&[F; D]>,
+        budget: u64,
+        seed: u64,
+        chains: &mut [Chain<F, D, R>],
+        lbfgs: &mut Lbfgs<F, D, M>,
         mut observer: O,
     ) -> Result<Solution<F, D>, Error>
     where
@@ -368,6 +460,7 @@ impl<F: Float> Auto<F> {
         let found = self.drive(
             &Arrays::<_, D>(potential),
             &domain,
+            x0.map(|x| x.as_slice()),
             budget,
             seed,
             chains,
@@ -454,6 +547,50 @@ impl<F: Float> Auto<F> {
         budget: u64,
         seed: u64,
         storage: &'s mut AutoStorage<'_, F, R>,
+        observer: O,
+    ) -> Result<FlatSolution<'s, F>, Error>
+    where
+        P: BatchPotential<F> + ?Sized,
+        B: Sides<F> + ?Sized,
+        R: Rng + SeedableRng + 'static,
+        O: FnMut(&FlatAutoProgress<'_, F>) -> ControlFlow<()>,
+    {
+        self.solve_flat(potential, domain, None, budget, seed, storage, observer)
+    }
+
+    /// [`minimize_flat_with`](Auto::minimize_flat_with) with chain 0
+    /// starting at `x0`, as [`minimize_from`](Auto::minimize_from); `x0`
+    /// has the storage's dimension ([`Error::Length`] otherwise).
+    #[allow(clippy::too_many_arguments)]
+    pub fn minimize_flat_from<'s, P, B, R, O>(
+        &self,
+        potential: &P,
+        domain: &B,
+        x0: &[F],
+        budget: u64,
+        seed: u64,
+        storage: &'s mut AutoStorage<'_, F, R>,
+        observer: O,
+    ) -> Result<FlatSolution<'s, F>, Error>
+    where
+        P: BatchPotential<F> + ?Sized,
+        B: Sides<F> + ?Sized,
+        R: Rng + SeedableRng + 'static,
+        O: FnMut(&FlatAutoProgress<'_, F>) -> ControlFlow<()>,
+    {
+        self.solve_flat(potential, domain, Some(x0), budget, seed, storage, observer)
+    }
+
+    /// The flat entry points' run.
+    #[allow(clippy::too_many_arguments)]
+    fn solve_flat<'s, P, B, R, O>(
+        &self,
+        potential: &P,
+        domain: &B,
+        x0: Option<&[F]>,
+        budget: u64,
+        seed: u64,
+        storage: &'s mut AutoStorage<'_, F, R>,
         mut observer: O,
     ) -> Result<FlatSolution<'s, F>, Error>
     where
@@ -497,6 +634,7 @@ impl<F: Float> Auto<F> {
         let found = self.drive(
             potential,
             domain,
+            x0,
             budget,
             seed,
             &mut chains,
@@ -517,13 +655,15 @@ impl<F: Float> Auto<F> {
         })
     }
 
-    /// The one run of every entry point: checks, start, solve, and the
-    /// termination; the best point is left in the buffers' `best`.
+    /// The one run of every entry point: checks, start (chain 0 at `x0`
+    /// where given), solve, and the termination; the best point is left
+    /// in the buffers' `best`.
     #[allow(clippy::too_many_arguments)]
     fn drive<P, B, S, L, O>(
         &self,
         potential: &P,
         domain: &B,
+        x0: Option<&[F]>,
         budget: u64,
         seed: u64,
         chains: &mut S,
@@ -550,8 +690,11 @@ impl<F: Float> Auto<F> {
                 chains: 2 * n,
             });
         }
+        if let Some(x0) = x0 {
+            check_start(x0, domain, buffers.best.len())?;
+        }
         let mut run = run::Run::start(
-            self, potential, domain, budget, seed, chains, lbfgs, buffers, observer,
+            self, potential, domain, x0, budget, seed, chains, lbfgs, buffers, observer,
         )?;
         let termination = match run.solve() {
             ControlFlow::Continue(()) => Termination::Evaluations,
@@ -561,4 +704,33 @@ impl<F: Float> Auto<F> {
         };
         Ok(run.found(termination))
     }
+}
+
+/// A caller's start: `d` coordinates, each within its side of the box
+/// ([`Error::Length`], [`Error::OutsideBox`] naming `x0`; a NaN is outside).
+fn check_start<F: Float, B: Sides<F> + ?Sized>(
+    x0: &[F],
+    domain: &B,
+    d: usize,
+) -> Result<(), Error> {
+    if x0.len() != d {
+        return Err(Error::Length {
+            name: "x0",
+            expected: d,
+            got: x0.len(),
+        });
+    }
+    for (index, &value) in x0.iter().enumerate() {
+        let (lo, hi) = domain.side(index);
+        if !(lo <= value && value <= hi) {
+            return Err(Error::OutsideBox {
+                name: "x0",
+                index,
+                value: value.to_f64(),
+                lo: lo.to_f64(),
+                hi: hi.to_f64(),
+            });
+        }
+    }
+    Ok(())
 }

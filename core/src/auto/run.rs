@@ -3,14 +3,16 @@
 //! const-generic [`Chain`]s and the caller's flat storage run this one
 //! body.
 
+use core::cell::RefCell;
 use core::ops::ControlFlow;
 
 use rand_core::{Rng, SeedableRng};
 
 use super::measure::{self, A_RANGE};
 use super::moves;
+use super::scale::{Scaled, Unit};
 use super::settings::{Auto, Sampling};
-use crate::domain::Sides;
+use crate::domain::{Sides, SliceDomain};
 use crate::error::{Error, floor};
 use crate::float::Float;
 use crate::optimizer::{Best, Chain, Termination, chain_seed, draw_point};
@@ -289,6 +291,8 @@ struct Tally<'a, F, P: ?Sized, B: ?Sized, L: ?Sized> {
     auto: &'a Auto<F>,
     potential: One<'a, P>,
     domain: &'a B,
+    /// The box's unit coordinates, where the dynamics and the quenches run.
+    unit: Unit<'a, F, B>,
     lbfgs: &'a mut L,
     budget: u64,
     evaluations: u64,
@@ -341,16 +345,13 @@ where
 
     /// L-BFGS from `x` (in place) for chain `c`, within [`Auto::quench`]
     /// and the budget: the value at its end, or `None` where `x` is
-    /// infeasible.
-    fn quench(&mut self, c: usize, x: &mut [F]) -> ControlFlow<Stop, Option<F>> {
+    /// infeasible. `scratch` is a point's worth of working space.
+    fn quench(&mut self, c: usize, x: &mut [F], scratch: &mut [F]) -> ControlFlow<Stop, Option<F>> {
         let cap = self.auto.quench.min(self.remaining());
         if cap == 0 {
             return ControlFlow::Break(Stop::Budget);
         }
-        match self
-            .lbfgs
-            .quench(&self.potential, self.domain, x, PolishSettings::new(cap))
-        {
+        match self.local(x, scratch, PolishSettings::new(cap)) {
             Ok(done) => {
                 self.evaluations += done.evaluations;
                 self.record(x, done.value, done.end != PolishEnd::Budget);
@@ -366,6 +367,29 @@ where
             }
             Err(e) => ControlFlow::Break(Stop::Failed(e)),
         }
+    }
+
+    /// L-BFGS from `x` in the box's unit coordinates, `x` ending at its
+    /// end in the box's own.
+    fn local(
+        &mut self,
+        x: &mut [F],
+        scratch: &mut [F],
+        settings: PolishSettings<F>,
+    ) -> Result<Polished<F>, Error> {
+        let unit = self.unit;
+        if unit.is_identity() {
+            return self.lbfgs.quench(&self.potential, self.domain, x, settings);
+        }
+        let scaled = Scaled {
+            potential: &self.potential,
+            unit,
+            x: RefCell::new(scratch),
+        };
+        unit.scale_in(x);
+        let done = self.lbfgs.quench(&scaled, &unit, x, settings);
+        unit.scale_out(x);
+        done
     }
 
     /// A feasible point evaluated: the new best if it is lower.
@@ -415,13 +439,16 @@ where
 {
     /// Draws every chain's initial point uniformly in the box (redrawn
     /// where infeasible, up to [`START_TRIES`](crate::START_TRIES), within
-    /// the budget). `budget` is at least twice the number of chains, and
-    /// every slice has the run's dimension.
+    /// the budget), but chain 0's where the caller gave `x0` (in the box):
+    /// that point itself, an error where it is infeasible. `budget` is at
+    /// least twice the number of chains, and every slice has the run's
+    /// dimension.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn start(
         auto: &'a Auto<F>,
         potential: &'a P,
         domain: &'a B,
+        x0: Option<&[F]>,
         budget: u64,
         seed: u64,
         chains: &'a mut S,
@@ -448,16 +475,22 @@ where
             *chain.rng = S::Rng::seed_from_u64(chain_seed(seed, c as u64));
             chain.y.fill(F::ZERO);
             *chain.diverged = false;
-            *chain.value = draw_point(
-                c,
-                chain.x,
-                chain.grad,
-                chain.rng,
-                &one,
-                &mut spare,
-                &mut evaluations,
-                |rng, x| domain.uniform(rng, x),
-            )?;
+            *chain.value = match x0 {
+                Some(x0) if c == 0 => given_point(x0, chain.x, chain.grad, &one)?,
+                _ => draw_point(
+                    c,
+                    chain.x,
+                    chain.grad,
+                    chain.rng,
+                    &one,
+                    &mut spare,
+                    &mut evaluations,
+                    |rng, x| domain.uniform(rng, x),
+                )?,
+            };
+            if x0.is_some() && c == 0 {
+                evaluations += 1;
+            }
             if *chain.value < best_value {
                 best_value = *chain.value;
                 best.copy_from_slice(chain.x);
@@ -469,6 +502,7 @@ where
                 auto,
                 potential: one,
                 domain,
+                unit: Unit::new(domain, best.len()),
                 lbfgs,
                 budget,
                 evaluations,
@@ -499,7 +533,7 @@ where
         if self.tally.auto.parts.quenches {
             for c in 0..self.chains.len() {
                 self.x.copy_from_slice(self.chains.x(c));
-                if let Some(value) = self.tally.quench(c, self.x)? {
+                if let Some(value) = self.tally.quench(c, self.x, self.base)? {
                     settle(self.chains.chain(c), self.x, value);
                 }
                 self.observe()?;
@@ -550,12 +584,16 @@ where
             ) else {
                 continue;
             };
+            // The curvature in the box's unit coordinates, where the
+            // dynamics run.
+            let unit = self.tally.unit;
             let mut dx2 = F::ZERO;
             let mut dg = F::ZERO;
             for j in 0..self.x.len() {
-                let dx = self.x[j] - self.base[j];
+                let w = unit.w(j);
+                let dx = (self.x[j] - self.base[j]) / w;
                 dx2 += dx * dx;
-                dg += (self.grad[j] - self.g0[j]) * dx;
+                dg += (self.grad[j] - self.g0[j]) * w * dx;
             }
             *k = if dx2 > F::ZERO {
                 (dg / dx2).abs()
@@ -563,10 +601,10 @@ where
                 F::ZERO
             };
         }
-        // The step's cap: a tenth of the narrowest side.
+        // The step's cap: a tenth of the narrowest side in unit coordinates.
         let mut width = F::INFINITY;
         for j in 0..self.x.len() {
-            let (lo, hi) = domain.side(j);
+            let (lo, hi) = self.tally.unit.side(j);
             if hi - lo < width {
                 width = hi - lo;
             }
@@ -653,34 +691,60 @@ where
                         None => return self.reject(c),
                     }
                 }
+                // The trajectory in unit coordinates (`self.x`, with the
+                // momentum), each point evaluated at its place in the box
+                // (`self.base`).
+                // (In a box of equal sides they are the same, and the maps
+                // are skipped.)
+                let unit = self.tally.unit;
+                let identity = unit.is_identity();
+                unit.scale_in(self.x);
                 for _ in 0..auto.steps {
-                    kernel.step_slice(self.x, self.y, self.grad, self.chains.chain(c).rng);
-                    domain.confine(self.x, self.y);
-                    match self.tally.evaluate(self.x, self.grad)? {
+                    let g: &[F] = if identity {
+                        self.grad
+                    } else {
+                        unit.gradient(self.grad, self.g0);
+                        self.g0
+                    };
+                    kernel.step_slice(self.x, self.y, g, self.chains.chain(c).rng);
+                    unit.confine(self.x, self.y);
+                    let at: &[F] = if identity {
+                        self.x
+                    } else {
+                        unit.point_of(self.x, self.base);
+                        self.base
+                    };
+                    match self.tally.evaluate(at, self.grad)? {
                         Some(v) => value = v,
                         None => return self.reject(c),
                     }
                     self.observe()?;
                 }
+                if !identity {
+                    self.x.copy_from_slice(self.base);
+                }
                 known = true;
             }
             Sampling::Jump => {
+                let unit = self.tally.unit;
+                unit.scale_in(self.x);
                 moves::free(
                     &kernel,
                     self.x,
                     self.y,
                     self.g0,
                     auto.steps,
-                    domain,
+                    &unit,
                     self.chains.chain(c).rng,
                 );
+                unit.scale_out(self.x);
                 known = false;
             }
             Sampling::Off => {}
         }
         self.chains.chain(c).y.copy_from_slice(self.y);
         if parts.quenches {
-            match self.tally.quench(c, self.x)? {
+            match self.tally.quench(c, self.x, self.base)? {
                 Some(v) => {
                     value = v;
                     self.grad.fill(F::ZERO);
@@ -743,7 +807,7 @@ where
                 continue;
             };
             if self.tally.auto.parts.quenches {
-                let Some(v) = self.tally.quench(c, self.x)? else {
+                let Some(v) = self.tally.quench(c, self.x, self.base)? else {
                     continue;
                 };
                 value = v;
@@ -766,10 +830,7 @@ where
         }
         self.x.copy_from_slice(tally.best);
         let settings = PolishSettings::new(tally.remaining());
-        match tally
-            .lbfgs
-            .quench(&tally.potential, tally.domain, self.x, settings)
-        {
+        match tally.local(self.x, self.base, settings) {
             Ok(done) => {
                 tally.evaluations += done.evaluations;
                 tally.record(self.x, done.value, done.end != PolishEnd::Budget);
@@ -838,6 +899,41 @@ where
             diverged_chains: self.diverged(),
             chains: self.chains.len(),
         }
+    }
+}
+
+/// `U` at the caller's start `x0`, copied into `x` (one evaluation):
+/// where it is infeasible, an error naming `x0` rather than a redraw, since
+/// the caller chose that point.
+fn given_point<F, P>(x0: &[F], x: &mut [F], grad: &mut [F], potential: &P) -> Result<F, Error>
+where
+    F: Float,
+    P: SlicePotential<F> + ?Sized,
+{
+    x.copy_from_slice(x0);
+    let value = potential.value_and_gradient(x, grad);
+    match judge(x, value, grad, floor()) {
+        Verdict::Feasible => Ok(value),
+        Verdict::Unbounded => Err(Error::UnboundedBelow {
+            chain: 0,
+            value: value.to_f64(),
+        }),
+        Verdict::Infeasible(what) => Err(Error::NotFinite {
+            name: if what == "gradient" {
+                "the gradient at x0"
+            } else {
+                "U at x0"
+            },
+            value: if what == "gradient" {
+                grad.iter()
+                    .copied()
+                    .find(|g| !g.is_finite())
+                    .unwrap_or(F::INFINITY)
+                    .to_f64()
+            } else {
+                value.to_f64()
+            },
+        }),
     }
 }
 
