@@ -108,11 +108,10 @@ pub enum Error {
         /// The largest value allowed.
         max: f64,
     },
-    /// A point outside the box in one coordinate (or NaN there), such as
-    /// a start the caller gave.
+    /// A start the caller gave (`x0`) outside the box in one coordinate
+    /// (or NaN there). No name field: the error keeps the size of the
+    /// largest variant before it (firmware holds one in static RAM).
     OutsideBox {
-        /// The point (`x0`).
-        name: &'static str,
         /// The coordinate.
         index: usize,
         /// Its value.
@@ -215,14 +214,13 @@ impl fmt::Display for Error {
                 value(v)
             ),
             Error::OutsideBox {
-                name,
                 index,
                 value: v,
                 lo,
                 hi,
             } => write!(
                 f,
-                "`{name}[{index}]` = {} is outside the box's side [{}, {}]",
+                "`x0[{index}]` = {} is outside the box's side [{}, {}]",
                 value(v),
                 value(lo),
                 value(hi)

@@ -724,7 +724,6 @@ fn check_start<F: Float, B: Sides<F> + ?Sized>(
         let (lo, hi) = domain.side(index);
         if !(lo <= value && value <= hi) {
             return Err(Error::OutsideBox {
-                name: "x0",
                 index,
                 value: value.to_f64(),
                 lo: lo.to_f64(),
