@@ -3,7 +3,7 @@
 scipy user would pick, every call to ``fun`` counted.
 
     # from the repository root, with numpy, scipy, cma and hrla installed
-    # (bench/expensive/README.md: the exact setup), one core per job:
+    # (run.sh sets that up and runs these), one core per job:
     nice -n 10 python bench/expensive/run.py --out target/expensive/runs.csv \\
         --problems peaks,lj8 --seeds 0-19 --jobs 2
     nice -n 10 python bench/expensive/run.py --out target/expensive/runs.csv --append \\
