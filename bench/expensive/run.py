@@ -39,8 +39,8 @@ BudgetExhausted; either ends the method and is caught here.
 
 Columns: problem,d,method,seed,cap,reached,evals_to_target,evaluations,best,wall_seconds,note
 (evals_to_target empty when the target was not reached; evaluations = calls
-made; best = the lowest value seen; note = an error other than the two
-stops, or how hrla was called).
+made; best = the lowest value seen; note = how hrla was called, or an error
+other than the two stops).
 """
 
 import os
@@ -135,9 +135,18 @@ def _padded_dim(d, dims):
     raise ValueError(f"no compiled dimension holds {d}")
 
 
+def hrla_api(d):
+    """How :func:`hrla_minimize` calls the installed hrla in dimension ``d``."""
+    import hrla
+
+    if _has_scipy_api(hrla):
+        return "scipy api"
+    dp = _padded_dim(d, hrla.DIMENSIONS)
+    return f"batched api, unit box, forward differences{f', padded to D = {dp}' if dp != d else ''}"
+
+
 def hrla_minimize(fun, bounds, maxfun, target, seed):
-    """``hrla.minimize`` with its defaults on a scalar ``fun``; returns a note
-    saying which API ran.
+    """``hrla.minimize`` with its defaults on a scalar ``fun``.
 
     With scipy's API (``fun(x) -> float``, ``jac=None`` finite differences
     counted in ``nfev``, ``maxfun``, ``target``, ``rng``) this is one call.
@@ -155,7 +164,7 @@ def hrla_minimize(fun, bounds, maxfun, target, seed):
     hi = np.array([b[1] for b in bounds], dtype=float)
     if _has_scipy_api(hrla):
         hrla.minimize(fun, list(zip(lo, hi)), jac=None, maxfun=maxfun, target=target, rng=seed)
-        return "scipy api"
+        return
     d = lo.size
     width = hi - lo
     dp = _padded_dim(d, hrla.DIMENSIONS)
@@ -171,7 +180,6 @@ def hrla_minimize(fun, bounds, maxfun, target, seed):
         return U, G
 
     hrla.minimize(batched, (0.0, 1.0), dim=dp, method="auto", budget=max(maxfun // (1 + d), 1), seed=seed)
-    return f"batched api, unit box, forward differences{f', padded to D = {dp}' if dp != d else ''}"
 
 
 # ------------------------------------------------------------------ peers
@@ -205,7 +213,7 @@ def run_ipop_cma_es(p, f, seed, cap):
 
 
 def run_hrla(p, f, seed, cap):
-    return hrla_minimize(f, p.bounds, cap, p.target, seed)
+    hrla_minimize(f, p.bounds, cap, p.target, seed)
 
 
 RUNNERS = {
@@ -220,12 +228,12 @@ def run_one(task):
     name, method, seed, cap = task
     p = problems.make(name)
     f = Counted(p.fun, p.target, cap)
-    note = ""
+    note = hrla_api(p.d) if method == "hrla" else ""
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         try:
-            note = RUNNERS[method](p, f, seed, cap) or ""
+            RUNNERS[method](p, f, seed, cap)
         except (TargetReached, BudgetExhausted):
             pass
         except Exception as e:  # a method failing: keep what it found, say so
