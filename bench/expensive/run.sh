@@ -5,8 +5,8 @@
 # pycma IPOP-CMA-ES, every call of fun counted (run.py's docstring).
 #
 #   scripts/test-python.sh -k nothing      # builds hrla from source into $CARGO_TARGET_DIR/python-venv
-#   nice -n 10 bench/expensive/run.sh      # everything: peaks and lj8 with seeds 0-19,
-#                                          # ode with seeds 0-9, cap 20 000 calls, 2 jobs
+#   nice -n 10 bench/expensive/run.sh      # everything: peaks and lj8 with seeds 0-19; ode with
+#                                          # seeds 0-19, CMA-ES 0-9 only; cap 20 000 calls, 2 jobs
 #   bench/expensive/run.sh --problems lj8 --seeds 0-4 --methods hrla,dual-annealing
 #
 # Runs in the virtualenv of scripts/test-python.sh ($CARGO_TARGET_DIR, or
@@ -14,8 +14,9 @@
 # hrla), into which it installs numpy, scipy and cma at the versions of
 # bench/quality/requirements.txt. Writes target/expensive/runs.csv (or
 # --out FILE; further arguments go to run.py), then prints the summary
-# (summarize.py). The ODE takes about 7 ms a call: the full run takes
-# about an hour on two cores.
+# (summarize.py). The ODE takes about 7 ms a call, and CMA-ES runs to the
+# cap there (3 to 6 minutes a run): the full run takes about 80 minutes on
+# two busy cores.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -42,6 +43,8 @@ echo "uptime: $(uptime)" >&2
 if [[ ${#args[@]} -eq 0 ]]; then
     "$py" "$here/run.py" --out "$out" --problems peaks,lj8 --seeds 0-19 --jobs 2
     "$py" "$here/run.py" --out "$out" --append --problems ode --seeds 0-9 --jobs 2
+    "$py" "$here/run.py" --out "$out" --append --problems ode --seeds 10-19 \
+        --methods hrla,dual-annealing,differential-evolution --jobs 2
 else
     "$py" "$here/run.py" --out "$out" "${args[@]}"
 fi
