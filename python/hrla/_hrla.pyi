@@ -218,9 +218,11 @@ class Auto:
     quench: int
     jump_rate: float
     stall: int
+    accept: float
     def __init__(self, *, steps: Optional[int] = None, step_scale: Optional[float] = None,
                  ladder: Optional[float] = None, quench: Optional[int] = None,
-                 jump_rate: Optional[float] = None, stall: Optional[int] = None) -> None: ...
+                 jump_rate: Optional[float] = None, stall: Optional[int] = None,
+                 accept: Optional[float] = None) -> None: ...
     @staticmethod
     def chains_for(budget: int) -> int: ...
     def minimize(self, potential: PotentialLike, domain: BoxLike, budget: int, seed: Optional[int] = 0, *,

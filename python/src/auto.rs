@@ -36,6 +36,8 @@ pub struct PyAuto {
     pub jump_rate: f64,
     /// Rounds without a new best before the hotter half restarts.
     pub stall: u64,
+    /// The acceptance rate each rung's step is steered to (0: fixed).
+    pub accept: f64,
 }
 
 /// What `Auto.minimize` found.
@@ -70,7 +72,7 @@ pub struct PySolution {
 #[pymethods]
 impl PyAuto {
     #[new]
-    #[pyo3(signature = (*, steps = None, step_scale = None, ladder = None, quench = None, jump_rate = None, stall = None))]
+    #[pyo3(signature = (*, steps = None, step_scale = None, ladder = None, quench = None, jump_rate = None, stall = None, accept = None))]
     fn new(
         steps: Option<&Bound<'_, PyAny>>,
         step_scale: Option<f64>,
@@ -78,6 +80,7 @@ impl PyAuto {
         quench: Option<&Bound<'_, PyAny>>,
         jump_rate: Option<f64>,
         stall: Option<&Bound<'_, PyAny>>,
+        accept: Option<f64>,
     ) -> PyResult<Self> {
         let d = Auto::<f64>::default();
         let steps = config::unsigned_opt(steps, "steps")?;
@@ -90,11 +93,12 @@ impl PyAuto {
             quench: quench.unwrap_or(d.quench),
             jump_rate: jump_rate.unwrap_or(d.jump_rate),
             stall: stall.unwrap_or(d.stall),
+            accept: accept.unwrap_or(d.accept),
         })
     }
 
     /// The number of chains measured best for an evaluation budget:
-    /// `budget / 4000` within `[8, 32]`.
+    /// `budget / 60 000` within `[4, 16]`.
     #[staticmethod]
     fn chains_for(budget: &Bound<'_, PyAny>) -> PyResult<usize> {
         Ok(Auto::<f64>::chains_for(config::unsigned(budget, "budget")?))
@@ -171,6 +175,7 @@ impl PyAuto {
             quench: self.quench,
             jump_rate: self.jump_rate,
             stall: self.stall,
+            accept: self.accept,
             ..Auto::default()
         };
         // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated

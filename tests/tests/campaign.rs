@@ -502,6 +502,7 @@ fn wild_auto() -> impl Strategy<Value = Auto<f64>> {
             Just(Sampling::Off)
         ],
         any::<(bool, bool)>(),
+        prop_oneof![1 => mostly_sane64(), 3 => 0.0f64..=1.0],
     )
         .prop_map(
             |(
@@ -513,6 +514,7 @@ fn wild_auto() -> impl Strategy<Value = Auto<f64>> {
                 stall,
                 sampling,
                 (global, quenches),
+                accept,
             )| {
                 Auto {
                     steps,
@@ -521,6 +523,7 @@ fn wild_auto() -> impl Strategy<Value = Auto<f64>> {
                     quench,
                     jump_rate,
                     stall,
+                    accept,
                     parts: Parts {
                         sampling,
                         global_moves: global,

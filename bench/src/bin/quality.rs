@@ -10,9 +10,10 @@
 //! Strategies: `hrla-default` (the kernel's [`hrla::Auto`] with
 //! `Auto::chains_for(B)` chains); its ablations `hrla-no-sampling` (a:
 //! [`hrla::Sampling::Off`]), `hrla-jump` (the sampler's gradient removed:
-//! [`hrla::Sampling::Jump`]), `hrla-no-global` (b: no differential moves,
-//! no restarts), `hrla-no-quench` (c: no quench of the proposals), all five
-//! at once with `--strategies ablation`; `hrla-paper` (the paper's settings: h = 0.01, linear annealing
+//! [`hrla::Sampling::Jump`]), `hrla-fixed-step` (every rung at the
+//! measured step: `accept = 0`), `hrla-no-global` (b: no differential
+//! moves, no restarts), `hrla-no-quench` (c: no quench of the proposals),
+//! all six at once with `--strategies ablation`; `hrla-paper` (the paper's settings: h = 0.01, linear annealing
 //! 0.1 -> 4, 250 chains), `hrla-paper-polish` (the same with 5% of the
 //! budget kept for an L-BFGS polish of the best point). Every run is
 //! confined to the problem's box and starts uniform in it.
@@ -25,10 +26,11 @@ use hrla::{Builder, Chain, Error, Hrla, Interval, Lbfgs, Linear, PolishSettings,
 use hrla_bench::problems;
 
 /// `--strategies ablation`: the default and each ablation.
-const ABLATION: [&str; 5] = [
+const ABLATION: [&str; 6] = [
     "hrla-default",
     "hrla-no-sampling",
     "hrla-jump",
+    "hrla-fixed-step",
     "hrla-no-global",
     "hrla-no-quench",
 ];
@@ -124,12 +126,14 @@ fn auto_for(strategy: &str) -> hrla::Auto<f64> {
         quench: env("HRLA_AUTO_QUENCH", d.quench),
         jump_rate: env("HRLA_AUTO_JUMP", d.jump_rate),
         stall: env("HRLA_AUTO_STALL", d.stall),
+        accept: env("HRLA_AUTO_ACCEPT", d.accept),
         parts: d.parts,
     };
     match strategy {
         "hrla-default" => {}
         "hrla-no-sampling" => auto.parts.sampling = hrla::Sampling::Off,
         "hrla-jump" => auto.parts.sampling = hrla::Sampling::Jump,
+        "hrla-fixed-step" => auto.accept = 0.0,
         "hrla-no-global" => auto.parts.global_moves = false,
         "hrla-no-quench" => auto.parts.quenches = false,
         _ => panic!("unknown strategy {strategy}"),

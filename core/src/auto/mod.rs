@@ -14,6 +14,10 @@
 //!    temperature `a_c`, from there, with the momentum `y` the chain kept
 //!    from its last trajectory. The exact OU step is stable at large `h`,
 //!    so the trajectory follows the gradient's trend across several basins.
+//!    Each rung's step is steered to accept [`Auto::accept`] of its
+//!    proposals (half), as basin hopping steers its step: hot rungs
+//!    lengthen theirs until they reach other basins, cold ones shorten
+//!    theirs.
 //! 3. **Quench**: L-BFGS from the trajectory's end until it converges
 //!    (at most [`Auto::quench`] evaluations): the basin it fell into.
 //! 4. **Acceptance**: Metropolis on the quenched values at `a_c`: the chain
@@ -34,7 +38,7 @@
 //! random points reach `1e9`), `±` [`Auto::ladder`] in `ln a`; the step is
 //! `h = step_scale / L`, `L` the median curvature along random directions
 //! at the basins' bottoms, where it is positive even on landscapes with
-//! flat stretches.
+//! flat stretches; every rung starts from it.
 //!
 //! In a box whose sides differ, the sampling, the quenches, the polish
 //! and the curvature probes run in the box's **unit coordinates**
@@ -97,7 +101,8 @@ pub struct Solution<F, const D: usize> {
     pub evaluations: u64,
     /// Rounds done.
     pub rounds: u64,
-    /// The step size chosen.
+    /// The step size measured (`step_scale / L`), from which every rung
+    /// started.
     pub step: F,
     /// The inverse temperature of the coldest chain.
     pub inverse_temperature: F,
@@ -155,7 +160,8 @@ pub struct FlatSolution<'a, F> {
     pub evaluations: u64,
     /// Rounds done.
     pub rounds: u64,
-    /// The step size chosen.
+    /// The step size measured (`step_scale / L`), from which every rung
+    /// started.
     pub step: F,
     /// The inverse temperature of the coldest chain.
     pub inverse_temperature: F,
@@ -251,16 +257,17 @@ pub struct FlatAutoProgress<'a, F> {
 
 impl<F: Float> Auto<F> {
     /// The number of chains measured best for an evaluation budget:
-    /// `budget / 15 000`, at least 4 and at most 16 (few chains, many
-    /// rounds each; see `docs/QUALITY.md`).
+    /// `budget / 60 000`, at least 4 and at most 16 (few chains, many
+    /// rounds each: 4 measured best at `10 000` and `125 000`; see
+    /// `docs/QUALITY.md`).
     ///
     /// ```
     /// assert_eq!(hrla::Auto::<f64>::chains_for(10_000), 4);
-    /// assert_eq!(hrla::Auto::<f64>::chains_for(125_000), 8);
+    /// assert_eq!(hrla::Auto::<f64>::chains_for(125_000), 4);
     /// assert_eq!(hrla::Auto::<f64>::chains_for(10_000_000), 16);
     /// ```
     pub fn chains_for(budget: u64) -> usize {
-        (budget / 15_000).clamp(4, 16) as usize
+        (budget / 60_000).clamp(4, 16) as usize
     }
 
     /// Minimises `potential` over the box `domain` within `budget`

@@ -425,7 +425,20 @@ pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
     h: F,
     /// Rounds since the best last fell.
     stalled: u64,
+    /// The longest step the box allows.
+    longest: F,
+    /// Each rung's step as a multiple of `h`, and its proposals and
+    /// acceptances since the step last changed (beyond [`SLOTS`] rungs,
+    /// neighbouring rungs share one).
+    scale: [F; SLOTS],
+    tried: [u16; SLOTS],
+    taken: [u16; SLOTS],
 }
+
+/// Rungs whose steps adapt apart.
+const SLOTS: usize = 16;
+/// Proposals of a rung between two changes of its step.
+const ADAPT_EVERY: u16 = 10;
 
 impl<'a, F, P, B, S, L, O> Run<'a, F, P, B, S, L, O>
 where
@@ -523,6 +536,10 @@ where
             a0: F::ONE,
             h: F::ONE,
             stalled: 0,
+            longest: F::ONE,
+            scale: [F::ONE; SLOTS],
+            tried: [0; SLOTS],
+            taken: [0; SLOTS],
         })
     }
 
@@ -610,6 +627,7 @@ where
             }
         }
         self.h = measure::step(&mut curvature[..probes], self.tally.auto.step_scale, width);
+        self.longest = measure::clamp(F::from_f64(0.1 * 10f64.sqrt()) * width, measure::H_RANGE);
         self.observe()
     }
 
@@ -679,7 +697,9 @@ where
             );
             known = false;
         }
-        let kernel = match Hrla::paper(self.h).and_then(|s| s.at(a)) {
+        let slot = if n > SLOTS { c * SLOTS / n } else { c };
+        let h = measure::clamp(self.h * self.scale[slot], measure::H_RANGE);
+        let kernel = match Hrla::paper(h).and_then(|s| s.at(a)) {
             Ok(k) => k,
             Err(e) => return ControlFlow::Break(Stop::Failed(e)),
         };
@@ -769,7 +789,40 @@ where
             *chain.value = value;
             chain.grad.copy_from_slice(self.grad);
         }
+        self.adapt(slot, accept);
         ControlFlow::Continue(())
+    }
+
+    /// A rung's step follows its acceptance rate towards [`Auto::accept`]:
+    /// a rung that accepts too often barely leaves its basin, one that
+    /// accepts too rarely jumps into worse ones.
+    fn adapt(&mut self, slot: usize, accept: bool) {
+        let target = self.tally.auto.accept;
+        if target <= F::ZERO {
+            return;
+        }
+        self.tried[slot] += 1;
+        self.taken[slot] += u16::from(accept);
+        if self.tried[slot] < ADAPT_EVERY {
+            return;
+        }
+        let rate = F::from_u64(self.taken[slot].into()) / F::from_u64(self.tried[slot].into());
+        let factor = F::from_f64(0.9);
+        let scale = if rate > target {
+            self.scale[slot] / factor
+        } else {
+            self.scale[slot] * factor
+        };
+        let (lo, hi) = (F::from_f64(1e-3), self.longest / self.h);
+        self.scale[slot] = if scale > hi {
+            hi
+        } else if scale < lo {
+            lo
+        } else {
+            scale
+        };
+        self.tried[slot] = 0;
+        self.taken[slot] = 0;
     }
 
     /// A proposal that met an infeasible point: the chain stays in its

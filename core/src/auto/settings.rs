@@ -64,12 +64,19 @@ pub struct Auto<F> {
     pub stall: u64,
     /// The parts of a round: all on, except in ablations.
     pub parts: Parts,
+    /// The acceptance rate each rung's step is steered to, as basin
+    /// hopping steers its step: every 10 proposals of a rung, its step
+    /// grows by `1 / 0.9` if more were accepted, and shrinks by `0.9` if
+    /// fewer (within `1e-3` of the measured step and the longest the box
+    /// allows). 0 keeps the measured step on every rung.
+    pub accept: F,
 }
 
 impl<F: Float> Default for Auto<F> {
-    /// 10 HRLA steps per round at `h = 2 / L`, a ladder of `±3.5` in
-    /// `ln a`, quenches of up to 1000 evaluations, differential moves in
-    /// 10% of the rounds, restarts after 30 rounds without a new best.
+    /// 10 HRLA steps per round from `h = 2 / L`, steered to accept half
+    /// the proposals, a ladder of `±3.5` in `ln a`, quenches of up to 1000
+    /// evaluations, differential moves in 10% of the rounds, restarts
+    /// after 30 rounds without a new best.
     fn default() -> Self {
         Self {
             steps: 10,
@@ -79,6 +86,7 @@ impl<F: Float> Default for Auto<F> {
             jump_rate: F::from_f64(0.1),
             stall: 30,
             parts: Parts::default(),
+            accept: F::HALF,
         }
     }
 }
@@ -116,6 +124,12 @@ impl<F: Float> Auto<F> {
             return Err(Error::NotPositive {
                 name: "ladder",
                 value: self.ladder.to_f64(),
+            });
+        }
+        if !(self.accept >= F::ZERO && self.accept <= F::ONE) {
+            return Err(Error::NotPositive {
+                name: "accept (in [0, 1])",
+                value: self.accept.to_f64(),
             });
         }
         if !(self.jump_rate >= F::ZERO && self.jump_rate <= F::ONE) {
