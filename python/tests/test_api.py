@@ -74,6 +74,21 @@ def test_auto_and_the_methods_on_10d_rastrigin():
     assert res.termination == "Steps" and res.fun < 3.0, res
 
 
+def test_auto_steers_its_step_by_the_acceptance_rate():
+    # The default steers each rung's step to accept half its proposals;
+    # 0 keeps the measured step, and a rate outside [0, 1] is refused.
+    assert hrla.Auto().accept == 0.5 and hrla.Auto(accept=0.0).accept == 0.0
+    box = [(-5.12, 5.12)] * 3
+    steered = hrla.Auto().minimize(hrla.Rastrigin(), box, 5_000, 3)
+    fixed = hrla.Auto(accept=0.0).minimize(hrla.Rastrigin(), box, 5_000, 3)
+    # `step` is the measured step every rung starts from: the same for both.
+    assert steered.step == fixed.step
+    assert steered.value < 1e-10 and fixed.value < 1e-10, (steered, fixed)
+    for bad in (-0.1, 1.5, float("nan")):
+        with pytest.raises(hrla.HrlaError, match=r"accept \(in \[0, 1\]\)"):
+            hrla.Auto(accept=bad).minimize(hrla.Rastrigin(), box, 5_000, 3)
+
+
 def test_views_look_into_the_optimizer():
     opt = hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Gaussian([3.0] * 10, 3.0),
                          chains=5, seed=2, stop=hrla.Stop().steps(50))
