@@ -19,8 +19,9 @@ use crate::potential;
 /// HRLA steps (sometimes after a differential move along two other
 /// chains' basins), quenches the end by L-BFGS and accepts by Metropolis
 /// at its own `a`; neighbouring rungs exchange basins. `h = step_scale / L`
-/// and the ladder's centre are measured on the quenched starts. The best
-/// point is polished to a local minimum. Needs a box.
+/// and the ladder's centre are measured on the quenched starts, and each
+/// rung's step is then steered to accept `accept` of its proposals. The
+/// best point is polished to a local minimum. Needs a box.
 #[pyclass(frozen, module = "hrla", name = "Auto", get_all)]
 #[derive(Clone)]
 pub struct PyAuto {
