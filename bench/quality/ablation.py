@@ -12,7 +12,7 @@ difference in median evaluations to 1e-3 (with at least half the runs of
 both reaching 1e-3) counts when it is a factor 1.5 or more. The last
 column of the peers' table divides the default's median evaluations to
 1e-3 by the lowest median of a peer that reached 1e-3 in at least half
-its runs. Needs only the
+its runs, where the default did too. Needs only the
 standard library.
 """
 
@@ -115,9 +115,10 @@ def main(paths):
                 continue
             # The ratio of the default's median evaluations to 1e-3 to the
             # lowest median of a peer that reached 1e-3 in at least half
-            # its runs (a median over 1 or 2 lucky runs is no yardstick).
+            # its runs, where the default did too (a median over 1 or 2
+            # lucky runs is no yardstick).
             meds = [p[2] for p in ps if p is not None and p[2] is not None and p[3] >= p[1] // 2]
-            ratio = f"{d[2] / min(meds):.1f}" if meds and d[2] is not None else "-"
+            ratio = f"{d[2] / min(meds):.1f}" if meds and d[2] is not None and d[3] >= d[1] // 2 else "-"
             print(f"| {k[1]} | {k[2]} | {fmt(d)} | " + " | ".join(fmt(p) for p in ps) + f" | {ratio} |")
 
 

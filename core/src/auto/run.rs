@@ -427,18 +427,16 @@ pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
     stalled: u64,
     /// The longest step the box allows.
     longest: F,
-    /// Each rung's step as a multiple of `h`, and its proposals and
-    /// acceptances since the step last changed (beyond [`SLOTS`] rungs,
+    /// Each rung's step as a multiple of `h` (beyond [`SLOTS`] rungs,
     /// neighbouring rungs share one).
     scale: [F; SLOTS],
-    tried: [u16; SLOTS],
-    taken: [u16; SLOTS],
 }
 
 /// Rungs whose steps adapt apart.
 const SLOTS: usize = 16;
-/// Proposals of a rung between two changes of its step.
-const ADAPT_EVERY: u16 = 10;
+/// The gain of the step rule: `ln h_c` moves by `KAPPA (1 - accept)` after
+/// an accepted proposal and by `-KAPPA accept` after a rejected one.
+const KAPPA: f64 = 0.3;
 
 impl<'a, F, P, B, S, L, O> Run<'a, F, P, B, S, L, O>
 where
@@ -538,8 +536,6 @@ where
             stalled: 0,
             longest: F::ONE,
             scale: [F::ONE; SLOTS],
-            tried: [0; SLOTS],
-            taken: [0; SLOTS],
         })
     }
 
@@ -793,26 +789,18 @@ where
         ControlFlow::Continue(())
     }
 
-    /// A rung's step follows its acceptance rate towards [`Auto::accept`]:
-    /// a rung that accepts too often barely leaves its basin, one that
-    /// accepts too rarely jumps into worse ones.
+    /// A rung's step follows its acceptance rate towards [`Auto::accept`]
+    /// (a Robbins–Monro step on `ln h_c`, as adaptive Metropolis samplers
+    /// steer their proposals): a rung that accepts too often barely leaves
+    /// its basin, one that accepts too rarely jumps into worse ones. At the
+    /// target rate the step stays put on average.
     fn adapt(&mut self, slot: usize, accept: bool) {
         let target = self.tally.auto.accept;
         if target <= F::ZERO {
             return;
         }
-        self.tried[slot] += 1;
-        self.taken[slot] += u16::from(accept);
-        if self.tried[slot] < ADAPT_EVERY {
-            return;
-        }
-        let rate = F::from_u64(self.taken[slot].into()) / F::from_u64(self.tried[slot].into());
-        let factor = F::from_f64(0.9);
-        let scale = if rate > target {
-            self.scale[slot] / factor
-        } else {
-            self.scale[slot] * factor
-        };
+        let hit = if accept { F::ONE } else { F::ZERO };
+        let scale = self.scale[slot] * (F::from_f64(KAPPA) * (hit - target)).exp();
         let (lo, hi) = (F::from_f64(1e-3), self.longest / self.h);
         self.scale[slot] = if scale > hi {
             hi
@@ -821,8 +809,6 @@ where
         } else {
             scale
         };
-        self.tried[slot] = 0;
-        self.taken[slot] = 0;
     }
 
     /// A proposal that met an infeasible point: the chain stays in its

@@ -64,11 +64,12 @@ pub struct Auto<F> {
     pub stall: u64,
     /// The parts of a round: all on, except in ablations.
     pub parts: Parts,
-    /// The acceptance rate each rung's step is steered to, as basin
-    /// hopping steers its step: every 10 proposals of a rung, its step
-    /// grows by `1 / 0.9` if more were accepted, and shrinks by `0.9` if
-    /// fewer (within `1e-3` of the measured step and the longest the box
-    /// allows). 0 keeps the measured step on every rung.
+    /// The acceptance rate each rung's step is steered to: after each
+    /// proposal of a rung, its step is multiplied by `exp(0.3 (1 - accept))`
+    /// if the proposal was accepted and by `exp(-0.3 accept)` if not, so
+    /// that it stays put on average at that rate (within `1e-3` of the
+    /// measured step and the longest the box allows). 0 keeps the measured
+    /// step on every rung.
     pub accept: F,
 }
 
