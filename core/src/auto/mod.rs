@@ -15,9 +15,11 @@
 //!    from its last trajectory. The exact OU step is stable at large `h`,
 //!    so the trajectory follows the gradient's trend across several basins.
 //!    Each rung's step is steered to accept [`Auto::accept`] of its
-//!    proposals (half), as basin hopping steers its step: hot rungs
-//!    lengthen theirs until they reach other basins, cold ones shorten
-//!    theirs.
+//!    proposals (half): after every proposal `ln h_c` moves up if it was
+//!    accepted and down if not (a Robbins–Monro step, as adaptive
+//!    Metropolis samplers and basin hopping steer theirs), so hot rungs
+//!    lengthen their trajectories until they reach other basins, and cold
+//!    ones shorten theirs.
 //! 3. **Quench**: L-BFGS from the trajectory's end until it converges
 //!    (at most [`Auto::quench`] evaluations): the basin it fell into.
 //! 4. **Acceptance**: Metropolis on the quenched values at `a_c`: the chain
