@@ -291,8 +291,8 @@ mod start;
 mod ziggurat_tables;
 
 pub use auto::{
-    Auto, AutoProgress, AutoStorage, FlatAutoProgress, FlatSolution, MAX_STEPS, Parts, Sampling,
-    Solution, Tempering,
+    Auto, AutoProgress, AutoProgressOf, AutoSolution, AutoStorage, FlatAutoProgress, FlatSolution,
+    MAX_STEPS, Parts, Sampling, Solution, Tempering,
 };
 pub use dim::{Const, Dim, Dyn};
 pub use domain::{Bounds, Domain, Interval, Sides, SliceDomain, Unbounded};

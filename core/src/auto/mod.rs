@@ -92,11 +92,13 @@ impl<F: Float> Schedule<F> for Tempering<F> {
     }
 }
 
-/// What [`Auto::minimize`] found.
+/// What a run of [`Auto`] found, its best point as `X`: an array in
+/// [`Solution`] (from [`Auto::minimize`]), a slice of the caller's storage
+/// in [`FlatSolution`] (from [`Auto::minimize_flat`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Solution<F, const D: usize> {
+pub struct AutoSolution<F, X> {
     /// The best point.
-    pub x: [F; D],
+    pub x: X,
     /// `U(x)`.
     pub value: F,
     /// Evaluations used, all included (at most the budget).
@@ -118,7 +120,14 @@ pub struct Solution<F, const D: usize> {
     pub chains: usize,
 }
 
-impl<F, const D: usize> Solution<F, D> {
+/// What [`Auto::minimize`] found.
+pub type Solution<F, const D: usize> = AutoSolution<F, [F; D]>;
+
+/// What [`Auto::minimize_flat`] found: the best point borrowed from the
+/// storage.
+pub type FlatSolution<'a, F> = AutoSolution<F, &'a [F]>;
+
+impl<F, X> AutoSolution<F, X> {
     /// Whether every chain's last proposal met an infeasible point. Not a
     /// failure: a rejected proposal leaves its chain in its feasible
     /// basin, and the best point is feasible and polished either way (a
@@ -129,60 +138,7 @@ impl<F, const D: usize> Solution<F, D> {
     }
 }
 
-impl<F: Float, const D: usize> fmt::Display for Solution<F, D> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        self.found().fmt(f)
-    }
-}
-
-impl<F: Copy, const D: usize> Solution<F, D> {
-    fn found(&self) -> run::Found<F> {
-        run::Found {
-            value: self.value,
-            evaluations: self.evaluations,
-            rounds: self.rounds,
-            step: self.step,
-            inverse_temperature: self.inverse_temperature,
-            termination: self.termination,
-            diverged_chains: self.diverged_chains,
-            chains: self.chains,
-        }
-    }
-}
-
-/// What [`Auto::minimize_flat`] found: [`Solution`]'s fields, the best
-/// point borrowed from the storage.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FlatSolution<'a, F> {
-    /// The best point.
-    pub x: &'a [F],
-    /// `U(x)`.
-    pub value: F,
-    /// Evaluations used, all included (at most the budget).
-    pub evaluations: u64,
-    /// Rounds done.
-    pub rounds: u64,
-    /// The step size measured (`step_scale / L`), from which every rung
-    /// started.
-    pub step: F,
-    /// The inverse temperature of the coldest chain.
-    pub inverse_temperature: F,
-    /// Why the run ended, as [`Solution::termination`].
-    pub termination: Termination,
-    /// Chains whose last proposal met an infeasible point.
-    pub diverged_chains: usize,
-    /// Chains in the run.
-    pub chains: usize,
-}
-
-impl<F> FlatSolution<'_, F> {
-    /// As [`Solution::all_diverged`].
-    pub fn all_diverged(&self) -> bool {
-        self.diverged_chains == self.chains
-    }
-}
-
-impl<F: Float> fmt::Display for FlatSolution<'_, F> {
+impl<F: Float, X> fmt::Display for AutoSolution<F, X> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         run::Found {
             value: self.value,
@@ -216,15 +172,17 @@ impl<F: Float> fmt::Display for run::Found<F> {
     }
 }
 
-/// What the observer of [`Auto::minimize_with`] sees.
+/// What the observer of a run of [`Auto`] sees, the best point as `X`:
+/// an array in [`AutoProgress`] (for [`Auto::minimize_with`]), a slice in
+/// [`FlatAutoProgress`] (for [`Auto::minimize_flat_with`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AutoProgress<'a, F, const D: usize> {
+pub struct AutoProgressOf<'a, F, X: ?Sized> {
     /// Evaluations so far, all included.
     pub evaluations: u64,
     /// Rounds done.
     pub rounds: u64,
     /// The best point so far.
-    pub x: &'a [F; D],
+    pub x: &'a X,
     /// `U` there.
     pub value: F,
     /// Whether the best value fell since the observer's last call (`true`
@@ -236,26 +194,12 @@ pub struct AutoProgress<'a, F, const D: usize> {
     pub diverged_chains: usize,
 }
 
-/// What the observer of [`Auto::minimize_flat_with`] sees:
-/// [`AutoProgress`]'s fields, the best point as a slice.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FlatAutoProgress<'a, F> {
-    /// Evaluations so far, all included.
-    pub evaluations: u64,
-    /// Rounds done.
-    pub rounds: u64,
-    /// The best point so far.
-    pub x: &'a [F],
-    /// `U` there.
-    pub value: F,
-    /// Whether the best value fell since the observer's last call (`true`
-    /// at the first call).
-    pub improved: bool,
-    /// The inverse temperature of the coldest chain.
-    pub inverse_temperature: F,
-    /// Chains whose last proposal met an infeasible point.
-    pub diverged_chains: usize,
-}
+/// What the observer of [`Auto::minimize_with`] sees.
+pub type AutoProgress<'a, F, const D: usize> = AutoProgressOf<'a, F, [F; D]>;
+
+/// What the observer of [`Auto::minimize_flat_with`] sees: the best point
+/// as a slice.
+pub type FlatAutoProgress<'a, F> = AutoProgressOf<'a, F, [F]>;
 
 impl<F: Float> Auto<F> {
     /// The number of chains measured best for an evaluation budget:
