@@ -705,11 +705,7 @@ impl<F: Float> Memory<'_, F> {
         if s.budget == 0 {
             return self.fail(s);
         }
-        s.budget -= 1;
-        self.set_trial(domain, x, step);
-        s.step = step;
-        s.phase = Phase::Bracket;
-        Next::Evaluate
+        self.probe(s, domain, x, step, Phase::Bracket)
     }
 
     /// A bracket's probe `p` answered.
@@ -766,10 +762,23 @@ impl<F: Float> Memory<'_, F> {
         if step == lo.step || step == hi.step {
             return self.last(s, domain, x);
         }
+        self.probe(s, domain, x, step, Phase::Zoom)
+    }
+
+    /// One evaluation of the budget spent on the trial point `x + step d`,
+    /// asked for in `phase`.
+    fn probe<B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        s: &mut Search<F>,
+        domain: &B,
+        x: &[F],
+        step: F,
+        phase: Phase,
+    ) -> Next<F> {
         s.budget -= 1;
         self.set_trial(domain, x, step);
         s.step = step;
-        s.phase = Phase::Zoom;
+        s.phase = phase;
         Next::Evaluate
     }
 
@@ -808,11 +817,7 @@ impl<F: Float> Memory<'_, F> {
         x: &[F],
     ) -> Next<F> {
         if s.lo.step > F::ZERO && s.budget > 0 {
-            s.budget -= 1;
-            self.set_trial(domain, x, s.lo.step);
-            s.step = s.lo.step;
-            s.phase = Phase::Last;
-            return Next::Evaluate;
+            return self.probe(s, domain, x, s.lo.step, Phase::Last);
         }
         self.fail(s)
     }
