@@ -39,6 +39,15 @@ fn rastrigin() -> PotentialSpec {
     PotentialSpec::Builtin(BuiltinSpec::Named(BuiltinKind::Rastrigin))
 }
 
+/// Rastrigin as a built-in, or as a user's batched function.
+fn rastrigin_as(user: bool) -> PotentialSpec {
+    if user {
+        PotentialSpec::User(Arc::new(Batched(AtomicUsize::new(0))))
+    } else {
+        rastrigin()
+    }
+}
+
 /// Rastrigin through the batch interface, counting its calls.
 struct Batched(AtomicUsize);
 
@@ -118,12 +127,7 @@ fn a_batched_function_gives_the_same_bits_in_one_call_per_step() {
 #[test]
 fn the_observer_ends_the_run() {
     for user in [false, true] {
-        let potential = if user {
-            PotentialSpec::User(Arc::new(Batched(AtomicUsize::new(0))))
-        } else {
-            rastrigin()
-        };
-        let mut engine = settings(potential).build().unwrap();
+        let mut engine = settings(rastrigin_as(user)).build().unwrap();
         let report = engine
             .run(1, &mut |p| {
                 if p.iteration >= 10 {
@@ -148,12 +152,7 @@ fn the_observer_sees_the_best_point() {
         assert_eq!(Rastrigin.value(&x), p.value, "{p:?}");
     };
     for user in [false, true] {
-        let potential = if user {
-            PotentialSpec::User(Arc::new(Batched(AtomicUsize::new(0))))
-        } else {
-            rastrigin()
-        };
-        let mut engine = settings(potential).build().unwrap();
+        let mut engine = settings(rastrigin_as(user)).build().unwrap();
         let mut calls = 0;
         engine
             .run(1, &mut |p| {
@@ -483,10 +482,7 @@ fn auto_is_the_kernels() {
     let kernel = Auto::default()
         .minimize(&Rastrigin, domain, 20_000, 3, &mut chains, &mut lbfgs)
         .unwrap();
-    for potential in [
-        rastrigin(),
-        PotentialSpec::User(Arc::new(Batched(AtomicUsize::new(0)))),
-    ] {
+    for potential in [rastrigin_as(false), rastrigin_as(true)] {
         let problem = Problem {
             potential,
             domain: domain.into(),

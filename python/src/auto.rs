@@ -6,11 +6,10 @@ use hrla::Auto;
 use hrla_dyn::auto::{self, Problem};
 use hrla_dyn::{Progress, termination_name};
 use numpy::PyArray1;
-use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
 use crate::config;
-use crate::engine::SIGNAL_WORK;
+use crate::engine::{SIGNAL_WORK, observer_of};
 use crate::errors::{guard, layer};
 use crate::potential;
 
@@ -146,7 +145,7 @@ impl PyAuto {
                 dim: config::unsigned_opt(dim, "dim")?,
                 x0,
             };
-            self.solve(py, &problem, observer.filter(|o| !o.is_none()), with_x)
+            self.solve(py, &problem, observer, with_x)
         })
     }
 }
@@ -159,15 +158,7 @@ impl PyAuto {
         observer: Option<&Bound<'_, PyAny>>,
         with_x: bool,
     ) -> PyResult<PySolution> {
-        if let Some(o) = observer
-            && !o.is_callable()
-        {
-            return Err(PyTypeError::new_err(format!(
-                "observer must be callable, got {}",
-                o.get_type().name()?
-            )));
-        }
-        let observer = observer.map(|o| o.clone().unbind());
+        let observer = observer_of(observer)?;
         let user = auto::is_user(&problem.potential);
         let auto = Auto {
             steps: self.steps,

@@ -250,16 +250,7 @@ impl PyOptimizer {
         observer: Option<&Bound<'_, PyAny>>,
         with_x: bool,
     ) -> PyResult<PyReport> {
-        let observer = observer.filter(|o| !o.is_none());
-        if let Some(o) = observer
-            && !o.is_callable()
-        {
-            return Err(PyTypeError::new_err(format!(
-                "observer must be callable, got {}",
-                o.get_type().name()?
-            )));
-        }
-        let observer = observer.map(|o| o.clone().unbind());
+        let observer = observer_of(observer)?;
         self.with(|e| run(py, e, observer.as_ref(), with_x))
     }
 
@@ -404,6 +395,18 @@ impl PyOptimizer {
     /// The number of chains `N`.
     fn __len__(&self) -> usize {
         self.len
+    }
+}
+
+/// A run's observer as given: `None` (or Python's `None`) for none, a
+/// callable kept, anything else a `TypeError`.
+pub fn observer_of(observer: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Py<PyAny>>> {
+    match observer.filter(|o| !o.is_none()) {
+        Some(o) if !o.is_callable() => Err(PyTypeError::new_err(format!(
+            "observer must be callable, got {}",
+            o.get_type().name()?
+        ))),
+        o => Ok(o.map(|o| o.clone().unbind())),
     }
 }
 
