@@ -45,7 +45,7 @@ pub(super) fn position<F: Float>(c: usize, n: usize) -> F {
 /// landscape flat at the probes (`L` zero, or the tail of a far well,
 /// `1e-30`), that longest step.
 pub(super) fn step<F: Float>(curvatures: &mut [F], scale: F, width: F) -> F {
-    let longest = F::from_f64(0.1 * 10f64.sqrt()) * width;
+    let longest = longest(width);
     let mut m = 0;
     for i in 0..curvatures.len() {
         let k = curvatures[i];
@@ -62,6 +62,13 @@ pub(super) fn step<F: Float>(curvatures: &mut [F], scale: F, width: F) -> F {
         if h < longest { h } else { longest }
     };
     clamp(h, H_RANGE)
+}
+
+/// The longest step in a box whose narrowest side is `width` (unit
+/// coordinates): the one whose velocity term `h |y|` (`|y| ~ 1/sqrt(b)`
+/// per coordinate) moves a tenth of it.
+pub(super) fn longest<F: Float>(width: F) -> F {
+    F::from_f64(0.1 * 10f64.sqrt()) * width
 }
 
 pub(super) fn clamp<F: Float>(v: F, (lo, hi): (f64, f64)) -> F {

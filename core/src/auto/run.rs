@@ -623,7 +623,7 @@ where
             }
         }
         self.h = measure::step(&mut curvature[..probes], self.tally.auto.step_scale, width);
-        self.longest = measure::clamp(F::from_f64(0.1 * 10f64.sqrt()) * width, measure::H_RANGE);
+        self.longest = measure::clamp(measure::longest(width), measure::H_RANGE);
         self.observe()
     }
 
