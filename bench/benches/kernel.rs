@@ -36,7 +36,7 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
             let mut opt = optimizer::<F, _, D>(method, constant::<F>(), chains, SEED);
             g.bench_function(
                 BenchmarkId::new(format!("{}/best", method.name()), chains),
-                |b| b.iter(|| opt.step().expect("valid")),
+                |b| b.iter(|| opt.step().expect("valid").iteration),
             );
             let sampler = paper_kernel::<F>(method);
             let mut r = rng(SEED);
@@ -50,7 +50,7 @@ fn throughput<F: Float, const D: usize>(c: &mut Criterion) {
         // refresh of the temperature-dependent coefficients.
         let mut opt = optimizer::<F, _, D>(SamplerKind::Hrla, slow_linear::<F>(), chains, SEED);
         g.bench_function(BenchmarkId::new("hrla/best-annealed", chains), |b| {
-            b.iter(|| opt.step().expect("valid"))
+            b.iter(|| opt.step().expect("valid").iteration)
         });
         let mut r = rng(SEED);
         let mut bare = Bare::<F, D>::new(chains, &mut r);

@@ -5,8 +5,8 @@ pub mod problems;
 
 use hrla::rand_core::Rng;
 use hrla::{
-    AnyKernel, AnySampler, Builder, Chain, Float, Gaussian, Kernel, LANES, Linear, Optimizer,
-    Potential, Rastrigin, Sampler, SamplerKind, Schedule, Xoshiro256Lanes,
+    AnyKernel, AnySampler, Builder, Chain, Chains, Float, Gaussian, Kernel, LANES, Linear,
+    Optimizer, Potential, Rastrigin, Sampler, SamplerKind, Schedule, Xoshiro256Lanes,
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -29,7 +29,7 @@ pub fn rng(seed: u64) -> Xoshiro256PlusPlus {
 
 /// The optimiser of the benchmarks: every chain in one `Vec` it owns.
 pub type Swarm<F, C, const D: usize> =
-    Optimizer<F, Rastrigin, AnySampler<F>, C, Vec<Chain<F, D>>, D>;
+    Optimizer<F, Rastrigin, AnySampler<F>, C, Chains<F, Vec<Chain<F, D>>, D>>;
 
 /// Algorithm 1 on D-dimensional Rastrigin from the paper's start, with a
 /// schedule, over `chains` chains on the heap seeded with `seed` (each

@@ -103,26 +103,27 @@
 //! - Domains: [`Unbounded`], [`Interval`] (the same interval in every
 //!   coordinate) and [`Bounds`] (one per coordinate), each reflecting
 //!   every coordinate into its interval.
-//! - Dimension at run time: [`Dim`] ([`Const`], [`Dyn`]); chains in flat
-//!   storage the caller owns or lends, [`FlatChains`] (over any
-//!   [`FlatStorage`]; [`FlatSlices`] for borrowed slices), run by
-//!   [`FlatOptimizer`]
-//!   ([`Builder::build_flat`]); the slice twins of the traits,
+//! - Dimension at run time: chains in flat storage the caller owns or
+//!   lends, [`FlatChains`] (over any [`FlatStorage`]; [`FlatSlices`] for
+//!   borrowed slices), run by the same [`Optimizer`]; the slice twins of
+//!   the traits,
 //!   [`SlicePotential`], [`SliceDomain`], [`SliceStart`] (and
 //!   [`FromSliceFn`]); the batch seam, [`BatchPotential`]; L-BFGS in
 //!   caller storage, [`LbfgsIn`].
-//! - Algorithm 1: [`Builder`] and [`Optimizer`], over [`Chain`]s, with
-//!   [`Stop`] rules, [`Progress`] for an observer, and a [`Report`] whose
-//!   [`Termination`] says why the run ended; failures are [`Error`]s.
+//! - Algorithm 1: [`Builder`] and [`Optimizer`], over [`Chain`]s (in
+//!   [`Chains`]) or [`FlatChains`], with [`Stop`] rules, [`Progress`]
+//!   (what a step did) for an observer called as [`Observe`] says, the
+//!   running [`Best`], and a [`Report`] whose [`Termination`] says why the
+//!   run ended; failures are [`Error`]s.
 //! - The default solver: [`Auto`], with [`AutoProgress`] for its observer
 //!   and a [`Solution`]; L-BFGS: [`Lbfgs`].
 //! - Randomness: [`chain_seed`], one stream per chain; [`StandardNormal`],
 //!   exact normals for both float types; [`Xoshiro256Lanes`], [`LANES`]
 //!   chains' generators stepped in lockstep.
 //! - Speed and scale: [`Kernel::step_lanes`], the seam where a wide backend
-//!   steps a block of chains; [`Executor`] (with [`Serial`]) and
-//!   [`Optimizer::step_on`], where a host's threads come in (the
-//!   `hrla-threads` crate).
+//!   steps a block of chains; [`Executor`] and [`Builder::executor`],
+//!   where a host's threads come in (the `hrla-threads` crate; [`Serial`]
+//!   is the default).
 //!
 //! # Validity
 //!
@@ -190,8 +191,8 @@
 //!   the order [`Kernel::step`] draws them, with the same float operations
 //!   in the same order (no fused multiply-add), so that its results are
 //!   the same bits.
-//! - **Threads.** [`Optimizer::step_on`] and [`Optimizer::run_on`] cut each
-//!   step's chains into parts for an [`Executor`]; the parts' findings fold
+//! - **Threads.** An optimiser built with an [`Executor`]
+//!   ([`Builder::executor`]) cuts each step's chains into parts for it; the parts' findings fold
 //!   in chain order by an associative rule, so 1, 2, 3 or 7 threads give
 //!   the serial bits. The kernel has no threads of its own; the
 //!   `hrla-threads` crate runs the parts on rayon's pool.
@@ -204,17 +205,17 @@
 //! The const-generic API fixes `D` at compile time, which firmware wants.
 //! A host that learns the dimension at run time (a Python or JavaScript
 //! caller, a 17-parameter fit, a 10 000-D problem) builds the same run
-//! over [`FlatChains`], arrays it owns or lends, with [`Builder::build_flat`] and a
-//! dimension [`Dyn`]`(d)` (or [`Const`]`<N>`). Both go through the same
+//! over [`FlatChains`], arrays it owns or lends, given to the same
+//! [`Builder::build`]: one [`Optimizer`] runs either. Both go through the same
 //! per-coordinate code (the kernels' draws and updates, the reflection,
 //! the judgement of a point, L-BFGS), so a run gives the same bits either
-//! way. Each step of a [`FlatOptimizer`] moves every live chain, then
+//! way. Each step over [`FlatChains`] moves every live chain, then
 //! evaluates all the new points in one [`BatchPotential`] call: a
 //! potential that is cheaper per batch (vectorised, on a GPU, in another
 //! language) evaluates the whole `(n, d)` block at once.
 //!
 //! ```
-//! use hrla::{Bounds, Builder, Dyn, FlatChains, FlatSlices, Hrla, LbfgsIn, PolishSettings, Rastrigin, Stop};
+//! use hrla::{Bounds, Builder, FlatChains, FlatSlices, Hrla, LbfgsIn, PolishSettings, Rastrigin, Stop};
 //! use rand_core::SeedableRng;
 //! use rand_xoshiro::Xoshiro256PlusPlus;
 //!
@@ -232,7 +233,7 @@
 //! let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01)?, 4.0, bounds)
 //!     .domain(bounds)
 //!     .stop(Stop::new().steps(2_000))
-//!     .build_flat(Dyn(d), chains)?;
+//!     .build(chains)?;
 //! let sampled = opt.run()?;
 //! let mut storage = vec![0.0; LbfgsIn::<f64>::floats(d, 8)];
 //! let mut lbfgs = LbfgsIn::new(d, 8, &mut storage)?;
@@ -275,7 +276,6 @@
 #![deny(missing_docs)]
 
 mod auto;
-mod dim;
 mod domain;
 mod error;
 mod float;
@@ -294,7 +294,6 @@ pub use auto::{
     Auto, AutoProgress, AutoProgressOf, AutoSolution, AutoStorage, FlatAutoProgress, FlatSolution,
     MAX_STEPS, Parts, Sampling, Solution, Tempering,
 };
-pub use dim::{Const, Dim, Dyn};
 pub use domain::{Bounds, Domain, Interval, Sides, SliceDomain, Unbounded};
 pub use error::Error;
 pub use float::Float;

@@ -312,7 +312,7 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
     /// The floats of storage that memory `m` in dimension `d` needs:
     /// `2 m d + 2 m + 5 d` (the pairs, their weights, a direction, a trial
     /// point, its gradient, the current gradient, and a point for
-    /// [`FlatOptimizer::polish`](crate::FlatOptimizer::polish)).
+    /// [`Optimizer::polish`](crate::Optimizer::polish)).
     /// Saturates at `usize::MAX`, a length no storage has.
     pub const fn floats(d: usize, m: usize) -> usize {
         let pairs = m.saturating_mul(d).saturating_mul(2);

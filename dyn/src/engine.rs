@@ -1,17 +1,17 @@
-//! One run loop for every front end: the kernel's optimiser over flat
-//! storage at a run-time dimension, behind the object-safe [`Engine`].
+//! The run every front end drives: the kernel's optimiser over flat
+//! storage at a run-time dimension, as one concrete [`Engine`].
 
 use std::ops::ControlFlow;
 
 use hrla::{
-    AnyKernel, AnySampler, AnySchedule, Builder, Dyn, FlatChains, FlatOptimizer, Kernel, LbfgsIn,
-    PolishSettings, Polished, Report, Sampler, Schedule, Termination,
+    AnyKernel, AnySampler, AnySchedule, Builder, FlatChains, Kernel, LbfgsIn, Observe, Optimizer,
+    PolishSettings, Polished, Report, Sampler, Schedule, Store, Termination,
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::error::RanAway;
 use crate::settings::{Bounds, Pot};
-use crate::{Error, MEMORY, Progress, Settings};
+use crate::{Error, MEMORY, Progress, Settings, UserBatch};
 
 /// Where the fields of the chains are, for a front end that shows them
 /// without a copy (numpy views): each field of every chain is one
@@ -87,116 +87,20 @@ fn filled<T: Clone>(len: usize, value: T, n: usize, d: usize) -> Result<Vec<T>, 
     Ok(v)
 }
 
-/// A run, whatever its dimension: what every front end drives.
+/// A run, whatever its dimension: what every front end drives. Its
+/// stepping and its run go through the kernel's one loop
+/// ([`Optimizer::run_with`]): the layer adds only what is its own, the
+/// escape radius and a user's failure, as stops the loop's observer sees.
 ///
 /// A run that failed (every chain diverged, the potential unbounded below,
 /// a potential that panicked) keeps failing: every later step, run,
 /// polish, quench or restart returns the same error, `run` too when a
 /// stopping rule holds, so a failed run never turns into a report, and a
 /// user's function is not called again.
-pub trait Engine: Send + Sync {
-    /// Advances every live chain by `steps` steps, without consulting the
-    /// stopping rules.
-    fn step(&mut self, steps: u64) -> Result<(), Error>;
-    /// Steps until a stopping rule holds and returns the report;
-    /// `observer` is called on every improvement and every `every` steps
-    /// (a user's function: after every step), and ends the run with
-    /// [`Termination::Observer`] by returning `Break`. A run without a
-    /// stopping rule is refused ([`hrla::Error::NoStoppingRule`]).
-    fn run(
-        &mut self,
-        every: u64,
-        observer: &mut dyn FnMut(&Progress) -> ControlFlow<()>,
-    ) -> Result<Report<f64>, Error>;
-    /// The first stopping rule that holds now.
-    fn termination(&self) -> Option<Termination>;
-    /// The report of the state now, when a stopping rule holds.
-    fn report_now(&self) -> Option<Report<f64>>;
-    /// Where the chains' fields are.
-    fn layout(&self) -> Layout;
-    /// `U(x_k)` per chain.
-    fn values(&self) -> Vec<f64>;
-    /// The positions `x_k`, `n x d` row-major.
-    fn positions(&self) -> Vec<f64>;
-    /// The velocities `y_k` (zero for OLA), `n x d` row-major.
-    fn velocities(&self) -> Vec<f64>;
-    /// The gradients `∇U(x_k)`, `n x d` row-major.
-    fn gradients(&self) -> Vec<f64>;
-    /// Each chain's generator where the run has left it, for a baseline
-    /// that goes on from the same draws.
-    fn generators(&self) -> Vec<Xoshiro256PlusPlus>;
-    /// The sampler's step at the inverse temperature the next step runs at
-    /// (`a_k` of the schedule at the current iteration `k`): the law of
-    /// every chain's next move ([`Kernel::moments`]); the sampler's
-    /// refusal of `a_k` when it refuses it.
-    fn next_kernel(&self) -> Result<AnyKernel<f64>, Error>;
-    /// Whether each chain has diverged.
-    fn diverged(&self) -> Vec<bool>;
-    /// The global running best: `(x, value, iteration)`.
-    fn best(&self) -> (Vec<f64>, f64, u64);
-    /// The chain holding the global running best.
-    fn best_chain(&self) -> usize;
-    /// `(chain, U(x_k))` of the live chain lowest now.
-    fn current_best(&self) -> Option<(usize, f64)>;
-    /// Steps done.
-    fn iteration(&self) -> u64;
-    /// Evaluations so far.
-    fn evaluations(&self) -> u64;
-    /// Chains diverged so far.
-    fn diverged_chains(&self) -> usize;
-    /// The inverse temperature of the last step (`a_0` before the first).
-    fn inverse_temperature(&self) -> f64;
-    /// L-BFGS from chain `chain`'s best point (`quench`: from a copy of
-    /// its current point), within the evaluation budget.
-    fn local_search(
-        &mut self,
-        chain: usize,
-        settings: PolishSettings<f64>,
-        quench: bool,
-    ) -> Result<Polished<f64>, Error>;
-    /// Moves chain `chain` to `x` (confined) with zero velocity and
-    /// evaluates it; `false` when no evaluation is left.
-    fn restart(&mut self, chain: usize, x: &[f64]) -> Result<bool, Error>;
-    /// The dimension.
-    fn dim(&self) -> usize;
-    /// The number of chains.
-    fn len(&self) -> usize;
-    /// Whether there is no chain.
-    fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-    /// Whether the potential is a user's function (which a front end may
-    /// need to call with its runtime held, say Python's GIL).
-    fn is_user(&self) -> bool;
-}
-
-impl Settings {
-    /// The run these settings describe, its initial points drawn and
-    /// evaluated: the kernel's checks, and the layer's of the dimension
-    /// ([`Settings::dimension`]) and the storage.
-    pub fn build(&self) -> Result<Box<dyn Engine>, Error> {
-        Ok(Box::new(Run::build(self)?))
-    }
-}
-
-type Rng = Xoshiro256PlusPlus;
-type Chains = FlatChains<f64, Rng, Vec<f64>, Vec<u64>, Vec<bool>, Vec<Rng>>;
-type Opt = FlatOptimizer<
-    f64,
-    Pot,
-    AnySampler<f64>,
-    AnySchedule<f64>,
-    Dyn,
-    Rng,
-    Bounds,
-    Vec<f64>,
-    Vec<u64>,
-    Vec<bool>,
-    Vec<Rng>,
->;
-
-struct Run {
+pub struct Engine {
     opt: Opt,
+    /// A user's function, whose failure ends the run.
+    user: Option<UserBatch>,
     /// The error that ended the run, returned by every later call.
     failed: Option<Failure>,
     /// The escape radius, squared ([`Settings::escape`]).
@@ -204,6 +108,10 @@ struct Run {
     /// The polish's L-BFGS storage, made at the first polish.
     lbfgs: Vec<f64>,
 }
+
+type Rng = Xoshiro256PlusPlus;
+type Chains = FlatChains<f64, Rng, Vec<f64>, Vec<u64>, Vec<bool>, Vec<Rng>>;
+type Opt = Optimizer<f64, Pot, AnySampler<f64>, AnySchedule<f64>, Chains, Bounds>;
 
 /// What ends a run for good.
 #[derive(Clone, Copy, Debug)]
@@ -221,7 +129,42 @@ impl From<Failure> for Error {
     }
 }
 
-impl Run {
+impl Settings {
+    /// The run these settings describe, its initial points drawn and
+    /// evaluated: the kernel's checks, and the layer's of the dimension
+    /// ([`Settings::dimension`]) and the storage.
+    pub fn build(&self) -> Result<Engine, Error> {
+        Engine::build(self)
+    }
+}
+
+/// [`RanAway`] when every chain of `chains` has diverged or lies beyond
+/// the escape radius (squared, `r2`) and at least one ran away (every
+/// chain diverged is the kernel's own error).
+fn ran_away(chains: &dyn Store<f64>, r2: f64) -> Option<RanAway> {
+    let mut farthest2 = 0.0_f64;
+    let mut diverged = 0;
+    for c in 0..chains.len() {
+        if chains.is_diverged(c) {
+            diverged += 1;
+            continue;
+        }
+        let d2 = chains.point(c).0.iter().fold(0.0, |s, v| s + v * v);
+        // A NaN distance is not beyond the radius: such a chain is not away.
+        if d2.is_nan() || d2 <= r2 {
+            return None;
+        }
+        farthest2 = farthest2.max(d2);
+    }
+    (diverged < chains.len()).then(|| RanAway {
+        chains: chains.len(),
+        radius: r2.sqrt(),
+        farthest: farthest2.sqrt(),
+        diverged,
+    })
+}
+
+impl Engine {
     fn build(s: &Settings) -> Result<Self, Error> {
         let d = s.dimension()?;
         let n = s.chains;
@@ -253,73 +196,31 @@ impl Run {
             .seed(s.seed)
             .stride(s.stride)
             .stop(s.stop)
-            .build_flat(Dyn(d), chains);
-        let opt = match opt {
-            Ok(opt) => opt,
-            // A user's failure makes every point infeasible, and the build
-            // then fails: the user's error is the cause.
-            Err(e) => {
-                if let Some(u) = user {
-                    u.finish()?;
+            .build(chains);
+        let engine = Self {
+            opt: match opt {
+                Ok(opt) => opt,
+                // A user's failure makes every point infeasible, and the
+                // build then fails: the user's error is the cause.
+                Err(e) => {
+                    if let Some(u) = &user {
+                        u.finish()?;
+                    }
+                    return Err(e.into());
                 }
-                return Err(e.into());
-            }
-        };
-        let run = Self {
-            opt,
+            },
+            user,
             failed: None,
             escape2,
             lbfgs: Vec::new(),
         };
-        run.opt.potential().finish()?;
-        Ok(run)
+        engine.finish()?;
+        Ok(engine)
     }
 
-    fn is_user(&self) -> bool {
-        matches!(self.opt.potential(), Pot::User(_))
-    }
-
-    fn step_once(&mut self) -> Result<(), Error> {
-        let stepped = self.opt.step();
-        let stepped = self.keep(stepped);
-        self.opt.potential().finish()?;
-        stepped?;
-        self.escaped()
-    }
-
-    /// [`Error::RanAway`] when every chain has diverged or lies beyond the
-    /// escape radius and at least one ran away (every chain diverged is
-    /// the kernel's own error); the run then keeps failing.
-    fn escaped(&mut self) -> Result<(), Error> {
-        let Some(r2) = self.escape2 else {
-            return Ok(());
-        };
-        let chains = self.opt.chains();
-        let mut farthest2 = 0.0_f64;
-        let mut diverged = 0;
-        for c in 0..chains.len() {
-            if chains.is_diverged(c) {
-                diverged += 1;
-                continue;
-            }
-            let d2 = chains.x(c).iter().fold(0.0, |s, v| s + v * v);
-            // A NaN distance is not beyond the radius: such a chain is not away.
-            if d2.is_nan() || d2 <= r2 {
-                return Ok(());
-            }
-            farthest2 = farthest2.max(d2);
-        }
-        if diverged == chains.len() {
-            return Ok(());
-        }
-        let away = RanAway {
-            chains: chains.len(),
-            radius: r2.sqrt(),
-            farthest: farthest2.sqrt(),
-            diverged,
-        };
-        self.failed = Some(Failure::RanAway(away));
-        Err(Error::RanAway(away))
+    /// A user's failure since the last call, if any.
+    fn finish(&self) -> Result<(), Error> {
+        self.user.as_ref().map_or(Ok(()), UserBatch::finish)
     }
 
     /// The error that ended the run, if it has.
@@ -327,7 +228,8 @@ impl Run {
         self.failed.map_or(Ok(()), |e| Err(e.into()))
     }
 
-    /// `result`, keeping its error when it ends the run.
+    /// `result`, keeping its error when it ends the run; a user's failure
+    /// in it is the cause, reported in its place.
     fn keep<T>(&mut self, result: Result<T, hrla::Error>) -> Result<T, Error> {
         if let Err(
             e @ (hrla::Error::AllDiverged { .. }
@@ -337,59 +239,63 @@ impl Run {
         {
             self.failed = Some(Failure::Kernel(e));
         }
+        self.finish()?;
         result.map_err(Error::Kernel)
     }
 
-    fn report(&self, termination: Termination) -> Report<f64> {
-        Report {
-            value: self.opt.best().value,
-            chain: self.opt.best_chain(),
-            found_at: self.opt.best().iteration,
-            iterations: self.opt.iteration(),
-            evaluations: self.opt.evaluations(),
-            diverged_chains: self.opt.diverged_chains(),
-            chains: self.opt.chains().len(),
-            termination,
-        }
-    }
-
-    fn progress(&self) -> Progress<'_> {
-        let best = self.opt.best();
-        Progress {
-            iteration: self.opt.iteration(),
-            evaluations: self.opt.evaluations(),
-            value: best.value,
-            x: best.x,
-            dim: self.opt.chains().dim(),
-            chains: self.opt.chains().len(),
-        }
-    }
-}
-
-impl Engine for Run {
-    fn step(&mut self, steps: u64) -> Result<(), Error> {
+    /// Advances every live chain by `steps` steps, without consulting the
+    /// stopping rules; [`Error::RanAway`] after the first step at which
+    /// every chain has run away beyond the escape radius or diverged.
+    pub fn step(&mut self, steps: u64) -> Result<(), Error> {
         self.check()?;
-        if self.is_user() || self.escape2.is_some() {
-            return (0..steps).try_for_each(|_| self.step_once());
+        for _ in 0..steps {
+            let stepped = self
+                .opt
+                .step()
+                .map(|p| self.escape2.and_then(|r2| ran_away(p.chains, r2)));
+            if let Some(away) = self.keep(stepped)? {
+                self.failed = Some(Failure::RanAway(away));
+                return Err(Error::RanAway(away));
+            }
         }
-        let opt = &mut self.opt;
-        let stepped = (0..steps).try_for_each(|_| opt.step());
-        self.keep(stepped)
+        Ok(())
     }
 
-    fn run(
+    /// The kernel's loop until a stopping rule holds, `steps` more steps
+    /// are done (`None`: no bound) or `observer` returns `Break`: the
+    /// report when a stopping rule or the observer ended it, `None` when
+    /// the steps ran out. `observer` is called on every improvement and
+    /// every `every` steps (a user's function or an escape radius: after
+    /// every step).
+    fn drive(
         &mut self,
+        steps: Option<u64>,
         every: u64,
         observer: &mut dyn FnMut(&Progress) -> ControlFlow<()>,
-    ) -> Result<Report<f64>, Error> {
-        if self.opt.stop().is_empty() {
-            return Err(hrla::Error::NoStoppingRule.into());
-        }
+    ) -> Result<Option<Report<f64>>, Error> {
         self.check()?;
-        if !self.is_user() && self.escape2.is_none() {
-            let (chains, dim) = (self.opt.chains().len(), self.opt.chains().dim());
-            let report = self.opt.run_with(every, |p| {
-                observer(&Progress {
+        if steps == Some(0) {
+            return Ok(self.report_now());
+        }
+        let end = steps.map(|k| self.opt.iteration().saturating_add(k));
+        let (user, escape2) = (self.user.clone(), self.escape2);
+        let when = match every {
+            _ if user.is_some() || escape2.is_some() => Observe::Always,
+            0 => Observe::NewBest,
+            n => Observe::EveryAndNewBest(n),
+        };
+        let (chains, dim) = (self.opt.chains().len(), self.opt.dim());
+        let (mut away, mut ran_out) = (None, false);
+        let report = self.opt.run_with(Observe::Always, |p| {
+            if user.as_ref().is_some_and(UserBatch::failed) {
+                return ControlFlow::Break(());
+            }
+            away = escape2.and_then(|r2| ran_away(p.chains, r2));
+            if away.is_some() {
+                return ControlFlow::Break(());
+            }
+            if when.wants(p.iteration, p.improved)
+                && observer(&Progress {
                     iteration: p.iteration,
                     evaluations: p.evaluations,
                     value: p.best.value,
@@ -397,31 +303,65 @@ impl Engine for Run {
                     dim,
                     chains,
                 })
-            });
-            return self.keep(report);
+                .is_break()
+            {
+                return ControlFlow::Break(());
+            }
+            ran_out = end.is_some_and(|end| p.iteration >= end);
+            if ran_out {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        });
+        let report = self.keep(report)?;
+        if let Some(away) = away {
+            self.failed = Some(Failure::RanAway(away));
+            return Err(Error::RanAway(away));
         }
-        // The kernel's `run`, with the batched call before each step and
-        // the escape radius checked after it.
-        loop {
-            if let Some(t) = self.opt.termination() {
-                return Ok(self.report(t));
-            }
-            self.step_once()?;
-            if observer(&self.progress()).is_break() {
-                return Ok(self.report(Termination::Observer));
-            }
+        Ok((!ran_out).then_some(report))
+    }
+
+    /// Steps until a stopping rule holds and returns the report;
+    /// `observer` is called on every improvement and every `every` steps
+    /// (a user's function or an escape radius: after every step), and
+    /// ends the run with [`Termination::Observer`] by returning `Break`. A
+    /// run without a stopping rule is refused
+    /// ([`hrla::Error::NoStoppingRule`]).
+    pub fn run(
+        &mut self,
+        every: u64,
+        observer: &mut dyn FnMut(&Progress) -> ControlFlow<()>,
+    ) -> Result<Report<f64>, Error> {
+        if self.opt.stop().is_empty() {
+            return Err(hrla::Error::NoStoppingRule.into());
+        }
+        match self.drive(None, every, observer)? {
+            Some(report) => Ok(report),
+            None => unreachable!("a run without a step bound never runs out of steps"),
         }
     }
 
-    fn termination(&self) -> Option<Termination> {
+    /// At most `steps` steps of [`run`](Engine::run)'s loop, without an
+    /// observer: the stopping rule that ended them, if one held (a run
+    /// without stopping rules steps `steps` times).
+    pub fn run_for(&mut self, steps: u64) -> Result<Option<Termination>, Error> {
+        let report = self.drive(Some(steps), 0, &mut |_| ControlFlow::Continue(()))?;
+        Ok(report.map(|r| r.termination))
+    }
+
+    /// The first stopping rule that holds now.
+    pub fn termination(&self) -> Option<Termination> {
         self.opt.termination()
     }
 
-    fn report_now(&self) -> Option<Report<f64>> {
-        self.opt.termination().map(|t| self.report(t))
+    /// The report of the state now, when a stopping rule holds.
+    pub fn report_now(&self) -> Option<Report<f64>> {
+        self.opt.termination().map(|t| self.opt.report(t))
     }
 
-    fn layout(&self) -> Layout {
+    /// Where the chains' fields are.
+    pub fn layout(&self) -> Layout {
         let c = self.opt.chains();
         let base = c.positions().as_ptr();
         // Every field lies in the one `floats` array, after the positions.
@@ -439,32 +379,42 @@ impl Engine for Run {
         }
     }
 
-    fn values(&self) -> Vec<f64> {
+    /// `U(x_k)` per chain.
+    pub fn values(&self) -> Vec<f64> {
         self.opt.chains().values().to_vec()
     }
 
-    fn positions(&self) -> Vec<f64> {
+    /// The positions `x_k`, `n x d` row-major.
+    pub fn positions(&self) -> Vec<f64> {
         self.opt.chains().positions().to_vec()
     }
 
-    fn velocities(&self) -> Vec<f64> {
+    /// The velocities `y_k` (zero for OLA), `n x d` row-major.
+    pub fn velocities(&self) -> Vec<f64> {
         let c = self.opt.chains();
         (0..c.len()).flat_map(|i| c.y(i).iter().copied()).collect()
     }
 
-    fn gradients(&self) -> Vec<f64> {
+    /// The gradients `∇U(x_k)`, `n x d` row-major.
+    pub fn gradients(&self) -> Vec<f64> {
         let c = self.opt.chains();
         (0..c.len())
             .flat_map(|i| c.gradient(i).iter().copied())
             .collect()
     }
 
-    fn generators(&self) -> Vec<Xoshiro256PlusPlus> {
+    /// Each chain's generator where the run has left it, for a baseline
+    /// that goes on from the same draws.
+    pub fn generators(&self) -> Vec<Xoshiro256PlusPlus> {
         let c = self.opt.chains();
         (0..c.len()).map(|i| c.rng(i).clone()).collect()
     }
 
-    fn next_kernel(&self) -> Result<AnyKernel<f64>, Error> {
+    /// The sampler's step at the inverse temperature the next step runs at
+    /// (`a_k` of the schedule at the current iteration `k`): the law of
+    /// every chain's next move ([`Kernel::moments`]); the sampler's
+    /// refusal of `a_k` when it refuses it.
+    pub fn next_kernel(&self) -> Result<AnyKernel<f64>, Error> {
         let a = self
             .opt
             .schedule()
@@ -472,48 +422,58 @@ impl Engine for Run {
         Ok(self.opt.sampler().at(a)?)
     }
 
-    fn diverged(&self) -> Vec<bool> {
+    /// Whether each chain has diverged.
+    pub fn diverged(&self) -> Vec<bool> {
         let c = self.opt.chains();
         (0..c.len()).map(|i| c.is_diverged(i)).collect()
     }
 
-    fn best(&self) -> (Vec<f64>, f64, u64) {
+    /// The global running best: `(x, value, iteration)`.
+    pub fn best(&self) -> (Vec<f64>, f64, u64) {
         let b = self.opt.best();
         (b.x.to_vec(), b.value, b.iteration)
     }
 
-    fn best_chain(&self) -> usize {
+    /// The chain holding the global running best.
+    pub fn best_chain(&self) -> usize {
         self.opt.best_chain()
     }
 
-    fn current_best(&self) -> Option<(usize, f64)> {
+    /// `(chain, U(x_k))` of the live chain lowest now.
+    pub fn current_best(&self) -> Option<(usize, f64)> {
         self.opt.current_best()
     }
 
-    fn iteration(&self) -> u64 {
+    /// Steps done.
+    pub fn iteration(&self) -> u64 {
         self.opt.iteration()
     }
 
-    fn evaluations(&self) -> u64 {
+    /// Evaluations so far.
+    pub fn evaluations(&self) -> u64 {
         self.opt.evaluations()
     }
 
-    fn diverged_chains(&self) -> usize {
+    /// Chains diverged so far.
+    pub fn diverged_chains(&self) -> usize {
         self.opt.diverged_chains()
     }
 
-    fn inverse_temperature(&self) -> f64 {
+    /// The inverse temperature of the last step (`a_0` before the first).
+    pub fn inverse_temperature(&self) -> f64 {
         self.opt.kernel().inverse_temperature()
     }
 
-    fn local_search(
+    /// L-BFGS from chain `chain`'s best point (`quench`: from a copy of
+    /// its current point), within the evaluation budget.
+    pub fn local_search(
         &mut self,
         chain: usize,
         settings: PolishSettings<f64>,
         quench: bool,
     ) -> Result<Polished<f64>, Error> {
         self.check()?;
-        let d = self.opt.chains().dim();
+        let d = self.opt.dim();
         let floats = LbfgsIn::<f64>::floats(d, MEMORY);
         if self.lbfgs.len() != floats {
             self.lbfgs = filled(floats, 0.0, 1, d)?;
@@ -524,13 +484,13 @@ impl Engine for Run {
         } else {
             self.opt.polish(chain, &mut lbfgs, settings)
         };
-        let done = self.keep(done);
-        self.opt.potential().finish()?;
-        done
+        self.keep(done)
     }
 
-    fn restart(&mut self, chain: usize, x: &[f64]) -> Result<bool, Error> {
-        let d = self.opt.chains().dim();
+    /// Moves chain `chain` to `x` (confined) with zero velocity and
+    /// evaluates it; `false` when no evaluation is left.
+    pub fn restart(&mut self, chain: usize, x: &[f64]) -> Result<bool, Error> {
+        let d = self.opt.dim();
         if x.len() != d {
             return Err(Error::Length {
                 what: "x",
@@ -540,21 +500,28 @@ impl Engine for Run {
         }
         self.check()?;
         let done = self.opt.restart(chain, x);
-        let done = self.keep(done);
-        self.opt.potential().finish()?;
-        done
+        self.keep(done)
     }
 
-    fn dim(&self) -> usize {
-        self.opt.chains().dim()
+    /// The dimension.
+    pub fn dim(&self) -> usize {
+        self.opt.dim()
     }
 
-    fn len(&self) -> usize {
+    /// The number of chains.
+    pub fn len(&self) -> usize {
         self.opt.chains().len()
     }
 
-    fn is_user(&self) -> bool {
-        Run::is_user(self)
+    /// Whether there is no chain.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Whether the potential is a user's function (which a front end may
+    /// need to call with its runtime held, say Python's GIL).
+    pub fn is_user(&self) -> bool {
+        self.user.is_some()
     }
 }
 

@@ -23,7 +23,7 @@
 //!
 //! The dimension is a run-time `usize` everywhere in this API, any
 //! `d >= 1`: the [`Engine`] runs the kernel's optimiser over flat storage
-//! at [`hrla::Dyn`]`(d)`, and [`auto::solve`] the kernel's [`hrla::Auto`]
+//! at a run-time dimension `d`, and [`auto::solve`] the kernel's [`hrla::Auto`]
 //! over storage it lends, each with the bits of the const-generic path.
 //! A user's function is called on batches ([`BatchFunction`]: points
 //! `n x d` in, values and gradients out) through the kernel's batch seam.

@@ -27,7 +27,7 @@ pub trait BatchFunction: Send + Sync {
 }
 
 /// A [`BatchFunction`] as the kernel's batch seam, [`BatchPotential`](hrla::BatchPotential):
-/// the optimiser over flat storage ([`hrla::FlatOptimizer`]) hands it a
+/// the optimiser over flat storage ([`hrla::Optimizer`] over [`hrla::FlatChains`]) hands it a
 /// whole step's `(n, d)` block of points, and the function is called once
 /// on the rows of the live chains, with no prediction of the step.
 ///

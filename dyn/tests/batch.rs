@@ -6,8 +6,7 @@
 use std::sync::{Arc, Mutex};
 
 use hrla::{
-    Builder, Chain, Dyn, FlatChains, FlatSlices, FnPotential, Hrla, Interval, Potential, Rastrigin,
-    Stop,
+    Builder, Chain, FlatChains, FlatSlices, FnPotential, Hrla, Interval, Potential, Rastrigin, Stop,
 };
 use hrla_dyn::{BatchFunction, Error, UserBatch, UserError};
 use rand_core::SeedableRng;
@@ -125,7 +124,7 @@ fn one_call_per_step_on_the_live_rows_with_the_kernels_bits() {
     let mut opt = Builder::new(UserBatch::new(function.clone()), sampler(), 4.0, start())
         .seed(5)
         .stop(Stop::new().steps(STEPS))
-        .build_flat(Dyn(D), storage.chains())
+        .build(storage.chains())
         .unwrap();
     let mut live_before = Vec::new();
     for _ in 0..STEPS {
@@ -168,7 +167,7 @@ fn a_failing_call_ends_the_run_with_its_error() {
     let mut storage = Storage::new();
     let mut opt = Builder::new(UserBatch::new(function.clone()), sampler(), 4.0, start())
         .seed(5)
-        .build_flat(Dyn(D), storage.chains())
+        .build(storage.chains())
         .unwrap();
     for _ in 0..3 {
         opt.step().unwrap();

@@ -91,7 +91,7 @@ fn kernel_run() -> (hrla::Report<f64>, Vec<[f64; 10]>) {
     (report, opt.chains().iter().map(|c| *c.x()).collect())
 }
 
-fn positions(engine: &dyn hrla_dyn::Engine) -> Vec<[f64; 10]> {
+fn positions(engine: &hrla_dyn::Engine) -> Vec<[f64; 10]> {
     let l = engine.layout();
     assert_eq!((l.n, l.d), (6, 10));
     let x = engine.positions();
@@ -107,7 +107,7 @@ fn a_builtin_run_is_the_kernels_run() {
         .unwrap();
     assert_eq!(ours, report);
     assert_eq!(ours.termination, Termination::Steps);
-    assert_eq!(positions(&*engine), x);
+    assert_eq!(positions(&engine), x);
 }
 
 /// A user's batched function gives the kernel's bits and is called once
@@ -121,7 +121,7 @@ fn a_batched_function_gives_the_same_bits_in_one_call_per_step() {
     let ours = engine.run(1, &mut |_| ControlFlow::Continue(())).unwrap();
     assert_eq!(ours, report);
     assert_eq!(f.0.load(Ordering::Relaxed), 201);
-    assert_eq!(positions(&*engine), x);
+    assert_eq!(positions(&engine), x);
 }
 
 #[test]
@@ -324,7 +324,7 @@ fn a_box_per_coordinate_is_the_kernels_bounds() {
     .unwrap();
     let expected = opt.run().unwrap();
     assert_eq!(report.value.to_bits(), expected.value.to_bits());
-    let mine = positions(&*engine);
+    let mine = positions(&engine);
     let kernel: Vec<[f64; 10]> = opt.chains().iter().map(|c| *c.x()).collect();
     assert_eq!(mine, kernel);
     for x in &mine {
@@ -343,7 +343,7 @@ fn a_box_per_coordinate_is_the_kernels_bounds() {
     let (mut a, mut b) = (pairs.build().unwrap(), uniform.build().unwrap());
     a.step(50).unwrap();
     b.step(50).unwrap();
-    assert_eq!(positions(&*a), positions(&*b));
+    assert_eq!(positions(&a), positions(&b));
 }
 
 /// Auto runs in a box per coordinate (sides that differ by 10^6 here):
@@ -525,7 +525,7 @@ fn a_native_function_runs_as_a_builtin() {
         .run(1000, &mut |_| ControlFlow::Continue(()))
         .unwrap();
     assert_eq!(ours, report);
-    assert_eq!(positions(&*engine), x);
+    assert_eq!(positions(&engine), x);
 }
 
 /// A step far too long (h = 1): the chains grow geometrically with

@@ -101,7 +101,7 @@ fn differs<F: Float>(a: &Chain<F, D, Xoshiro128PlusPlus>, b: &ChainSnapshot) -> 
             "best value",
             bits(&[a.best().value]) == device_bits::<F>(&[b.best_value]),
         ),
-        ("best x", bits(&a.best().x) == device_bits::<F>(&b.best_x)),
+        ("best x", bits(a.best().x) == device_bits::<F>(&b.best_x)),
         ("best iteration", a.best().iteration == b.best_iteration),
         ("diverged", a.is_diverged() == b.diverged),
         ("generator", *a.rng() == b.rng),

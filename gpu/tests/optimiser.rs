@@ -67,7 +67,10 @@ fn best_is_the_cpu_optimisers() {
     assert_eq!(device.value.to_bits(), f64::from(b.value).to_bits());
     assert_eq!(device.iteration, b.iteration);
     assert_eq!(device.iteration % stride, 0);
-    assert_eq!(device.x, b.x.map(f64::from).to_vec());
+    assert_eq!(
+        device.x,
+        b.x.iter().copied().map(f64::from).collect::<Vec<_>>()
+    );
 }
 
 /// The empirical probability, counted on the device, against the count
@@ -608,7 +611,7 @@ fn best_and_probability_in_f64() {
     .build(&mut cpu)
     .unwrap();
     opt.run().unwrap();
-    let (c, b) = (opt.best_chain(), *opt.best());
+    let (c, b) = (opt.best_chain(), opt.best());
     let mut ensemble = EnsembleBuilder::new(
         DevicePotential::Rastrigin,
         Hrla::paper(0.01).unwrap(),

@@ -8,9 +8,9 @@
 //! ```
 
 use hrla::{
-    Ackley, Auto, Builder, Chain, Gaussian, Geometric, Hrla, Interval, Lbfgs, Levy, Linear, Ola,
-    Optimizer, Point, PolishSettings, Potential, Quadratic, Rastrigin, Sampler, Schedule, Start,
-    Stop, Ula,
+    Ackley, Auto, Builder, Chain, Chains, Gaussian, Geometric, Hrla, Interval, Lbfgs, Levy, Linear,
+    Ola, Optimizer, Point, PolishSettings, Potential, Quadratic, Rastrigin, Sampler, Schedule,
+    Start, Stop, Ula,
 };
 
 /// A float's bits as the tests read them: 16 hex digits.
@@ -23,18 +23,19 @@ fn hexes<'a>(v: impl IntoIterator<Item = &'a f64>) -> String {
     format!("[{}]", items.join(","))
 }
 
+/// The chains of the runs: borrowed from a `Vec`.
+type Borrowed<'a, const D: usize> = Chains<f64, &'a mut Vec<Chain<f64, D>>, D>;
+
 /// The state of a run as one JSON object.
 fn state<P, S, C, const D: usize, B>(
     case: &str,
-    opt: &Optimizer<f64, P, S, C, &mut Vec<Chain<f64, D>>, D, rand_xoshiro::Xoshiro256PlusPlus, B>,
+    opt: &Optimizer<f64, P, S, C, Borrowed<'_, D>, B>,
     report: &hrla::Report<f64>,
     extra: &str,
 ) -> String
 where
-    P: Potential<f64, D>,
     S: Sampler<f64>,
     C: Schedule<f64>,
-    B: hrla::Domain<f64, D>,
 {
     let chains = opt.chains();
     format!(
@@ -45,7 +46,7 @@ where
         report.evaluations,
         opt.best_chain(),
         hex(opt.best().value),
-        hexes(&opt.best().x),
+        hexes(opt.best().x),
         hexes(chains.iter().flat_map(|c| c.x())),
         hexes(chains.iter().flat_map(|c| c.y())),
         hexes(chains.iter().map(|c| c.value()).collect::<Vec<_>>().iter()),
@@ -141,7 +142,7 @@ fn main() -> Result<(), hrla::Error> {
         polished.evaluations,
         polished.end,
         hex(opt.best().value),
-        hexes(&opt.best().x),
+        hexes(opt.best().x),
         opt.evaluations()
     );
     println!("{}{extra}}}", sampled.trim_end_matches('}'));

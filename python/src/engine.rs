@@ -32,7 +32,7 @@ pub fn signal_steps(n: usize, d: usize) -> u64 {
 /// needs the GIL), a check after each. An interrupted call leaves the
 /// optimiser after a whole step, so that going on gives the bits of a
 /// run never interrupted.
-fn step(py: Python<'_>, engine: &mut dyn Engine, steps: u64) -> PyResult<()> {
+fn step(py: Python<'_>, engine: &mut Engine, steps: u64) -> PyResult<()> {
     if engine.is_user() {
         for _ in 0..steps {
             engine.step(1).map_err(layer)?;
@@ -63,7 +63,7 @@ fn step(py: Python<'_>, engine: &mut dyn Engine, steps: u64) -> PyResult<()> {
 /// exception.
 fn run(
     py: Python<'_>,
-    engine: &mut dyn Engine,
+    engine: &mut Engine,
     user_observer: Option<&Py<PyAny>>,
     with_x: bool,
 ) -> PyResult<PyReport> {
@@ -112,7 +112,7 @@ fn run(
 /// A polish or quench, with the GIL released for a built-in.
 fn local_search(
     py: Python<'_>,
-    engine: &mut dyn Engine,
+    engine: &mut Engine,
     chain: usize,
     settings: PolishSettings<f64>,
     quench: bool,
@@ -137,7 +137,7 @@ fn local_search(
 /// another thread) raises `BusyError` and does nothing.
 #[pyclass(frozen, module = "hrla", name = "Optimizer")]
 pub struct PyOptimizer {
-    engine: Mutex<Box<dyn Engine>>,
+    engine: Mutex<Engine>,
     /// Where the chains are: fixed for the optimiser's life (the kernel
     /// never moves or resizes its chains), so the views need no lock.
     layout: Layout,
@@ -156,9 +156,9 @@ impl PyOptimizer {
     /// `InternalError` when a panic interrupted an earlier one (the
     /// panic poisons the lock, since the state it left is not known) or
     /// this one.
-    fn with<T>(&self, body: impl FnOnce(&mut dyn Engine) -> PyResult<T>) -> PyResult<T> {
+    fn with<T>(&self, body: impl FnOnce(&mut Engine) -> PyResult<T>) -> PyResult<T> {
         guard(|| {
-            let mut engine: MutexGuard<'_, Box<dyn Engine>> = match self.engine.try_lock() {
+            let mut engine: MutexGuard<'_, Engine> = match self.engine.try_lock() {
                 Ok(e) => e,
                 Err(TryLockError::WouldBlock) => {
                     return Err(busy(
@@ -172,7 +172,7 @@ impl PyOptimizer {
                     ));
                 }
             };
-            body(&mut **engine)
+            body(&mut engine)
         })
     }
 }

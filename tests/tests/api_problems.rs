@@ -94,7 +94,7 @@ fn annealed_run(p: impl Potential<f64, 2>) -> (u64, Vec<Chain<f64, 2>>) {
     .build(chains::<2>(6))
     .unwrap();
     let k = opt.run().unwrap().iterations;
-    (k, opt.into_chains())
+    (k, opt.into_chains().into_inner())
 }
 
 /// A closure is a potential: the same run, bit for bit, as the type that
@@ -546,7 +546,7 @@ fn the_observer_is_called_exactly_and_can_stop_the_run() {
     .unwrap();
     let mut calls = Vec::new();
     let report = opt
-        .run_with(7, |p| {
+        .run_with(hrla::Observe::EveryAndNewBest(7), |p| {
             calls.push((p.iteration, p.improved));
             assert_eq!(p.evaluations, p.iteration + 1);
             assert_eq!(p.best.value, -(p.iteration.min(10) as f64));
@@ -575,7 +575,7 @@ fn the_observer_is_called_exactly_and_can_stop_the_run() {
     .unwrap();
     let mut seen = 0;
     let report = opt
-        .run_with(0, |p| {
+        .run_with(hrla::Observe::NewBest, |p| {
             seen += 1;
             assert!(p.improved);
             if p.iteration == 4 {
@@ -592,7 +592,7 @@ fn the_observer_is_called_exactly_and_can_stop_the_run() {
     // The run resumes where it stopped: 6 more improvements, then steps
     // without any (no call with `every = 0`).
     let report = opt
-        .run_with(0, |_| {
+        .run_with(hrla::Observe::NewBest, |_| {
             seen += 1;
             ControlFlow::Continue(())
         })
@@ -622,7 +622,7 @@ fn the_report_says_why_the_run_ended() {
         stairs(Stop::new().target(-3.0)).run().unwrap(),
         stairs(Stop::new().stall(4, 0.0)).run().unwrap(),
         stairs(Stop::new().steps(50))
-            .run_with(0, |p| {
+            .run_with(hrla::Observe::NewBest, |p| {
                 if p.iteration == 2 {
                     ControlFlow::Break(())
                 } else {
@@ -694,7 +694,7 @@ fn all_chains_diverging_is_an_error() {
     .build(chains::<1>(3))
     .unwrap();
     let mut observed = 0;
-    let got = opt.run_with(1, |_| {
+    let got = opt.run_with(hrla::Observe::EveryAndNewBest(1), |_| {
         observed += 1;
         ControlFlow::Continue(())
     });

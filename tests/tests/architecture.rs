@@ -285,3 +285,110 @@ fn front_ends_depend_on_the_layer_not_on_each_other() {
         panic!("crate cycle: {}", cycle.join(" -> "));
     }
 }
+
+/// The module graph of a crate's sources (`src` of the crate at `dir`).
+fn crate_modules(dir: &str) -> BTreeMap<String, BTreeSet<String>> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join(dir)
+        .join("src");
+    let mut mods = BTreeMap::new();
+    modules(&root, &[], &mut mods);
+    edges(&mods)
+}
+
+/// Every other crate's modules are layered too, but for the circles named
+/// here (each a place where two modules still share one idea).
+#[test]
+fn the_other_crates_have_no_import_cycle_but_the_known_ones() {
+    let known: [(&str, [&str; 2]); 3] = [
+        ("gpu", ["potential", "shader"]),
+        ("wasm", ["error", "landscape"]),
+        ("python", ["auto", "engine"]),
+    ];
+    let mut found = Vec::new();
+    for dir in ["dyn", "gpu", "wasm", "python", "threads"] {
+        let mut graph = crate_modules(dir);
+        // The crate root is its facade: modules import the items it
+        // re-exports, and it imports every module.
+        graph.remove("");
+        for out in graph.values_mut() {
+            out.remove("");
+        }
+        // Cut each known circle at one edge; any other cycle fails.
+        for (_, [from, to]) in known.iter().filter(|(d, _)| *d == dir) {
+            // `a::*`: every child of `a`.
+            let children = from.strip_suffix("::*").map(|a| format!("{a}::"));
+            for (m, out) in graph.iter_mut() {
+                if m == from || children.as_ref().is_some_and(|c| m.starts_with(c.as_str())) {
+                    out.remove(*to);
+                }
+            }
+        }
+        if let Some(cycle) = find_cycle(&graph) {
+            found.push(format!("{dir}: {}", cycle.join(" -> ")));
+        }
+    }
+    assert!(found.is_empty(), "import cycles: {found:#?}");
+}
+
+/// The product sources: every `.rs` file of the workspace's crates but
+/// their tests, benchmarks and examples.
+fn product_sources() -> Vec<(PathBuf, String)> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut out = Vec::new();
+    for dir in [
+        "core",
+        "dyn",
+        "gpu",
+        "wasm",
+        "python",
+        "tools/repro",
+        "threads",
+    ] {
+        let mut mods = BTreeMap::new();
+        modules(&root.join(dir).join("src"), &[], &mut mods);
+        for path in mods.into_values() {
+            let text = fs::read_to_string(&path).expect("readable source");
+            out.push((path, code(&text)));
+        }
+    }
+    out
+}
+
+/// Algorithm 1's loop (stop rules, a step, the observer) is written once,
+/// in the optimiser; the front ends drive it, they do not repeat it.
+#[test]
+fn the_run_loop_exists_once() {
+    let loops: Vec<String> = product_sources()
+        .into_iter()
+        .filter(|(_, src)| {
+            src.split("loop {").skip(1).any(|body| {
+                let body = &body[..body.len().min(1_500)];
+                body.contains(".termination()") || body.contains("self.termination()")
+            })
+        })
+        .map(|(path, _)| path.display().to_string())
+        .collect();
+    assert_eq!(loops.len(), 1, "the run loop is written in {loops:?}");
+    assert!(
+        loops[0].ends_with("core/src/optimizer/algorithm.rs"),
+        "{loops:?}"
+    );
+}
+
+/// The twins of the run-time path are gone: one optimiser, one build.
+#[test]
+fn no_twin_of_the_optimiser() {
+    for (path, src) in product_sources() {
+        for twin in [
+            "FlatOptimizer",
+            "build_flat",
+            "fn step_on(",
+            "fn run_on(",
+            "FlatProgress",
+        ] {
+            assert!(!src.contains(twin), "{} still has {twin}", path.display());
+        }
+    }
+}

@@ -349,9 +349,9 @@ fn check(c: Case) -> Result<(), TestCaseError> {
                 .build(chains::<2>(n))
                 .unwrap();
             for _ in 0..k0 {
-                prop_assert_eq!(no_panic("step", || opt.step())?, Ok(()));
+                prop_assert_eq!(no_panic("step", || opt.step().map(|_| ()))?, Ok(()));
             }
-            expect_error(no_panic("step", || opt.step())?, want)?;
+            expect_error(no_panic("step", || opt.step().map(|_| ()))?, want)?;
             prop_assert_eq!(opt.iteration(), k0);
             expect_error(no_panic("run", || opt.run())?, want)
         }
@@ -631,7 +631,7 @@ fn check(c: Case) -> Result<(), TestCaseError> {
             expect_error(no_panic("run", || opt.run())?, want)?;
             prop_assert!(opt.iteration() < 10_000);
             let k = opt.iteration();
-            expect_error(no_panic("step", || opt.step())?, want)?;
+            expect_error(no_panic("step", || opt.step().map(|_| ()))?, want)?;
             prop_assert_eq!(opt.iteration(), k);
             Ok(())
         }

@@ -346,7 +346,7 @@ where
             c,
             chain.best().value
         );
-        prop_assert!(s.domain.contains(&chain.best().x));
+        prop_assert!(s.domain.contains(chain.best().x.try_into().unwrap()));
         if !chain.is_diverged() {
             prop_assert!(sound(chain.value()), "chain {} at {}", c, chain.value());
             prop_assert!(chain.x().iter().all(|v| v.is_finite()));
@@ -368,16 +368,7 @@ trait View {
 }
 
 impl<St: AsRef<[Chain<f64, 2>]> + AsMut<[Chain<f64, 2>]>> View
-    for hrla::Optimizer<
-        f64,
-        Wild,
-        Hrla<f64>,
-        AnySchedule,
-        St,
-        2,
-        rand_xoshiro::Xoshiro256PlusPlus,
-        AnyDomain,
-    >
+    for hrla::Optimizer<f64, Wild, Hrla<f64>, AnySchedule, hrla::Chains<f64, St, 2>, AnyDomain>
 {
     fn view(&self) -> (f64, u64, u64) {
         (self.best().value, self.evaluations(), self.iteration())
@@ -432,10 +423,10 @@ fn exercise_optimizer(s: &Setup, counts: &mut [u32; 4]) -> Result<(), TestCaseEr
     let mut failed: Option<Error> = None;
     for &op in &s.ops {
         let done: Result<Option<f64>, Error> = no_panic("op", || match op {
-            Op::Step => opt.step().map(|()| None),
+            Op::Step => opt.step().map(|_| None),
             Op::Run(k) => {
                 let until = opt.iteration() + k;
-                opt.run_with(1, |p| {
+                opt.run_with(hrla::Observe::EveryAndNewBest(1), |p| {
                     if p.iteration >= until {
                         ControlFlow::Break(())
                     } else {

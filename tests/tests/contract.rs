@@ -40,7 +40,7 @@ impl Potential<f64, 1> for MinusExp {
 }
 
 type Run<'a, P, const D: usize, S> =
-    hrla::Optimizer<f64, P, Hrla<f64>, f64, &'a mut Vec<Chain<f64, D>>, D, Xoshiro256PlusPlus, S>;
+    hrla::Optimizer<f64, P, Hrla<f64>, f64, hrla::Chains<f64, &'a mut Vec<Chain<f64, D>>, D>, S>;
 
 /// Chains of `U = -exp(x)`, all at 0, for 10 steps.
 fn minus_exp_run(store: &mut Vec<Chain<f64, 1>>) -> Run<'_, MinusExp, 1, hrla::Unbounded> {
@@ -122,7 +122,10 @@ fn a_failed_polish_is_not_a_report_after_the_run_ended() {
     ));
     assert!(is_unbounded(&opt.run(), 0));
     assert!(is_unbounded(
-        &opt.run_with(1, |_| ControlFlow::Continue(())),
+        &opt.run_with(
+            hrla::Observe::EveryAndNewBest(1),
+            |_| ControlFlow::Continue(())
+        ),
         0
     ));
 }

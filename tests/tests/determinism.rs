@@ -26,7 +26,7 @@ const D: usize = 3;
 const N: usize = 5;
 const STEPS: u64 = 500;
 
-type Opt<F, S, C> = Optimizer<F, Rastrigin, S, C, Vec<Chain<F, D>>, D>;
+type Opt<F, S, C> = Optimizer<F, Rastrigin, S, C, hrla::Chains<F, Vec<Chain<F, D>>, D>>;
 
 fn termination_code(t: Option<Termination>) -> u64 {
     match t {
@@ -93,7 +93,7 @@ fn trajectory<F: Float, S: Sampler<F>, C: Schedule<F>>(
     let mut opt = build(sampler, schedule, seed);
     let mut states = vec![state_bits(&opt)];
     for _ in 0..STEPS {
-        assert_eq!(opt.step(), Ok(()));
+        assert_eq!(opt.step().map(|_| ()), Ok(()));
         states.push(state_bits(&opt));
     }
     states
@@ -185,7 +185,7 @@ fn check_step_vs_run<F: Float, S: Sampler<F> + Clone, C: Schedule<F> + Clone>(
 
     let mut by_mix = build(sampler, schedule, seed);
     let paused = by_mix
-        .run_with(1, |p| {
+        .run_with(hrla::Observe::EveryAndNewBest(1), |p| {
             if p.iteration == 123 {
                 ControlFlow::Break(())
             } else {

@@ -1,5 +1,5 @@
-//! Dimension at compile time or at run time: a run over `Chain<F, 17>`s,
-//! over flat storage as `Const<17>` and as `Dyn(17)` gives the same bits
+//! Dimension at compile time or at run time: a run over `Chain<F, 17>`s
+//! and over flat storage of dimension 17 gives the same bits
 //! (positions, velocities, values, bests, evaluations, polish), for every
 //! sampler, with and without a box; a box per coordinate keeps the uniform
 //! law; the batch seam is called once per step.
@@ -7,9 +7,9 @@
 use std::cell::Cell;
 
 use hrla::{
-    AnySampler, BatchPotential, Bounds, Builder, Chain, Const, Dim, Dyn, Error, FlatChains,
-    FlatSlices, FnPotential, Gaussian, Interval, Lbfgs, LbfgsIn, PolishSettings, Potential,
-    Rastrigin, SamplerKind, SliceDomain, SlicePotential, Stop, Unbounded,
+    AnySampler, BatchPotential, Bounds, Builder, Chain, Error, FlatChains, FlatSlices, FnPotential,
+    Gaussian, Interval, Lbfgs, LbfgsIn, PolishSettings, Potential, Rastrigin, SamplerKind,
+    SliceDomain, SlicePotential, Stop, Unbounded,
 };
 use hrla::{Domain, Float};
 use rand_xoshiro::rand_core::SeedableRng;
@@ -102,7 +102,7 @@ where
         y: cs.iter().flat_map(|c| bits(c.y())).collect(),
         grad: cs.iter().flat_map(|c| bits(c.gradient())).collect(),
         value: cs.iter().flat_map(|c| bits(&[c.value()])).collect(),
-        best_x: cs.iter().flat_map(|c| bits(&c.best().x)).collect(),
+        best_x: cs.iter().flat_map(|c| bits(c.best().x)).collect(),
         best_value: cs.iter().flat_map(|c| bits(&[c.best().value])).collect(),
         best_iteration: cs.iter().map(|c| c.best().iteration).collect(),
         diverged: cs.iter().map(|c| c.is_diverged()).collect(),
@@ -113,16 +113,15 @@ where
     }
 }
 
-/// The same run over flat storage of dimension `dim`.
-fn flat<F, P, B, R, Dm>(kind: SamplerKind, potential: P, domain: B, dim: Dm) -> Trace
+/// The same run over flat storage of dimension `D`.
+fn flat<F, P, B, R>(kind: SamplerKind, potential: P, domain: B) -> Trace
 where
     F: Float,
     P: SlicePotential<F>,
     B: SliceDomain<F> + Copy,
     R: rand_xoshiro::rand_core::Rng + SeedableRng + Clone + 'static,
-    Dm: Dim,
 {
-    let d = dim.value();
+    let d = D;
     let mut floats = vec![F::ZERO; FlatSlices::<F, R>::floats(N, d)];
     let (mut iterations, mut diverged) = (vec![0; N], vec![false; N]);
     let mut rngs: Vec<R> = (0..N).map(|_| R::seed_from_u64(0)).collect();
@@ -134,7 +133,7 @@ where
         .domain(domain)
         .seed(11)
         .stop(Stop::new().steps(300))
-        .build_flat(dim, chains)
+        .build(chains)
         .unwrap();
     let report = opt
         .run()
@@ -174,13 +173,8 @@ where
     let reference = with_chains::<F, P, B, R>(kind, potential, domain);
     assert_eq!(
         reference,
-        flat::<F, P, B, R, _>(kind, potential, domain, Dyn(D)),
-        "{kind} {what}: Dyn({D})"
-    );
-    assert_eq!(
-        reference,
-        flat::<F, P, B, R, _>(kind, potential, domain, Const::<D>),
-        "{kind} {what}: Const<{D}>"
+        flat::<F, P, B, R>(kind, potential, domain),
+        "{kind} {what}: flat, d = {D}"
     );
 }
 
@@ -380,7 +374,7 @@ fn the_batch_seam_is_one_call_per_step() {
         };
         let mut opt = Builder::new(batched, sampler, 2.0, start)
             .stop(Stop::new().steps(200))
-            .build_flat(Dyn(23), chains)
+            .build(chains)
             .unwrap();
         opt.run().unwrap();
         calls.set(opt.potential().calls.get());
@@ -390,7 +384,7 @@ fn the_batch_seam_is_one_call_per_step() {
     let b = run(&|chains| {
         let mut opt = Builder::new(Rastrigin, sampler, 2.0, start)
             .stop(Stop::new().steps(200))
-            .build_flat(Dyn(23), chains)
+            .build(chains)
             .unwrap();
         opt.run().unwrap();
         (bits(opt.chains().positions()), opt.evaluations())
@@ -449,7 +443,7 @@ fn bad_shapes_are_refused() {
             got: 3
         })
     ));
-    // Flat storage of the wrong size, or for another dimension.
+    // Flat storage of the wrong size.
     let mut floats = vec![0.0f64; 10];
     let (mut it, mut dv) = (vec![0; 2], vec![false; 2]);
     let mut rngs: Vec<_> = (0..2)
@@ -461,24 +455,6 @@ fn bad_shapes_are_refused() {
             name: "floats",
             expected: 20,
             got: 10
-        })
-    ));
-    let mut floats = vec![0.0f64; 20];
-    let chains = FlatChains::new(2, &mut floats, &mut it, &mut dv, &mut rngs).unwrap();
-    let built = Builder::new(
-        Rastrigin,
-        AnySampler::paper(SamplerKind::Ola, 0.01).unwrap(),
-        1.0,
-        Interval::new(0.0, 1.0).unwrap(),
-    )
-    .stop(Stop::new().steps(1))
-    .build_flat(Dyn(3), chains);
-    assert!(matches!(
-        built,
-        Err(Error::Length {
-            name: "chains",
-            expected: 3,
-            got: 2
         })
     ));
     // A dimension whose storage size overflows: a typed error, not a
@@ -575,7 +551,7 @@ fn large_run_time_dimensions_run() {
             .domain(bounds)
             .seed(3)
             .stop(Stop::new().steps(20))
-            .build_flat(Dyn(d), chains)
+            .build(chains)
             .unwrap();
         let report = opt.run().unwrap();
         assert!(report.value.is_finite(), "{d}: {report}");
@@ -693,7 +669,7 @@ fn between_with_chains(kind: SamplerKind, budget: u64) -> Between {
         y: cs.iter().flat_map(|c| bits(c.y())).collect(),
         grad: cs.iter().flat_map(|c| bits(c.gradient())).collect(),
         value: cs.iter().flat_map(|c| bits(&[c.value()])).collect(),
-        best_x: cs.iter().flat_map(|c| bits(&c.best().x)).collect(),
+        best_x: cs.iter().flat_map(|c| bits(c.best().x)).collect(),
         best_value: cs.iter().flat_map(|c| bits(&[c.best().value])).collect(),
         best_iteration: cs.iter().map(|c| c.best().iteration).collect(),
         diverged: cs.iter().map(|c| c.is_diverged()).collect(),
@@ -708,7 +684,7 @@ fn between_with_chains(kind: SamplerKind, budget: u64) -> Between {
     }
 }
 
-/// The same over flat storage (borrowed or owned) of dimension `Dyn(17)`.
+/// The same over flat storage (borrowed or owned) of dimension 17.
 fn between_flat<Fs, Is, Ds, Rs>(
     kind: SamplerKind,
     budget: u64,
@@ -725,7 +701,7 @@ where
     let mut opt = Builder::new(Cliff, first, schedule(), start)
         .seed(13)
         .stop(Stop::new().evaluations(budget))
-        .build_flat(Dyn(D), chains)
+        .build(chains)
         .unwrap();
     let mut outcomes = Vec::new();
     let mut storage = vec![0.0; LbfgsIn::<f64>::floats(D, 5)];
@@ -801,7 +777,7 @@ fn owned() -> Owned {
 
 /// `quench`, `restart` (to a feasible point, over the cliff, a diverged
 /// chain revived, an index out of range) and `set_sampler` between steps
-/// give the same bits and outcomes at `Dyn(17)` as over `Chain<f64, 17>`,
+/// give the same bits and outcomes over flat storage of dimension 17 as over `Chain<f64, 17>`,
 /// on borrowed and on owned storage, for every sampler; with an
 /// evaluation budget that runs out among the quenches, the clipped
 /// searches and the refused restarts are the same too.
@@ -874,7 +850,7 @@ fn between_steps_refuses_other_dimensions() {
         start,
     )
     .seed(13)
-    .build_flat(Dyn(D), owned())
+    .build(owned())
     .unwrap();
     let before = bits(opt.chains().positions());
     let mut storage = vec![0.0; LbfgsIn::<f64>::floats(D + 1, 5)];
@@ -904,18 +880,20 @@ fn between_steps_refuses_other_dimensions() {
     }
     let kept: Box<dyn std::any::Any> = Box::new(keepable(opt));
     let opt = kept
-        .downcast::<hrla::FlatOptimizer<
+        .downcast::<hrla::Optimizer<
             _,
             Rastrigin,
             AnySampler<f64>,
             f64,
-            Dyn,
-            Xoshiro256PlusPlus,
+            FlatChains<
+                f64,
+                Xoshiro256PlusPlus,
+                Vec<f64>,
+                Vec<u64>,
+                Vec<bool>,
+                Vec<Xoshiro256PlusPlus>,
+            >,
             Unbounded,
-            Vec<f64>,
-            Vec<u64>,
-            Vec<bool>,
-            Vec<Xoshiro256PlusPlus>,
         >>()
         .unwrap();
     let (floats, ..) = opt.into_chains().into_storage();

@@ -33,8 +33,8 @@ fn chain_sizes_match_the_docs() {
 /// a `Vec`) is the same small value as for `D = 2`: it holds no `[F; D]`.
 #[test]
 fn optimiser_holds_no_array_of_size_d() {
-    type Big<St> = Optimizer<f64, Rastrigin, Hrla<f64>, f64, St, 10_000>;
-    type Small<St> = Optimizer<f64, Rastrigin, Hrla<f64>, f64, St, 2>;
+    type Big<St> = Optimizer<f64, Rastrigin, Hrla<f64>, f64, hrla::Chains<f64, St, 10_000>>;
+    type Small<St> = Optimizer<f64, Rastrigin, Hrla<f64>, f64, hrla::Chains<f64, St, 2>>;
     let by_ref = size_of::<Big<&mut [Chain<f64, 10_000>]>>();
     let by_vec = size_of::<Big<Vec<Chain<f64, 10_000>>>>();
     println!("Optimizer, D = 10 000: {by_ref} bytes (&mut [Chain]), {by_vec} bytes (Vec<Chain>)");

@@ -52,7 +52,7 @@ fn run_on_small_stack<const D: usize>(
             let (iteration, evaluations, best) =
                 (opt.iteration(), opt.evaluations(), opt.best().value);
             Ok(Outcome {
-                chains: opt.into_chains(),
+                chains: opt.into_chains().into_inner(),
                 iteration,
                 evaluations,
                 initial_best,

@@ -188,27 +188,27 @@ fn the_kind_of_storage_changes_nothing() {
     };
 
     let mut by_vec = build().build(vec![Chain::new(); N]).unwrap();
-    steps(&mut || by_vec.step());
+    steps(&mut || by_vec.step().map(|_| ()));
     let want = all_bits(by_vec.chains());
 
     let mut by_array = build()
         .build(core::array::from_fn::<_, N, _>(|_| Chain::new()))
         .unwrap();
-    steps(&mut || by_array.step());
+    steps(&mut || by_array.step().map(|_| ()));
     assert_eq!(all_bits(by_array.chains()), want);
 
     let mut storage = vec![Chain::new(); N];
     let mut by_slice = build().build(&mut storage[..]).unwrap();
-    steps(&mut || by_slice.step());
+    steps(&mut || by_slice.step().map(|_| ()));
     assert_eq!(all_bits(by_slice.chains()), want);
     // The caller's storage holds the final states.
     assert_eq!(all_bits(&storage), want);
 
     let chains: heapless::Vec<Chain<f64, D>, 8> = (0..N).map(|_| Chain::new()).collect();
     let mut by_heapless = build().build(chains).unwrap();
-    steps(&mut || by_heapless.step());
+    steps(&mut || by_heapless.step().map(|_| ()));
     assert_eq!(all_bits(by_heapless.chains()), want);
-    assert_eq!(all_bits(&by_heapless.into_chains()), want);
+    assert_eq!(all_bits(&by_heapless.into_chains().into_inner()), want);
 }
 
 /// `run()` to the budget, `step()` to the budget, and `run_with` paused by
@@ -245,7 +245,7 @@ fn the_way_a_run_is_driven_changes_nothing() {
     let mut pauses = 0;
     loop {
         let r = by_mix
-            .run_with(1, |p| {
+            .run_with(hrla::Observe::EveryAndNewBest(1), |p| {
                 if p.iteration % 17 == 0 {
                     ControlFlow::Break(())
                 } else {

@@ -412,7 +412,7 @@ where
     }
     let mut seen = 0u64;
     let result = no_panic("run_with", || {
-        opt.run_with(1, |p| {
+        opt.run_with(hrla::Observe::EveryAndNewBest(1), |p| {
             seen += 1;
             if p.iteration >= STEPS {
                 ControlFlow::Break(())
@@ -421,7 +421,7 @@ where
             }
         })
     })?;
-    let best = *opt.best();
+    let best = opt.best();
     prop_assert!(best.value.is_finite(), "best {}", best.value);
     prop_assert!(best.value <= initial_best);
     prop_assert_eq!(best.iteration % w.stride, 0);
@@ -450,7 +450,7 @@ where
             prop_assert_eq!(report.iterations, k);
             prop_assert_eq!(report.value.to_bits(), best.value.to_bits());
             prop_assert_eq!(report.found_at, best.iteration);
-            prop_assert_eq!(opt.chains()[report.chain].best(), &best);
+            prop_assert_eq!(opt.chains()[report.chain].best(), best);
             prop_assert_eq!(report.evaluations, evaluations);
             prop_assert_eq!(report.chains, n);
             prop_assert!(report.diverged_chains < n);

@@ -5,7 +5,7 @@
 //! The kernel stays single-threaded and `no_std`; this crate is where a
 //! host's threads come in. A run gives the same bits on any number of
 //! threads and with any part size, and the same as
-//! [`Optimizer::step`](hrla::Optimizer::step) on one thread: every chain
+//! the default executor, [`Serial`](hrla::Serial), on one thread: every chain
 //! draws only from its own generator, and the parts' findings (the new
 //! running best, evaluations, diverged chains) are folded in chain order.
 //!
@@ -17,9 +17,10 @@
 //! let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01)?, 4.0, Gaussian::new([3.0; 10], 3.0)?)
 //!     .seed(1)
 //!     .stop(Stop::new().steps(100))
+//!     // On every thread of rayon's global pool; `pool.install(|| ...)` for another.
+//!     .executor(Threads::new())
 //!     .build(&mut chains)?;
-//! // On every thread of rayon's global pool; `pool.install(|| ...)` for another.
-//! let report = opt.run_on(&Threads::new())?;
+//! let report = opt.run()?;
 //! assert_eq!(report.iterations, 100);
 //! # Ok::<(), hrla::Error>(())
 //! ```

@@ -6,7 +6,7 @@ use std::ops::ControlFlow;
 
 use hrla::rand_core::SeedableRng;
 use hrla::{
-    AnySampler, Builder, Dyn, FlatChains, FlatProgress, FlatSlices, Float, Gaussian, Rastrigin,
+    AnySampler, Builder, FlatChains, FlatSlices, Float, Gaussian, Observe, Progress, Rastrigin,
     SamplerKind, SlicePotential, Stop,
 };
 use hrla_threads::Threads;
@@ -36,18 +36,16 @@ fn run(kind: SamplerKind, threads: Option<Threads>, every: Option<u64>) -> (Vec<
         .collect();
     let chains =
         FlatChains::new(D, &mut floats, &mut iterations, &mut diverged, &mut rngs).unwrap();
-    let mut opt = Builder::new(
+    let builder = Builder::new(
         Cliff,
         AnySampler::paper(kind, 0.01).unwrap(),
         2.0,
         Gaussian::new([0.5; D], 1.0).unwrap(),
     )
     .seed(5)
-    .stop(Stop::new().steps(150))
-    .build_flat(Dyn(D), chains)
-    .unwrap();
+    .stop(Stop::new().steps(150));
     let mut seen = Vec::new();
-    let observer = |p: &FlatProgress<'_, f64>| {
+    let observer = |p: &Progress<'_, f64>| {
         seen.push((
             p.iteration,
             p.evaluations,
@@ -57,19 +55,27 @@ fn run(kind: SamplerKind, threads: Option<Threads>, every: Option<u64>) -> (Vec<
         ));
         ControlFlow::Continue(())
     };
-    let report = match (&threads, every) {
-        (Some(t), None) => opt.run_on(t),
-        (None, None) => opt.run(),
-        (Some(t), Some(every)) => opt.run_with_on(t, every, observer),
-        (None, Some(every)) => opt.run_with(every, observer),
+    // Every step's chains and counters, whatever the executor's type.
+    macro_rules! summary {
+        ($opt:expr) => {{
+            let mut opt = $opt.unwrap();
+            let report = match every {
+                None => opt.run(),
+                Some(every) => opt.run_with(Observe::EveryAndNewBest(every), observer),
+            };
+            let summary = format!(
+                "{report:?} {} {} {} {seen:?}",
+                opt.evaluations(),
+                opt.best_chain(),
+                opt.diverged_chains()
+            );
+            (summary, opt.into_chains())
+        }};
+    }
+    let (summary, c) = match threads {
+        Some(t) => summary!(builder.executor(t).build(chains)),
+        None => summary!(builder.build(chains)),
     };
-    let summary = format!(
-        "{report:?} {} {} {} {seen:?}",
-        opt.evaluations(),
-        opt.best_chain(),
-        opt.diverged_chains()
-    );
-    let c = opt.chains();
     let mut bits: Vec<u64> = c.positions().iter().map(|v| v.to_bits_u64()).collect();
     bits.extend(c.best_positions().iter().map(|v| v.to_bits()));
     bits.extend(c.values().iter().map(|v| v.to_bits()));
@@ -104,7 +110,7 @@ fn flat_runs_give_the_serial_bits_on_any_threads() {
     }
 }
 
-/// `run_with_on` gives the serial `run_with`'s bits and calls its observer
+/// `run_with` on threads gives the serial `run_with`'s bits and calls its observer
 /// at the same steps with the same sightings, on any threads; the observer
 /// is called (every 10 steps at least).
 #[test]

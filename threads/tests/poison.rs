@@ -38,17 +38,15 @@ fn a_panic_on_a_thread_poisons_the_optimiser() {
         Gaussian::new([1.0; 2], 1.0).unwrap(),
     )
     .stop(Stop::new().steps(100))
+    .executor(Threads::chains_per_part(16))
     .build(&mut chains)
     .unwrap();
-    let threads = Threads::chains_per_part(16);
-    opt.step_on(&threads).unwrap();
+    opt.step().unwrap();
     p.armed.store(true, Ordering::Relaxed);
-    let panicked = catch_unwind(AssertUnwindSafe(|| opt.step_on(&threads)));
+    let panicked = catch_unwind(AssertUnwindSafe(|| opt.step().map(|_| ())));
     assert!(panicked.is_err(), "no panic");
     p.armed.store(false, Ordering::Relaxed);
-    assert_eq!(opt.step_on(&threads), Err(Error::Poisoned));
-    assert_eq!(opt.run_on(&threads), Err(Error::Poisoned));
-    assert_eq!(opt.step(), Err(Error::Poisoned));
+    assert_eq!(opt.step().map(|_| ()), Err(Error::Poisoned));
     assert_eq!(opt.run(), Err(Error::Poisoned));
     // Nothing moved after the panic.
     let iteration = opt.iteration();

@@ -19,12 +19,12 @@ fn fingerprint<F: Float>(chains: &[Chain<F, D>], report: &str, evaluations: u64)
     let mut out: Vec<String> = chains
         .iter()
         .map(|c| {
-            let bits = |v: &[F; D]| v.map(|x| x.to_f64().to_bits());
+            let bits = |v: &[F]| v.iter().map(|x| x.to_f64().to_bits()).collect::<Vec<_>>();
             format!(
                 "{:?} {:?} {:?} {} {}",
                 bits(c.x()),
                 bits(c.y()),
-                bits(&c.best().x),
+                bits(c.best().x),
                 c.best().value.to_f64().to_bits(),
                 c.is_diverged()
             )
@@ -46,25 +46,28 @@ fn run<F: Float, P: Potential<F, D> + Sync>(
     let start = Gaussian::new([F::from_f64(3.0); D], F::from_f64(spread)).unwrap();
     let schedule = Linear::new(F::from_f64(1.0), F::from_f64(4.0), 300).unwrap();
     let sampler = AnySampler::paper(kind, F::from_f64(h)).unwrap();
-    let mut opt = Builder::new(potential, sampler, schedule, start)
+    let builder = Builder::new(potential, sampler, schedule, start)
         .seed(42)
-        .stop(Stop::new().steps(300))
-        .build(&mut chains)
-        .unwrap();
-    let report = match threads {
-        None => opt.run(),
-        Some((n, part)) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .unwrap()
-            .install(|| opt.run_on(&Threads::chains_per_part(part))),
+        .stop(Stop::new().steps(300));
+    let (report, evaluations) = match threads {
+        None => {
+            let mut opt = builder.build(&mut chains).unwrap();
+            (opt.run(), opt.evaluations())
+        }
+        Some((n, part)) => {
+            let mut opt = builder
+                .executor(Threads::chains_per_part(part))
+                .build(&mut chains)
+                .unwrap();
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build();
+            (pool.unwrap().install(|| opt.run()), opt.evaluations())
+        }
     };
-    let evaluations = opt.evaluations();
     let report = match report {
         Ok(r) => format!("{r:?}"),
         Err(e) => format!("error {e:?}"),
     };
-    fingerprint(opt.chains(), &report, evaluations)
+    fingerprint(&chains, &report, evaluations)
 }
 
 fn check<F: Float, P: Potential<F, D> + Sync>(potential: &P, kind: SamplerKind, h: f64) {

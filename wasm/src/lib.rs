@@ -117,12 +117,12 @@ pub use hrla_dyn::termination_code;
 #[wasm_bindgen]
 pub struct Optimizer {
     /// The run-time layer's run of the settings.
-    engine: Box<dyn Engine>,
+    engine: Engine,
     /// The potential, for its name and minimum.
     landscape: Landscape,
     seed: u64,
     /// Whether the run has stopping rules to consult before each step.
-    stops: bool,
+
     /// Why the run stopped, once it has.
     termination: Option<Termination>,
     /// The run's failure when every chain ran away, returned again by
@@ -180,7 +180,6 @@ impl Optimizer {
             engine,
             landscape: settings.landscape.clone(),
             seed: settings.seed,
-            stops: stop.is_some(),
             termination: None,
             failed: None,
             positions: vec![0.0; 2 * n],
@@ -206,31 +205,22 @@ impl Optimizer {
         if let Some(e) = &self.failed {
             return Err(e.clone());
         }
-        let mut done = 0;
-        let mut result = Ok(());
-        while done < steps {
-            if self.stops && self.termination.is_none() {
-                self.termination = self.engine.termination();
-            }
-            // An ended run has nothing left to do: no spinning through the
-            // rest of the count.
-            if self.termination.is_some() {
-                break;
-            }
-            result = self.engine.step(1).map_err(Error::from);
-            if let Err(e @ Error::RanAway { .. }) = &result {
-                self.failed = Some(e.clone());
-            }
-            if result.is_err() {
-                break;
-            }
-            done += 1;
+        // An ended run has nothing left to do: no spinning through the
+        // rest of the count.
+        if self.termination.is_some() {
+            return Ok(0);
         }
-        if self.stops && self.termination.is_none() {
-            self.termination = self.engine.termination();
+        let before = self.engine.iteration();
+        let result = self.engine.run_for(u64::from(steps)).map_err(Error::from);
+        match &result {
+            Ok(termination) => self.termination = self.termination.or(*termination),
+            Err(e @ Error::RanAway { .. }) => self.failed = Some(e.clone()),
+            Err(_) => {}
         }
         self.publish();
-        result.map(|()| done)
+        // At most `steps`: the count fits.
+        let done = u32::try_from(self.engine.iteration() - before).unwrap_or(steps);
+        result.map(|_| done)
     }
 
     /// Why the run stopped, once a stopping rule held.
@@ -284,8 +274,8 @@ impl Optimizer {
     }
 
     /// The run-time layer's run.
-    pub fn engine(&self) -> &dyn Engine {
-        &*self.engine
+    pub fn engine(&self) -> &Engine {
+        &self.engine
     }
 
     /// Positions, `[x0, x1]` per chain.

@@ -25,13 +25,10 @@ macro_rules! swarm {
     }};
 }
 
-/// The same run over flat storage of run-time dimension `Dyn(d)`, the
-/// storage leaked so that the optimiser can live as long as the bench.
+/// The same run over flat storage of a run-time dimension, the storage
+/// leaked so that the optimiser can live as long as the bench.
 macro_rules! flat_swarm {
-    ($f:ty, $d:expr, $kind:expr) => {
-        flat_swarm!($f, $d, $kind, hrla::Dyn($d))
-    };
-    ($f:ty, $d:expr, $kind:expr, $dim:expr) => {{
+    ($f:ty, $d:expr, $kind:expr) => {{
         let (n, d) = (CHAINS, $d);
         let floats = vec![0.0 as $f; hrla::FlatSlices::<$f, Xoshiro256PlusPlus>::floats(n, d)].leak();
         let iterations = vec![0u64; n].leak();
@@ -43,7 +40,7 @@ macro_rules! flat_swarm {
         let sampler = hrla::AnySampler::<$f>::paper($kind, 0.01).unwrap();
         hrla::Builder::new(hrla::Rastrigin, sampler, 4.0 as $f, start)
             .seed(1)
-            .build_flat($dim, chains)
+            .build(chains)
             .unwrap()
     }};
 }
@@ -70,14 +67,6 @@ macro_rules! case {
         }
         // AB_DYN=1: this tree's run-time-dimension path (new) against its
         // own const path (base), instead of the base commit.
-        // AB_DYN=2: the run-time-dimension path against the same flat
-        // storage with the dimension a constant.
-        if std::env::var("AB_DYN").is_ok_and(|v| v == "2") {
-            let mut new = flat_swarm!($f, $d, hrla::SamplerKind::$kind);
-            let mut base = flat_swarm!($f, $d, hrla::SamplerKind::$kind, hrla::Const::<$d>);
-            pairs!($name, $d, $pairs, new, base);
-            return;
-        }
         if std::env::var("AB_DYN").is_ok_and(|v| v == "1") {
             let mut new = flat_swarm!($f, $d, hrla::SamplerKind::$kind);
             let mut base = swarm!(hrla, $f, $d, hrla::SamplerKind::$kind);

@@ -22,7 +22,9 @@ use std::fmt::Write as _;
 use std::ops::ControlFlow;
 use std::time::Instant;
 
-use hrla::{Builder, Chain, Error, Hrla, Interval, Lbfgs, Linear, PolishSettings, Potential, Stop};
+use hrla::{
+    Builder, Chain, Error, Hrla, Interval, Lbfgs, Linear, Observe, PolishSettings, Potential, Stop,
+};
 use hrla_bench::problems;
 
 /// `--strategies ablation`: the default and each ablation.
@@ -79,7 +81,7 @@ fn paper<const D: usize>(
     .stop(Stop::new().steps(k).evaluations(budget))
     .build(&mut chains)?;
     let mut to_1e3 = (opt.best().value - minimum < 1e-3).then_some(n);
-    let run = opt.run_with(0, |pr| {
+    let run = opt.run_with(Observe::NewBest, |pr| {
         if to_1e3.is_none() && pr.best.value - minimum < 1e-3 {
             to_1e3 = Some(pr.evaluations);
         }

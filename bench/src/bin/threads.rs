@@ -13,7 +13,7 @@
 
 use std::time::Instant;
 
-use hrla::{AnySampler, Builder, Chain, Gaussian, Rastrigin, SamplerKind, Serial};
+use hrla::{AnySampler, Builder, Chain, Gaussian, Rastrigin, SamplerKind};
 use hrla_threads::Threads;
 
 const D: usize = 10;
@@ -33,16 +33,18 @@ fn main() {
         .num_threads(threads)
         .build()
         .expect("pool");
-    let build = || {
-        let chains: Vec<Chain<f64, D>> = (0..CHAINS).map(|_| Chain::new()).collect();
+    let part: usize = std::env::var("PART").map_or(0, |s| s.parse().expect("PART"));
+    let builder = || {
         let start = Gaussian::new([3.0; D], 10f64.sqrt()).expect("valid");
         let sampler = AnySampler::paper(SamplerKind::Hrla, 0.01).expect("valid");
-        Builder::new(Rastrigin, sampler, 4.0, start)
-            .seed(1)
-            .build(chains)
-            .expect("valid")
+        Builder::new(Rastrigin, sampler, 4.0, start).seed(1)
     };
-    let (mut serial, mut parallel) = (build(), build());
+    let chains = || -> Vec<Chain<f64, D>> { (0..CHAINS).map(|_| Chain::new()).collect() };
+    let mut serial = builder().build(chains()).expect("valid");
+    let mut parallel = builder()
+        .executor(Threads::chains_per_part(part))
+        .build(chains())
+        .expect("valid");
     fn time(mut step: impl FnMut()) -> f64 {
         let t = Instant::now();
         for _ in 0..STEPS {
@@ -52,17 +54,8 @@ fn main() {
     }
     let (mut a, mut b, mut r) = (Vec::new(), Vec::new(), Vec::new());
     for p in 0..pairs {
-        let mut s = || time(|| serial.step_on(&Serial).expect("valid"));
-        let part: usize = std::env::var("PART").map_or(0, |s| s.parse().expect("PART"));
-        let mut m = || {
-            many.install(|| {
-                time(|| {
-                    parallel
-                        .step_on(&Threads::chains_per_part(part))
-                        .expect("valid")
-                })
-            })
-        };
+        let mut s = || time(|| _ = serial.step().expect("valid"));
+        let mut m = || many.install(|| time(|| _ = parallel.step().expect("valid")));
         let (x, y) = if p % 2 == 0 {
             let x = s();
             (x, m())

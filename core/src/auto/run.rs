@@ -15,7 +15,7 @@ use super::settings::{Auto, Sampling};
 use crate::domain::{Sides, SliceDomain};
 use crate::error::{Error, floor};
 use crate::float::Float;
-use crate::optimizer::{Best, Chain, Termination, chain_seed, draw_point};
+use crate::optimizer::{Chain, Termination, chain_seed, draw_point};
 use crate::optimizer::{Verdict, judge};
 use crate::polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished};
 use crate::potential::{BatchPotential, SlicePotential};
@@ -107,11 +107,9 @@ impl<F: Float, const D: usize, R> Chains<F> for [Chain<F, D, R>] {
     }
     fn started(&mut self, c: usize) {
         let chain = &mut self[c];
-        chain.best = Best {
-            x: chain.x,
-            value: chain.value,
-            iteration: 0,
-        };
+        chain.best_x = chain.x;
+        chain.best_value = chain.value;
+        chain.best_iteration = 0;
     }
 }
 

@@ -1,31 +1,36 @@
 //! The optimiser: chains stepped by a sampler's kernel at the schedule's
-//! inverse temperature, the running best, and the stopping rules.
+//! inverse temperature, the running best, and the stopping rules, written
+//! once over any chain store.
 
 use core::cell::Cell;
-use core::marker::PhantomData;
 use core::ops::ControlFlow;
 
-use rand_core::Rng;
-use rand_xoshiro::Xoshiro256PlusPlus;
-
-use super::chain::{Best, Chain};
-use super::executor::Executor;
-use super::report::{Progress, Report};
+use super::executor::Serial;
+use super::report::{Observe, Progress, Report};
 use super::stop::{Stop, Termination};
-use super::sweep::{Context, Sweep, Verdict, judge, sweep};
-use crate::domain::{Domain, Unbounded};
+use super::store::{Best, Origin, RunsOn, Searches, Steps, Store, diverged_start};
+use super::sweep::{Context, Verdict, judge};
+use crate::domain::Unbounded;
 use crate::error::{Error, floor};
 use crate::float::Float;
-use crate::polish::{Lbfgs, PolishEnd, PolishSettings, Polished};
-use crate::potential::Potential;
+use crate::polish::{PolishEnd, PolishSettings, Polished};
 use crate::sampler::{Kernel, Sampler};
 use crate::schedule::Schedule;
 
 /// Algorithm 1 of the paper with running best: independent chains of a
-/// [`Sampler`] on a [`Potential`], at the inverse temperatures of a
-/// [`Schedule`], in chain storage `St` that the caller owns (any
-/// `AsMut<[Chain]>`: an array, a slice, a `heapless::Vec`, a `Vec`).
-/// Built by [`Builder`](crate::Builder).
+/// [`Sampler`] on a potential `P`, at the inverse temperatures of a
+/// [`Schedule`], in a chain store `St` that holds the caller's storage,
+/// stepped by `E` ([`Serial`], on the calling thread, unless the builder
+/// was given an [`Executor`](crate::Executor)). Built by
+/// [`Builder`](crate::Builder).
+///
+/// The store is [`Chains`](crate::Chains) for [`Chain`](crate::Chain)s of
+/// a dimension `D` fixed at compile time (an array, a slice, a
+/// `heapless::Vec`, a `Vec`), with `P` a [`Potential`](crate::Potential);
+/// or [`FlatChains`](crate::FlatChains) for a dimension known at run time,
+/// with `P` a [`BatchPotential`](crate::BatchPotential) whose every step
+/// evaluates the new points of many chains in one call. Both give the same
+/// bits for the same run.
 ///
 /// Iterate `k` of a chain is its state after `k` steps; the step from `k`
 /// to `k + 1` runs at `a_k`. The running best (per chain and global) is the
@@ -35,25 +40,17 @@ use crate::schedule::Schedule;
 ///
 /// Every chain draws from its own generator, so a run is a pure function of
 /// the seed, whatever mix of [`step`](Optimizer::step) and
-/// [`run`](Optimizer::run) drives it, and chain `c` is the same in any run
-/// of the same seed.
+/// [`run`](Optimizer::run) drives it, whatever the executor, and chain `c`
+/// is the same in any run of the same seed.
 #[derive(Clone, Debug)]
-pub struct Optimizer<
-    F: Float,
-    P,
-    S: Sampler<F>,
-    C,
-    St,
-    const D: usize,
-    R = Xoshiro256PlusPlus,
-    B = Unbounded,
-> {
+pub struct Optimizer<F: Float, P, S: Sampler<F>, C, St, B = Unbounded, E = Serial> {
     potential: P,
     domain: B,
     sampler: S,
     kernel: S::Kernel,
     schedule: C,
     chains: St,
+    executor: E,
     best: usize,
     iteration: u64,
     evaluations: u64,
@@ -66,44 +63,11 @@ pub struct Optimizer<
     /// a failed run stays failed. [`Error::Poisoned`] while the potential
     /// is being evaluated, so that it stays if the potential panics.
     failed: Option<Error>,
-    rng: PhantomData<fn() -> R>,
-}
-
-/// A potential whose evaluations are counted.
-struct Counted<'a, P> {
-    potential: &'a P,
-    calls: Cell<u64>,
-}
-
-impl<F: Float, P: Potential<F, D>, const D: usize> Potential<F, D> for Counted<'_, P> {
-    #[inline]
-    fn value_and_gradient(&self, x: &[F; D], grad: &mut [F; D]) -> F {
-        self.calls.set(self.calls.get() + 1);
-        self.potential.value_and_gradient(x, grad)
-    }
-}
-
-/// Where a local search starts: a chain's best point or its current one.
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Origin {
-    Best,
-    Current,
-}
-
-/// The error of a quench from a diverged chain, with no evaluation:
-/// nowhere feasible to start from, and what made the chain diverge.
-pub(crate) fn diverged_start<F: Float>(x: &[F], grad: &[F], value: F) -> Error {
-    let bad = x.iter().chain(grad).chain([&value]);
-    let value = bad.copied().find(|v| !v.is_finite()).unwrap_or(value);
-    Error::NotFinite {
-        name: "the point of a diverged chain",
-        value: value.to_f64(),
-    }
 }
 
 /// `settings` within `left` evaluations of the run's budget, or, none
 /// left, the outcome of a local search of no evaluation from `value`.
-pub(crate) fn within_budget<F: Float>(
+fn within_budget<F: Float>(
     settings: PolishSettings<F>,
     left: u64,
     value: F,
@@ -123,41 +87,22 @@ pub(crate) fn within_budget<F: Float>(
 }
 
 /// A local search's error, an unbounded potential named by its chain.
-pub(crate) fn on_chain(e: Error, chain: usize) -> Error {
+fn on_chain(e: Error, chain: usize) -> Error {
     match e {
         Error::UnboundedBelow { value, .. } => Error::UnboundedBelow { chain, value },
         e => e,
     }
 }
 
-/// The count of diverged chains after a restart took a chain from
-/// diverged `was` to feasible `ok`.
-pub(crate) fn after_restart(diverged: usize, was: bool, ok: bool) -> usize {
-    match (was, ok) {
-        (true, true) => diverged - 1,
-        (false, false) => diverged + 1,
-        _ => diverged,
-    }
-}
-
-/// What a step found out.
-enum Stepped {
-    Improved,
-    Unchanged,
-}
-
-impl<F, P, S, C, St, const D: usize, R, B> Optimizer<F, P, S, C, St, D, R, B>
+impl<F, P, S, C, St, B, E> Optimizer<F, P, S, C, St, B, E>
 where
     F: Float,
-    P: Potential<F, D>,
     S: Sampler<F>,
     C: Schedule<F>,
-    St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
-    R: Rng + 'static,
-    B: Domain<F, D>,
+    St: Steps<F, P, B>,
+    E: RunsOn<F, St, S::Kernel, P, B>,
 {
-    /// The optimiser over chains the builder has initialised, with `best`
-    /// the index of the chain with the lowest initial value.
+    /// The optimiser over chains the builder has initialised.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn assemble(
         potential: P,
@@ -166,12 +111,19 @@ where
         kernel: S::Kernel,
         schedule: C,
         chains: St,
-        best: usize,
+        executor: E,
         evaluations: u64,
         stride: u64,
         stop: Stop<F>,
     ) -> Self {
-        let stall_value = chains.as_ref()[best].best.value;
+        // The chain with the lowest initial value, the first on ties.
+        let mut best = 0;
+        for c in 1..chains.len() {
+            if chains.best(c).value < chains.best(best).value {
+                best = c;
+            }
+        }
+        let stall_value = chains.best(best).value;
         Self {
             potential,
             domain,
@@ -179,6 +131,7 @@ where
             kernel,
             schedule,
             chains,
+            executor,
             best,
             iteration: 0,
             evaluations,
@@ -188,13 +141,13 @@ where
             stall_value,
             stall_since: 0,
             failed: None,
-            rng: PhantomData,
         }
     }
 
     /// Advances every live chain by one step, then evaluates `U` and `∇U` at
-    /// the new points and updates the running bests. Stopping rules are
-    /// not consulted: that is [`run`](Optimizer::run)'s job.
+    /// the new points and updates the running bests; what the step did.
+    /// Stopping rules are not consulted: that is [`run`](Optimizer::run)'s
+    /// job.
     ///
     /// Errors: the sampler's, if it refuses the schedule's `a_k` (the state
     /// is then unchanged); [`Error::UnboundedBelow`] if a chain's potential
@@ -203,20 +156,9 @@ where
     /// panicked during an earlier call. After any of these, every later
     /// call returns the same error: a failed run never turns into a
     /// report.
-    pub fn step(&mut self) -> Result<(), Error> {
-        self.advance().map(drop)
-    }
-
-    fn advance(&mut self) -> Result<Stepped, Error> {
-        self.advance_by(|cx, chains| sweep(cx, chains, 0))
-    }
-
-    /// A step unless the run has failed, and the failure kept if it fails.
-    fn advance_by<T>(&mut self, step_chains: T) -> Result<Stepped, Error>
-    where
-        T: FnOnce(&Context<'_, S::Kernel, P, B, F>, &mut [Chain<F, D, R>]) -> Sweep<F>,
-    {
-        self.guarded(|opt| opt.advance_live(step_chains))
+    pub fn step(&mut self) -> Result<Progress<'_, F>, Error> {
+        let improved = self.guarded(Self::advance)?;
+        Ok(self.progress(improved))
     }
 
     /// `work`, which evaluates the potential, unless the run has failed.
@@ -236,12 +178,9 @@ where
         result
     }
 
-    /// One step, the chains stepped by `step_chains`.
-    fn advance_live<T>(&mut self, step_chains: T) -> Result<Stepped, Error>
-    where
-        T: FnOnce(&Context<'_, S::Kernel, P, B, F>, &mut [Chain<F, D, R>]) -> Sweep<F>,
-    {
-        let n = self.chains.as_ref().len();
+    /// One step; whether it improved the global best.
+    fn advance(&mut self) -> Result<bool, Error> {
+        let n = self.chains.len();
         let a = self.schedule.inverse_temperature(self.iteration);
         if a != self.kernel.inverse_temperature() {
             self.kernel = self.sampler.at(a)?;
@@ -255,8 +194,8 @@ where
             record: k.is_multiple_of(self.stride),
             floor: floor(),
         };
-        let before = self.chains.as_ref()[self.best].best.value;
-        let found = step_chains(&cx, self.chains.as_mut());
+        let before = self.chains.best(self.best).value;
+        let found = self.executor.sweep(&mut self.chains, &cx);
         self.evaluations += found.evaluated;
         self.diverged += found.diverged;
         self.iteration = k;
@@ -280,23 +219,21 @@ where
             self.stall_value = best_value;
             self.stall_since = k;
         }
-        Ok(if best_value < before {
-            Stepped::Improved
-        } else {
-            Stepped::Unchanged
-        })
+        Ok(best_value < before)
     }
 
-    /// The first stopping rule that holds now, if any.
-    pub fn termination(&self) -> Option<Termination> {
-        let live = (self.chains.as_ref().len() - self.diverged) as u64;
-        self.stop.holds(
-            self.best().value,
-            self.iteration,
-            self.evaluations,
-            live,
-            self.stall_since,
-        )
+    /// What the run has done so far, `improved` saying whether the last
+    /// step improved the running best.
+    fn progress(&self, improved: bool) -> Progress<'_, F> {
+        Progress {
+            iteration: self.iteration,
+            evaluations: self.evaluations,
+            best: self.best(),
+            improved,
+            inverse_temperature: self.kernel.inverse_temperature(),
+            diverged_chains: self.diverged,
+            chains: &self.chains,
+        }
     }
 
     /// Steps until a stopping rule holds, and reports why.
@@ -308,25 +245,25 @@ where
         if self.stop.is_empty() {
             return Err(Error::NoStoppingRule);
         }
-        self.run_with(0, |_| ControlFlow::Continue(()))
+        self.run_with(Observe::Never, |_| ControlFlow::Continue(()))
     }
 
-    /// [`run`](Optimizer::run) with an observer, called after every
-    /// `every`-th step (never when `every = 0`) and after every step that
-    /// improves the running best; returning `ControlFlow::Break(())` ends
-    /// the run with [`Termination::Observer`]. Without a stopping rule,
-    /// only the observer ends the run.
+    /// [`run`](Optimizer::run) with an observer, called after the steps
+    /// `when` says; returning `ControlFlow::Break(())` ends the run with
+    /// [`Termination::Observer`]. Without a stopping rule, only the
+    /// observer ends the run. This is the one loop of Algorithm 1: every
+    /// front end runs through it.
     ///
     /// ```
     /// use core::ops::ControlFlow;
-    /// use hrla::{Builder, Chain, Gaussian, Hrla, Rastrigin, Stop};
+    /// use hrla::{Builder, Chain, Gaussian, Hrla, Observe, Rastrigin, Stop};
     ///
     /// let mut chains: Vec<Chain<f64, 2>> = (0..8).map(|_| Chain::new()).collect();
     /// let mut opt = Builder::new(Rastrigin, Hrla::paper(0.01)?, 4.0, Gaussian::new([3.0; 2], 1.0)?)
     ///     .stop(Stop::new().steps(5_000))
     ///     .build(&mut chains)?;
     /// let mut improvements = 0;
-    /// let report = opt.run_with(1_000, |p| {
+    /// let report = opt.run_with(Observe::EveryAndNewBest(1_000), |p| {
     ///     improvements += usize::from(p.improved);
     ///     // A time budget, a progress bar or a plot would go here.
     ///     if p.best.value < 1e-3 { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
@@ -334,24 +271,9 @@ where
     /// println!("{report} ({improvements} improvements)");
     /// # Ok::<(), hrla::Error>(())
     /// ```
-    pub fn run_with<O>(&mut self, every: u64, observer: O) -> Result<Report<F>, Error>
+    pub fn run_with<O>(&mut self, when: Observe, mut observer: O) -> Result<Report<F>, Error>
     where
-        O: FnMut(&Progress<'_, F, D>) -> ControlFlow<()>,
-    {
-        self.run_by(every, observer, &|cx, chains| sweep(cx, chains, 0))
-    }
-
-    /// The loop of [`run_with`](Optimizer::run_with), the chains of each
-    /// step stepped by `step_chains`.
-    fn run_by<O, T>(
-        &mut self,
-        every: u64,
-        mut observer: O,
-        step_chains: &T,
-    ) -> Result<Report<F>, Error>
-    where
-        O: FnMut(&Progress<'_, F, D>) -> ControlFlow<()>,
-        T: Fn(&Context<'_, S::Kernel, P, B, F>, &mut [Chain<F, D, R>]) -> Sweep<F>,
+        O: FnMut(&Progress<'_, F>) -> ControlFlow<()>,
     {
         loop {
             // A run that failed (in a step, a polish, a quench or a
@@ -363,45 +285,24 @@ where
             if let Some(termination) = self.termination() {
                 return Ok(self.report(termination));
             }
-            let stepped = self.advance_by(step_chains)?;
-            let improved = matches!(stepped, Stepped::Improved);
-            if improved || (every > 0 && self.iteration.is_multiple_of(every)) {
-                let progress = Progress {
-                    iteration: self.iteration,
-                    evaluations: self.evaluations,
-                    best: self.best(),
-                    improved,
-                    inverse_temperature: self.kernel.inverse_temperature(),
-                    diverged_chains: self.diverged,
-                };
-                if observer(&progress).is_break() {
-                    return Ok(self.report(Termination::Observer));
-                }
+            let improved = self.guarded(Self::advance)?;
+            if when.wants(self.iteration, improved) && observer(&self.progress(improved)).is_break()
+            {
+                return Ok(self.report(Termination::Observer));
             }
         }
     }
 
-    fn report(&self, termination: Termination) -> Report<F> {
-        let best = self.best();
-        Report {
-            value: best.value,
-            chain: self.best,
-            found_at: best.iteration,
-            iterations: self.iteration,
-            evaluations: self.evaluations,
-            diverged_chains: self.diverged,
-            chains: self.chains.as_ref().len(),
-            termination,
-        }
-    }
-
-    /// Polishes chain `chain`'s best point with L-BFGS ([`Lbfgs`]): the
-    /// point it polishes to replaces that best when it is lower (at the
-    /// current iteration), and so the global best when it is lowest. The
-    /// chain's state `(x, y)` is untouched, so sampling goes on as if no
-    /// polish had run. Its evaluations count in the run's, and it never
-    /// exceeds what remains of the evaluation budget (none left: a polish
-    /// of no evaluation that ends with [`PolishEnd::Budget`]).
+    /// Polishes chain `chain`'s best point with L-BFGS (an
+    /// [`Lbfgs`](crate::Lbfgs) over [`Chain`](crate::Chain)s, an
+    /// [`LbfgsIn`](crate::LbfgsIn) of the run's dimension over
+    /// [`FlatChains`](crate::FlatChains)): the point it polishes to
+    /// replaces that best when it is lower (at the current iteration), and
+    /// so the global best when it is lowest. The chain's state `(x, y)` is
+    /// untouched, so sampling goes on as if no polish had run. Its
+    /// evaluations count in the run's, and it never exceeds what remains
+    /// of the evaluation budget (none left: a polish of no evaluation that
+    /// ends with [`PolishEnd::Budget`]).
     ///
     /// ```
     /// use hrla::{Builder, Chain, Gaussian, Hrla, Lbfgs, PolishSettings, Rastrigin, Stop};
@@ -418,15 +319,20 @@ where
     /// # Ok::<(), hrla::Error>(())
     /// ```
     ///
-    /// Errors: [`Error::Index`] for a chain index out of range; those of
-    /// [`Lbfgs::minimize`] ([`Error::UnboundedBelow`] naming the chain, the
-    /// run then failed); the error of a run that has failed.
-    pub fn polish<const M: usize>(
+    /// Errors: [`Error::Index`] for a chain index out of range;
+    /// [`Error::Length`] for an L-BFGS of another dimension; those of
+    /// [`Lbfgs::minimize`](crate::Lbfgs::minimize)
+    /// ([`Error::UnboundedBelow`] naming the chain, the run then failed);
+    /// the error of a run that has failed.
+    pub fn polish<L>(
         &mut self,
         chain: usize,
-        lbfgs: &mut Lbfgs<F, D, M>,
+        lbfgs: &mut L,
         settings: PolishSettings<F>,
-    ) -> Result<Polished<F>, Error> {
+    ) -> Result<Polished<F>, Error>
+    where
+        St: Searches<F, P, B, L>,
+    {
         self.local_search(chain, Origin::Best, lbfgs, settings)
     }
 
@@ -440,62 +346,81 @@ where
     /// Errors: as [`polish`](Optimizer::polish), and [`Error::NotFinite`]
     /// (with no evaluation) for a diverged chain: its current point is
     /// not feasible.
-    pub fn quench<const M: usize>(
+    pub fn quench<L>(
         &mut self,
         chain: usize,
-        lbfgs: &mut Lbfgs<F, D, M>,
+        lbfgs: &mut L,
         settings: PolishSettings<F>,
-    ) -> Result<Polished<F>, Error> {
+    ) -> Result<Polished<F>, Error>
+    where
+        St: Searches<F, P, B, L>,
+    {
         self.local_search(chain, Origin::Current, lbfgs, settings)
     }
 
     /// L-BFGS from chain `chain`'s best or current point, within what is
     /// left of the evaluation budget; records the result when lower.
-    fn local_search<const M: usize>(
+    fn local_search<L>(
         &mut self,
         chain: usize,
         from: Origin,
-        lbfgs: &mut Lbfgs<F, D, M>,
+        lbfgs: &mut L,
         settings: PolishSettings<F>,
-    ) -> Result<Polished<F>, Error> {
-        let c = self.chain_at(chain)?;
+    ) -> Result<Polished<F>, Error>
+    where
+        St: Searches<F, P, B, L>,
+    {
+        self.chain_at(chain)?;
         if let Some(e) = self.failed {
             return Err(e);
         }
-        if from == Origin::Current && c.diverged {
-            return Err(diverged_start(&c.x, &c.grad, c.value));
+        self.chains.fits(lbfgs)?;
+        let (x, grad, value) = self.chains.point(chain);
+        if from == Origin::Current && self.chains.is_diverged(chain) {
+            return Err(diverged_start(x, grad, value));
         }
-        let (mut x, value) = match from {
-            Origin::Best => (c.best.x, c.best.value),
-            Origin::Current => (c.x, c.value),
+        let value = match from {
+            Origin::Best => self.chains.best(chain).value,
+            Origin::Current => value,
         };
         let settings = match within_budget(settings, self.evaluations_left(), value) {
             Ok(settings) => settings,
             Err(nothing) => return Ok(nothing),
         };
         self.guarded(|opt| {
-            // Counted here, so that a polish that fails counts what it
+            // Counted here, so that a search that fails counts what it
             // spent too.
-            let counted = Counted {
-                potential: &opt.potential,
-                calls: Cell::new(0),
-            };
-            let done = lbfgs.minimize_in(&counted, &opt.domain, &mut x, settings);
-            opt.evaluations += counted.calls.get();
+            let calls = Cell::new(0);
+            let k = opt.iteration;
+            let done = opt.chains.search(
+                chain,
+                from,
+                lbfgs,
+                &opt.potential,
+                &opt.domain,
+                settings,
+                k,
+                &calls,
+            );
+            opt.evaluations += calls.get();
             let done = done.map_err(|e| on_chain(e, chain))?;
-            opt.record(chain, &x, done.value)?;
+            opt.record(chain, done.value)?;
             Ok(done)
         })
     }
 
     /// Chain `chain`, or [`Error::Index`].
-    fn chain_at(&self, chain: usize) -> Result<&Chain<F, D, R>, Error> {
-        let chains = self.chains.as_ref();
-        chains.get(chain).ok_or(Error::Index {
-            name: "chain",
-            index: chain,
-            len: chains.len(),
-        })
+    fn chain_at(&self, chain: usize) -> Result<usize, Error> {
+        let n = self.chains.len();
+        if chain < n {
+            Ok(chain)
+        } else {
+            Err(Error::Index {
+                name: "chain",
+                index: chain,
+                len: n,
+            })
+        }
     }
 
     /// What is left of the evaluation budget (`u64::MAX` without one).
@@ -513,11 +438,20 @@ where
     /// lives again).
     ///
     /// Errors: [`Error::Index`] for a chain out of range;
+    /// [`Error::Length`] for `x` of another dimension than the run's;
     /// [`Error::UnboundedBelow`] if the value there is below
     /// `-sqrt(F::MAX)` (the run has then failed); the error of a run that
     /// has failed.
-    pub fn restart(&mut self, chain: usize, x: &[F; D]) -> Result<bool, Error> {
+    pub fn restart(&mut self, chain: usize, x: &[F]) -> Result<bool, Error> {
         self.chain_at(chain)?;
+        let d = self.chains.dim();
+        if x.len() != d {
+            return Err(Error::Length {
+                name: "x",
+                expected: d,
+                got: x.len(),
+            });
+        }
         if let Some(e) = self.failed {
             return Err(e);
         }
@@ -525,21 +459,21 @@ where
             return Ok(false);
         }
         self.guarded(|opt| {
-            let was_diverged = opt.chains.as_ref()[chain].diverged;
-            let c = &mut opt.chains.as_mut()[chain];
-            c.x = *x;
-            c.y = [F::ZERO; D];
-            opt.domain.confine(&mut c.x, &mut c.y);
-            let value = opt.potential.value_and_gradient(&c.x, &mut c.grad);
-            c.value = value;
-            let verdict = judge(&c.x, value, &c.grad, floor());
+            let was_diverged = opt.chains.is_diverged(chain);
+            let value = opt.chains.place(chain, x, &opt.potential, &opt.domain);
+            let (x, grad, _) = opt.chains.point(chain);
+            let verdict = judge(x, value, grad, floor());
             let ok = verdict == Verdict::Feasible;
-            c.diverged = !ok;
+            opt.chains.set_diverged(chain, !ok);
             opt.evaluations += 1;
-            opt.diverged = after_restart(opt.diverged, was_diverged, ok);
+            opt.diverged = match (was_diverged, ok) {
+                (true, true) => opt.diverged - 1,
+                (false, false) => opt.diverged + 1,
+                _ => opt.diverged,
+            };
             if ok {
-                let x = opt.chains.as_ref()[chain].x;
-                opt.record(chain, &x, value)?;
+                opt.chains.offer(chain, None, value, opt.iteration);
+                opt.record(chain, value)?;
             } else if verdict == Verdict::Unbounded {
                 return Err(Error::UnboundedBelow {
                     chain,
@@ -550,27 +484,56 @@ where
         })
     }
 
-    /// Makes `(x, value)` chain `chain`'s best when lower, at the current
-    /// iteration, and the global best when lowest: the path of every value
-    /// found outside a step. A value below the floor is refused.
-    fn record(&mut self, chain: usize, x: &[F; D], value: F) -> Result<(), Error> {
+    /// Makes chain `chain` the global best when its best, just offered
+    /// `value`, is now the lowest: the path of every value found outside
+    /// a step. A value below the floor is refused.
+    fn record(&mut self, chain: usize, value: F) -> Result<(), Error> {
         if value < floor() {
             return Err(Error::UnboundedBelow {
                 chain,
                 value: value.to_f64(),
             });
         }
-        if value < self.chains.as_ref()[chain].best.value {
-            let k = self.iteration;
-            let target = &mut self.chains.as_mut()[chain].best;
-            target.x = *x;
-            target.value = value;
-            target.iteration = k;
-            if value < self.best().value {
-                self.best = chain;
-            }
+        if self.chains.best(chain).value < self.best().value {
+            self.best = chain;
         }
         Ok(())
+    }
+}
+
+/// What the run is and where it stands, whatever the store.
+impl<F, P, S, C, St, B, E> Optimizer<F, P, S, C, St, B, E>
+where
+    F: Float,
+    S: Sampler<F>,
+    C: Schedule<F>,
+    St: Store<F>,
+{
+    /// The first stopping rule that holds now, if any.
+    pub fn termination(&self) -> Option<Termination> {
+        let live = (self.chains.len() - self.diverged) as u64;
+        self.stop.holds(
+            self.best().value,
+            self.iteration,
+            self.evaluations,
+            live,
+            self.stall_since,
+        )
+    }
+
+    /// The report of a run that ends now, for `termination`.
+    pub fn report(&self, termination: Termination) -> Report<F> {
+        let best = self.best();
+        Report {
+            value: best.value,
+            chain: self.best,
+            found_at: best.iteration,
+            iterations: self.iteration,
+            evaluations: self.evaluations,
+            diverged_chains: self.diverged,
+            chains: self.chains.len(),
+            termination,
+        }
     }
 
     /// Replaces the sampler between steps (for a step size chosen once the
@@ -595,8 +558,8 @@ where
     }
 
     /// The global running best.
-    pub fn best(&self) -> &Best<F, D> {
-        &self.chains.as_ref()[self.best].best
+    pub fn best(&self) -> Best<'_, F> {
+        self.chains.best(self.best)
     }
 
     /// The index and current value of the live chain with the lowest `U(x_k)`
@@ -604,20 +567,23 @@ where
     /// every chain has diverged.
     pub fn current_best(&self) -> Option<(usize, F)> {
         let mut best: Option<(usize, F)> = None;
-        for (i, c) in self.chains.as_ref().iter().enumerate() {
-            if !c.diverged && best.is_none_or(|(_, v)| c.value < v) {
-                best = Some((i, c.value));
+        for c in 0..self.chains.len() {
+            let value = self.chains.point(c).2;
+            if !self.chains.is_diverged(c) && best.is_none_or(|(_, v)| value < v) {
+                best = Some((c, value));
             }
         }
         best
     }
 
-    /// The chains, in order.
-    pub fn chains(&self) -> &[Chain<F, D, R>] {
-        self.chains.as_ref()
+    /// The chains: for [`Chains`](crate::Chains), the slice of
+    /// [`Chain`](crate::Chain)s; for [`FlatChains`](crate::FlatChains), the
+    /// arrays.
+    pub fn chains(&self) -> &St {
+        &self.chains
     }
 
-    /// Gives the chain storage back.
+    /// Gives the chain store back.
     pub fn into_chains(self) -> St {
         self.chains
     }
@@ -635,6 +601,11 @@ where
     /// Chains diverged so far.
     pub fn diverged_chains(&self) -> usize {
         self.diverged
+    }
+
+    /// The dimension.
+    pub fn dim(&self) -> usize {
+        self.chains.dim()
     }
 
     /// The potential.
@@ -667,70 +638,4 @@ where
     pub fn stop(&self) -> &Stop<F> {
         &self.stop
     }
-}
-
-/// Steps on an [`Executor`]: the chains of every step in parts, on threads
-/// if the executor has them, with the same bits as
-/// [`step`](Optimizer::step) and [`run`](Optimizer::run) for any executor.
-impl<F, P, S, C, St, const D: usize, R, B> Optimizer<F, P, S, C, St, D, R, B>
-where
-    F: Float,
-    P: Potential<F, D> + Sync,
-    S: Sampler<F>,
-    S::Kernel: Sync,
-    C: Schedule<F>,
-    St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
-    R: Rng + Send + 'static,
-    B: Domain<F, D> + Sync,
-{
-    /// [`step`](Optimizer::step), the chains stepped by `executor`.
-    pub fn step_on<E: Executor>(&mut self, executor: &E) -> Result<(), Error> {
-        self.advance_by(|cx, chains| in_parts(executor, cx, chains))
-            .map(drop)
-    }
-
-    /// [`run`](Optimizer::run), the chains of every step stepped by
-    /// `executor`.
-    pub fn run_on<E: Executor>(&mut self, executor: &E) -> Result<Report<F>, Error> {
-        if self.stop.is_empty() {
-            return Err(Error::NoStoppingRule);
-        }
-        self.run_with_on(executor, 0, |_| ControlFlow::Continue(()))
-    }
-
-    /// [`run_with`](Optimizer::run_with), the chains of every step stepped
-    /// by `executor`; the observer runs on the calling thread.
-    pub fn run_with_on<E, O>(
-        &mut self,
-        executor: &E,
-        every: u64,
-        observer: O,
-    ) -> Result<Report<F>, Error>
-    where
-        E: Executor,
-        O: FnMut(&Progress<'_, F, D>) -> ControlFlow<()>,
-    {
-        self.run_by(every, observer, &|cx, chains| {
-            in_parts(executor, cx, chains)
-        })
-    }
-}
-
-/// One step of `chains`, in the executor's parts.
-fn in_parts<E, F, K, P, B, R, const D: usize>(
-    executor: &E,
-    cx: &Context<'_, K, P, B, F>,
-    chains: &mut [Chain<F, D, R>],
-) -> Sweep<F>
-where
-    E: Executor,
-    F: Float,
-    K: Kernel<F> + Sync,
-    P: Potential<F, D> + Sync,
-    B: Domain<F, D> + Sync,
-    R: Rng + Send + 'static,
-{
-    executor
-        .fold_parts(chains, |first, part| sweep(cx, part, first), Sweep::then)
-        .unwrap_or(Sweep::NOTHING)
 }

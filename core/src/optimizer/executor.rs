@@ -52,19 +52,8 @@ pub trait Split: Sized + Send {
     fn split_at(self, mid: usize) -> (Self, Self);
 }
 
-/// Every chain on the calling thread, as one part: what
-/// [`Optimizer::step`](crate::Optimizer::step) does.
+/// Every chain on the calling thread, with no bound on the potential or
+/// the generators: the optimiser's default, unless the builder is given
+/// an [`Executor`] ([`Builder::executor`](crate::Builder::executor)).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Serial;
-
-impl Executor for Serial {
-    fn fold_parts<T, A, Part, Then>(&self, items: &mut [T], part: Part, _then: Then) -> Option<A>
-    where
-        T: Send,
-        A: Send,
-        Part: Fn(usize, &mut [T]) -> A + Sync + Send,
-        Then: Fn(A, A) -> A + Sync + Send,
-    {
-        (!items.is_empty()).then(|| part(0, items))
-    }
-}

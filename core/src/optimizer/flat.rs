@@ -5,8 +5,7 @@
 //! ([`BatchPotential`]): a whole step's chains in one call, or groups of
 //! the size the potential asks for.
 //!
-//! A run of dimension `d` given as [`Dyn`](crate::Dyn)`(d)` or as
-//! [`Const`](crate::Const)`<d>` gives the bits of the same run over
+//! A run of dimension `d` gives the bits of the same run over
 //! `Chain<F, d, R>`s: each chain draws the same words and does the same
 //! float operations in the same order.
 //!
@@ -21,17 +20,14 @@
 use core::any::{Any, TypeId};
 use core::cell::Cell;
 use core::marker::PhantomData;
-use core::ops::ControlFlow;
 
-use rand_core::Rng;
+use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-use super::algorithm::{Origin, after_restart, diverged_start, on_chain, within_budget};
 use super::executor::{Executor, Split};
-use super::report::Report;
-use super::stop::{Stop, Termination};
-use super::sweep::{LOCKSTEP_F64_FROM, Sweep, Verdict, judge};
-use crate::dim::Dim;
+use super::store::{Best, IntoStore, Origin, Searches, Starts, Steps, StepsOn, Store};
+use super::stream::chain_seed;
+use super::sweep::{Context, LOCKSTEP_F64_FROM, START_TRIES, Sweep, Verdict, judge};
 use crate::domain::SliceDomain;
 use crate::error::{Error, floor};
 use crate::float::Float;
@@ -39,8 +35,8 @@ use crate::lanes;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
 use crate::polish::{LbfgsIn, PolishSettings, Polished};
 use crate::potential::{BatchPotential, SlicePotential};
-use crate::sampler::{ChainSlices, Kernel, Sampler};
-use crate::schedule::Schedule;
+use crate::sampler::{ChainSlices, Kernel};
+use crate::start::SliceStart;
 
 /// Storage of `T`s that [`FlatChains`] reads and writes: any
 /// `AsRef<[T]> + AsMut<[T]>`, such as `&mut [T]` or `[T; N]` on firmware,
@@ -55,8 +51,8 @@ impl<T, S: AsRef<[T]> + AsMut<[T]> + ?Sized> FlatStorage<T> for S {}
 /// points' iterations, the divergence flags and the generators in three
 /// more (`Is`, `Ds`, `Rs`). Each is any [`FlatStorage`]: borrowed slices
 /// ([`FlatSlices`]) where the caller keeps the arrays, owned vectors where
-/// the chains (and the [`FlatOptimizer`] that holds them) must live on
-/// their own.
+/// the chains (and the [`Optimizer`](crate::Optimizer) that holds them)
+/// must live on their own.
 ///
 /// ```
 /// use hrla::{FlatChains, FlatSlices};
@@ -198,8 +194,8 @@ where
         self.values()[c]
     }
     /// Chain `c`'s running best.
-    pub fn best(&self, c: usize) -> BestRef<'_, F> {
-        BestRef {
+    pub fn best(&self, c: usize) -> Best<'_, F> {
+        Best {
             x: &self.best_positions()[self.span(c)],
             value: self.best_values()[c],
             iteration: self.iterations.as_ref()[c],
@@ -316,636 +312,264 @@ impl<F: Float + Send, R: Send> Split for Parts<'_, F, R> {
     }
 }
 
-/// A chain's best point, in [`FlatChains`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BestRef<'a, F> {
-    /// The position.
-    pub x: &'a [F],
-    /// `U(x)`.
-    pub value: F,
-    /// The iterate index `k` (0 is the initial point).
-    pub iteration: u64,
-}
-
-/// What [`FlatOptimizer::run_with`]'s observer sees.
-#[derive(Clone, Copy, Debug)]
-pub struct FlatProgress<'a, F> {
-    /// Steps done.
-    pub iteration: u64,
-    /// Potential evaluations so far.
-    pub evaluations: u64,
-    /// The global running best.
-    pub best: BestRef<'a, F>,
-    /// Whether this step improved the global running best.
-    pub improved: bool,
-    /// The inverse temperature of the last step.
-    pub inverse_temperature: F,
-    /// Chains diverged so far.
-    pub diverged_chains: usize,
-}
-
-/// [`Optimizer`](crate::Optimizer) over [`FlatChains`], for a dimension
-/// `Dm` known at compile time ([`Const`](crate::Const)) or at run time
-/// ([`Dyn`](crate::Dyn)). Built by
-/// [`Builder::build_flat`](crate::Builder::build_flat). It holds the
-/// chains, so it borrows what they borrow: over [`FlatSlices`] it lives
-/// as long as the slices, over owned arrays (`Vec`s on a host) as long as
-/// its owner wants.
-///
-/// Each step moves the live chains, then evaluates their new points through
-/// [`BatchPotential::values_and_gradients`]: all of them in one call, or in
-/// groups of the size the potential asks for
-/// ([`BatchPotential::chains_per_call`]).
-#[derive(Debug)]
-pub struct FlatOptimizer<F: Float, P, S: Sampler<F>, C, Dm, R, B, Fs, Is, Ds, Rs> {
-    potential: P,
-    domain: B,
-    sampler: S,
-    kernel: S::Kernel,
-    schedule: C,
-    chains: FlatChains<F, R, Fs, Is, Ds, Rs>,
-    dim: Dm,
-    best: usize,
-    iteration: u64,
-    evaluations: u64,
-    stride: u64,
-    stop: Stop<F>,
-    diverged: usize,
-    stall_value: F,
-    stall_since: u64,
-    failed: Option<Error>,
-}
-
-impl<F, P, S, C, Dm, R, B, Fs, Is, Ds, Rs> FlatOptimizer<F, P, S, C, Dm, R, B, Fs, Is, Ds, Rs>
+impl<F, R, Fs, Is, Ds, Rs> IntoStore<F, Self> for FlatChains<F, R, Fs, Is, Ds, Rs>
 where
     F: Float,
-    P: BatchPotential<F>,
-    S: Sampler<F>,
-    C: Schedule<F>,
-    Dm: Dim,
-    R: Rng + 'static,
-    B: SliceDomain<F>,
     Fs: FlatStorage<F>,
     Is: FlatStorage<u64>,
     Ds: FlatStorage<bool>,
     Rs: FlatStorage<R>,
 {
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn assemble(
-        potential: P,
-        domain: B,
-        sampler: S,
-        kernel: S::Kernel,
-        schedule: C,
-        chains: FlatChains<F, R, Fs, Is, Ds, Rs>,
-        dim: Dm,
-        best: usize,
-        evaluations: u64,
-        stride: u64,
-        stop: Stop<F>,
-    ) -> Self {
-        let stall_value = chains.best_values()[best];
-        Self {
-            potential,
-            domain,
-            sampler,
-            kernel,
-            schedule,
-            chains,
-            dim,
-            best,
-            iteration: 0,
-            evaluations,
-            stride,
-            stop,
-            diverged: 0,
-            stall_value,
-            stall_since: 0,
-            failed: None,
-        }
+    type Store = Self;
+    fn into_store(self) -> Self {
+        self
+    }
+}
+
+impl<F, R, Fs, Is, Ds, Rs> Store<F> for FlatChains<F, R, Fs, Is, Ds, Rs>
+where
+    F: Float,
+    Fs: FlatStorage<F>,
+    Is: FlatStorage<u64>,
+    Ds: FlatStorage<bool>,
+    Rs: FlatStorage<R>,
+{
+    fn len(&self) -> usize {
+        self.rngs.as_ref().len()
+    }
+    fn dim(&self) -> usize {
+        self.d
+    }
+    fn point(&self, c: usize) -> (&[F], &[F], F) {
+        (self.x(c), self.gradient(c), self.value(c))
+    }
+    fn is_diverged(&self, c: usize) -> bool {
+        self.diverged.as_ref()[c]
+    }
+    fn set_diverged(&mut self, c: usize, diverged: bool) {
+        self.diverged.as_mut()[c] = diverged;
+    }
+    fn best(&self, c: usize) -> Best<'_, F> {
+        FlatChains::best(self, c)
+    }
+    fn set_best(&mut self, c: usize, x: Option<&[F]>, value: F, k: u64) {
+        let p = self.parts();
+        let span = c * p.d..(c + 1) * p.d;
+        p.best_x[span.clone()].copy_from_slice(x.unwrap_or(&p.x[span]));
+        p.best_value[c] = value;
+        p.best_iteration[c] = k;
+    }
+}
+
+impl<F, R, Fs, Is, Ds, Rs, P, B> Steps<F, P, B> for FlatChains<F, R, Fs, Is, Ds, Rs>
+where
+    F: Float,
+    R: Rng + 'static,
+    Fs: FlatStorage<F>,
+    Is: FlatStorage<u64>,
+    Ds: FlatStorage<bool>,
+    Rs: FlatStorage<R>,
+    P: BatchPotential<F>,
+    B: SliceDomain<F>,
+{
+    fn sweep<K: Kernel<F>>(&mut self, cx: &Context<'_, K, P, B, F>) -> Sweep<F> {
+        sweep_flat(cx, self.parts(), 0)
     }
 
-    /// As [`Optimizer::step`](crate::Optimizer::step).
-    pub fn step(&mut self) -> Result<(), Error> {
-        self.advance().map(drop)
+    /// Evaluated through the batch seam, as a batch of one.
+    fn place(&mut self, c: usize, x: &[F], potential: &P, domain: &B) -> F {
+        let d = self.d;
+        let p = self.parts();
+        let span = c * d..(c + 1) * d;
+        let (xc, yc) = (&mut p.x[span.clone()], &mut p.y[span.clone()]);
+        xc.copy_from_slice(x);
+        yc.fill(F::ZERO);
+        domain.confine(xc, yc);
+        potential.values_and_gradients(d, xc, &mut p.grad[span], &mut p.value[c..=c], &[false]);
+        p.value[c]
+    }
+}
+
+/// Each part evaluates its own chains through the batch seam.
+impl<F, R, Fs, Is, Ds, Rs, P, B> StepsOn<F, P, B> for FlatChains<F, R, Fs, Is, Ds, Rs>
+where
+    F: Float + Send,
+    R: Rng + Send + 'static,
+    Fs: FlatStorage<F>,
+    Is: FlatStorage<u64>,
+    Ds: FlatStorage<bool>,
+    Rs: FlatStorage<R>,
+    P: BatchPotential<F> + Sync,
+    B: SliceDomain<F> + Sync,
+{
+    fn sweep_on<K: Kernel<F> + Sync, E: Executor>(
+        &mut self,
+        executor: &E,
+        cx: &Context<'_, K, P, B, F>,
+    ) -> Sweep<F> {
+        executor
+            .fold_split(
+                self.parts(),
+                |first, part| sweep_flat(cx, part, first),
+                Sweep::then,
+            )
+            .unwrap_or(Sweep::NOTHING)
+    }
+}
+
+/// The initial points are evaluated in one batch (redraws one by one).
+impl<F, R, Fs, Is, Ds, Rs, P, B, Sd> Starts<F, P, B, Sd> for FlatChains<F, R, Fs, Is, Ds, Rs>
+where
+    F: Float,
+    R: Rng + SeedableRng + 'static,
+    Fs: FlatStorage<F>,
+    Is: FlatStorage<u64>,
+    Ds: FlatStorage<bool>,
+    Rs: FlatStorage<R>,
+    P: BatchPotential<F>,
+    B: SliceDomain<F>,
+    Sd: SliceStart<F>,
+{
+    fn check(&self, start: &Sd, potential: &P, domain: &B) -> [(&'static str, Option<usize>); 3] {
+        [
+            ("box sides", domain.dimension()),
+            ("start", start.dimension()),
+            ("potential", potential.batch_dimension()),
+        ]
     }
 
-    /// `work` unless the run has failed; poisoned while it runs, failed
-    /// after if it fails for good (as the const optimiser's).
-    fn guarded<T>(&mut self, work: impl FnOnce(&mut Self) -> Result<T, Error>) -> Result<T, Error> {
-        if let Some(e) = self.failed {
-            return Err(e);
-        }
-        self.failed = Some(Error::Poisoned);
-        let result = work(self);
-        self.failed = match result {
-            Err(e @ (Error::UnboundedBelow { .. } | Error::AllDiverged { .. })) => Some(e),
-            _ => None,
-        };
-        result
-    }
-
-    /// One step; `true` when it improved the global best.
-    fn advance(&mut self) -> Result<bool, Error> {
-        self.advance_by(|cx, chains| sweep_flat(cx, chains, 0))
-    }
-
-    /// A step unless the run has failed, the chains stepped by
-    /// `step_chains`.
-    fn advance_by<T>(&mut self, step_chains: T) -> Result<bool, Error>
-    where
-        T: FnOnce(&FlatContext<'_, S::Kernel, P, B>, Parts<'_, F, R>) -> Sweep<F>,
-    {
-        self.guarded(|opt| opt.advance_live(step_chains))
-    }
-
-    fn advance_live<T>(&mut self, step_chains: T) -> Result<bool, Error>
-    where
-        T: FnOnce(&FlatContext<'_, S::Kernel, P, B>, Parts<'_, F, R>) -> Sweep<F>,
-    {
-        let n = self.chains.len();
-        let a = self.schedule.inverse_temperature(self.iteration);
-        if a != self.kernel.inverse_temperature() {
-            self.kernel = self.sampler.at(a)?;
-        }
-        let k = self.iteration + 1;
-        let before = self.chains.best_values()[self.best];
-        let cx = FlatContext {
-            kernel: &self.kernel,
-            potential: &self.potential,
-            domain: &self.domain,
-            d: self.dim.value(),
-            k,
-            record: k.is_multiple_of(self.stride),
-        };
-        let found = step_chains(&cx, self.chains.parts());
-        self.evaluations += found.evaluated;
-        self.diverged += found.diverged;
-        self.iteration = k;
-        let mut best_value = before;
-        if let Some((value, c)) = found.best.filter(|&(value, _)| value < before) {
-            self.best = c;
-            best_value = value;
-        }
-        if let Some((chain, value)) = found.unbounded {
-            return Err(Error::UnboundedBelow {
-                chain,
-                value: value.to_f64(),
-            });
-        }
-        if self.diverged == n {
-            return Err(Error::AllDiverged { chains: n });
-        }
-        if let Some((_, tolerance)) = self.stop.stall
-            && best_value < self.stall_value - tolerance
+    fn start(
+        &mut self,
+        seed: u64,
+        start: &mut Sd,
+        potential: &P,
+        domain: &B,
+        spare: &mut u64,
+    ) -> Result<u64, Error> {
+        let n = self.len();
+        let mut evaluations = n as u64;
+        let Parts {
+            d,
+            x,
+            y,
+            grad,
+            best_x,
+            value,
+            best_value,
+            best_iteration,
+            diverged,
+            rng,
+        } = self.parts();
+        for (c, ((x, y), rng)) in x
+            .chunks_exact_mut(d)
+            .zip(y.chunks_exact_mut(d))
+            .zip(rng.iter_mut())
+            .enumerate()
         {
-            self.stall_value = best_value;
-            self.stall_since = k;
+            *rng = R::seed_from_u64(chain_seed(seed, c as u64));
+            start.initial_point(c, rng, x);
+            y.fill(F::ZERO);
+            domain.confine(x, y);
         }
-        Ok(best_value < before)
-    }
-
-    /// As [`Optimizer::termination`](crate::Optimizer::termination).
-    pub fn termination(&self) -> Option<Termination> {
-        let live = (self.chains.len() - self.diverged) as u64;
-        self.stop.holds(
-            self.chains.best_values()[self.best],
-            self.iteration,
-            self.evaluations,
-            live,
-            self.stall_since,
-        )
-    }
-
-    /// As [`Optimizer::run`](crate::Optimizer::run).
-    pub fn run(&mut self) -> Result<Report<F>, Error> {
-        if self.stop.is_empty() {
-            return Err(Error::NoStoppingRule);
-        }
-        self.run_with(0, |_| ControlFlow::Continue(()))
-    }
-
-    /// As [`Optimizer::run_with`](crate::Optimizer::run_with).
-    pub fn run_with<O>(&mut self, every: u64, observer: O) -> Result<Report<F>, Error>
-    where
-        O: FnMut(&FlatProgress<'_, F>) -> ControlFlow<()>,
-    {
-        self.run_by(every, observer, &|cx, chains| sweep_flat(cx, chains, 0))
-    }
-
-    /// The loop of [`run_with`](FlatOptimizer::run_with), the chains of
-    /// each step stepped by `step_chains`.
-    fn run_by<O, T>(
-        &mut self,
-        every: u64,
-        mut observer: O,
-        step_chains: &T,
-    ) -> Result<Report<F>, Error>
-    where
-        O: FnMut(&FlatProgress<'_, F>) -> ControlFlow<()>,
-        T: Fn(&FlatContext<'_, S::Kernel, P, B>, Parts<'_, F, R>) -> Sweep<F>,
-    {
-        loop {
-            if let Some(e) = self.failed {
-                return Err(e);
-            }
-            if let Some(termination) = self.termination() {
-                return Ok(self.report(termination));
-            }
-            let improved = self.advance_by(step_chains)?;
-            if improved || (every > 0 && self.iteration.is_multiple_of(every)) {
-                let progress = FlatProgress {
-                    iteration: self.iteration,
-                    evaluations: self.evaluations,
-                    best: self.best(),
-                    improved,
-                    inverse_temperature: self.kernel.inverse_temperature(),
-                    diverged_chains: self.diverged,
-                };
-                if observer(&progress).is_break() {
-                    return Ok(self.report(Termination::Observer));
+        diverged.fill(false);
+        potential.values_and_gradients(d, x, grad, value, diverged);
+        for c in 0..n {
+            let span = c * d..(c + 1) * d;
+            let mut tries = 1;
+            loop {
+                match judge(&x[span.clone()], value[c], &grad[span.clone()], floor()) {
+                    Verdict::Feasible => break,
+                    Verdict::Unbounded => {
+                        return Err(Error::UnboundedBelow {
+                            chain: c,
+                            value: value[c].to_f64(),
+                        });
+                    }
+                    Verdict::Infeasible(what) => {
+                        if tries >= START_TRIES || *spare == 0 {
+                            return Err(Error::NonFiniteStart {
+                                chain: c,
+                                what,
+                                tries,
+                            });
+                        }
+                        *spare -= 1;
+                    }
                 }
+                let (xc, yc) = (&mut x[span.clone()], &mut y[span.clone()]);
+                start.initial_point(c, &mut rng[c], xc);
+                yc.fill(F::ZERO);
+                domain.confine(xc, yc);
+                potential.values_and_gradients(
+                    d,
+                    xc,
+                    &mut grad[span.clone()],
+                    &mut value[c..=c],
+                    &[false],
+                );
+                evaluations += 1;
+                tries += 1;
             }
         }
+        best_x.copy_from_slice(x);
+        best_value.copy_from_slice(value);
+        best_iteration.fill(0);
+        Ok(evaluations)
     }
+}
 
-    fn report(&self, termination: Termination) -> Report<F> {
-        let best = self.best();
-        Report {
-            value: best.value,
-            chain: self.best,
-            found_at: best.iteration,
-            iterations: self.iteration,
-            evaluations: self.evaluations,
-            diverged_chains: self.diverged,
-            chains: self.chains.len(),
-            termination,
-        }
-    }
-
-    /// As [`Optimizer::polish`](crate::Optimizer::polish), with L-BFGS in
-    /// caller storage of the run's dimension ([`Error::Length`] otherwise).
-    pub fn polish(
-        &mut self,
-        chain: usize,
-        lbfgs: &mut LbfgsIn<'_, F>,
-        settings: PolishSettings<F>,
-    ) -> Result<Polished<F>, Error> {
-        self.local_search(chain, Origin::Best, lbfgs, settings)
-    }
-
-    /// As [`Optimizer::quench`](crate::Optimizer::quench): L-BFGS from a
-    /// copy of chain `chain`'s current position, in caller storage of the
-    /// run's dimension ([`Error::Length`] otherwise).
-    pub fn quench(
-        &mut self,
-        chain: usize,
-        lbfgs: &mut LbfgsIn<'_, F>,
-        settings: PolishSettings<F>,
-    ) -> Result<Polished<F>, Error> {
-        self.local_search(chain, Origin::Current, lbfgs, settings)
-    }
-
-    /// L-BFGS from chain `chain`'s best or current point, within what is
-    /// left of the evaluation budget; records the result when lower.
-    fn local_search(
-        &mut self,
-        chain: usize,
-        from: Origin,
-        lbfgs: &mut LbfgsIn<'_, F>,
-        settings: PolishSettings<F>,
-    ) -> Result<Polished<F>, Error> {
-        self.chain_at(chain)?;
-        if let Some(e) = self.failed {
-            return Err(e);
-        }
-        let d = self.chains.dim();
-        if lbfgs.dimension() != d {
-            return Err(Error::Length {
-                name: "L-BFGS dimension",
-                expected: d,
-                got: lbfgs.dimension(),
-            });
-        }
-        let c = &self.chains;
-        if from == Origin::Current && c.is_diverged(chain) {
-            return Err(diverged_start(
-                c.x(chain),
-                c.gradient(chain),
-                c.value(chain),
-            ));
-        }
-        let value = match from {
-            Origin::Best => c.best_values()[chain],
-            Origin::Current => c.value(chain),
-        };
-        let settings = match within_budget(settings, self.evaluations_left(), value) {
-            Ok(settings) => settings,
-            Err(nothing) => return Ok(nothing),
-        };
-        self.guarded(|opt| {
-            // Counted here, so that a search that fails counts what it
-            // spent too.
-            let counted = Counted {
-                potential: &opt.potential,
-                calls: Cell::new(0),
-            };
-            let start = match from {
-                Origin::Best => opt.chains.best(chain).x,
-                Origin::Current => opt.chains.x(chain),
-            };
-            let (done, x) = lbfgs.minimize_from(&counted, &opt.domain, start, settings);
-            opt.evaluations += counted.calls.get();
-            let done = done.map_err(|e| on_chain(e, chain))?;
-            opt.record(chain, Some(x), done.value)?;
-            Ok(done)
-        })
-    }
-
-    /// As [`Optimizer::restart`](crate::Optimizer::restart), with `x` of
-    /// the run's dimension ([`Error::Length`] otherwise). The point is
-    /// evaluated through the batch seam, as a batch of one.
-    pub fn restart(&mut self, chain: usize, x: &[F]) -> Result<bool, Error> {
-        self.chain_at(chain)?;
-        let d = self.chains.dim();
-        if x.len() != d {
-            return Err(Error::Length {
-                name: "x",
-                expected: d,
-                got: x.len(),
-            });
-        }
-        if let Some(e) = self.failed {
-            return Err(e);
-        }
-        if self.evaluations_left() == 0 {
-            return Ok(false);
-        }
-        self.guarded(|opt| {
-            let p = opt.chains.parts();
-            let span = chain * d..(chain + 1) * d;
-            let was_diverged = p.diverged[chain];
-            let (xc, yc) = (&mut p.x[span.clone()], &mut p.y[span.clone()]);
-            xc.copy_from_slice(x);
-            yc.fill(F::ZERO);
-            opt.domain.confine(xc, yc);
-            opt.potential.values_and_gradients(
-                d,
-                xc,
-                &mut p.grad[span.clone()],
-                &mut p.value[chain..=chain],
-                &[false],
-            );
-            let value = p.value[chain];
-            let verdict = judge(&p.x[span.clone()], value, &p.grad[span], floor());
-            let ok = verdict == Verdict::Feasible;
-            p.diverged[chain] = !ok;
-            opt.evaluations += 1;
-            opt.diverged = after_restart(opt.diverged, was_diverged, ok);
-            if ok {
-                opt.record(chain, None, value)?;
-            } else if verdict == Verdict::Unbounded {
-                return Err(Error::UnboundedBelow {
-                    chain,
-                    value: value.to_f64(),
-                });
-            }
-            Ok(true)
-        })
-    }
-
-    /// Chain `chain`, or [`Error::Index`].
-    fn chain_at(&self, chain: usize) -> Result<usize, Error> {
-        let n = self.chains.len();
-        if chain < n {
-            Ok(chain)
+/// L-BFGS in caller storage of the run's dimension ([`Error::Length`]
+/// otherwise).
+impl<F, R, Fs, Is, Ds, Rs, P, B> Searches<F, P, B, LbfgsIn<'_, F>>
+    for FlatChains<F, R, Fs, Is, Ds, Rs>
+where
+    F: Float,
+    Fs: FlatStorage<F>,
+    Is: FlatStorage<u64>,
+    Ds: FlatStorage<bool>,
+    Rs: FlatStorage<R>,
+    P: BatchPotential<F>,
+    B: SliceDomain<F>,
+{
+    fn fits(&self, lbfgs: &LbfgsIn<'_, F>) -> Result<(), Error> {
+        if lbfgs.dimension() == self.d {
+            Ok(())
         } else {
-            Err(Error::Index {
-                name: "chain",
-                index: chain,
-                len: n,
+            Err(Error::Length {
+                name: "L-BFGS dimension",
+                expected: self.d,
+                got: lbfgs.dimension(),
             })
         }
     }
 
-    /// What is left of the evaluation budget (`u64::MAX` without one).
-    fn evaluations_left(&self) -> u64 {
-        self.stop
-            .evaluations
-            .map_or(u64::MAX, |b| b.saturating_sub(self.evaluations))
-    }
-
-    /// Makes `value` at `x` (`None`: the chain's position) chain `chain`'s
-    /// best when lower, at the current iteration, and the global best when
-    /// lowest: the path of every value found outside a step. A value below
-    /// the floor is refused.
-    fn record(&mut self, chain: usize, x: Option<&[F]>, value: F) -> Result<(), Error> {
-        if value < floor() {
-            return Err(Error::UnboundedBelow {
-                chain,
-                value: value.to_f64(),
-            });
-        }
-        let (k, global) = (self.iteration, self.chains.best_values()[self.best]);
-        let p = self.chains.parts();
-        if value < p.best_value[chain] {
-            let span = chain * p.d..(chain + 1) * p.d;
-            p.best_x[span.clone()].copy_from_slice(x.unwrap_or(&p.x[span]));
-            p.best_value[chain] = value;
-            p.best_iteration[chain] = k;
-            if value < global {
-                self.best = chain;
-            }
-        }
-        Ok(())
-    }
-
-    /// As [`Optimizer::set_sampler`](crate::Optimizer::set_sampler).
-    pub fn set_sampler(&mut self, sampler: S) -> Result<(), Error> {
-        let a = self.schedule.inverse_temperature(self.iteration);
-        self.kernel = sampler.at(a)?;
-        self.sampler = sampler;
-        Ok(())
-    }
-
-    /// As [`Optimizer::schedule_mut`](crate::Optimizer::schedule_mut).
-    pub fn schedule_mut(&mut self) -> &mut C {
-        &mut self.schedule
-    }
-
-    /// The chain that holds the global running best.
-    pub fn best_chain(&self) -> usize {
-        self.best
-    }
-
-    /// The global running best.
-    pub fn best(&self) -> BestRef<'_, F> {
-        self.chains.best(self.best)
-    }
-
-    /// As [`Optimizer::current_best`](crate::Optimizer::current_best).
-    pub fn current_best(&self) -> Option<(usize, F)> {
-        let c = &self.chains;
-        let mut best: Option<(usize, F)> = None;
-        for (i, &value) in c.values().iter().enumerate() {
-            if !c.is_diverged(i) && best.is_none_or(|(_, v)| value < v) {
-                best = Some((i, value));
-            }
-        }
-        best
-    }
-
-    /// The chains.
-    pub fn chains(&self) -> &FlatChains<F, R, Fs, Is, Ds, Rs> {
-        &self.chains
-    }
-
-    /// Gives the chain storage back.
-    pub fn into_chains(self) -> FlatChains<F, R, Fs, Is, Ds, Rs> {
-        self.chains
-    }
-
-    /// Steps done so far.
-    pub fn iteration(&self) -> u64 {
-        self.iteration
-    }
-
-    /// Potential-and-gradient evaluations so far.
-    pub fn evaluations(&self) -> u64 {
-        self.evaluations
-    }
-
-    /// Chains diverged so far.
-    pub fn diverged_chains(&self) -> usize {
-        self.diverged
-    }
-
-    /// The dimension.
-    pub fn dim(&self) -> Dm {
-        self.dim
-    }
-
-    /// The potential.
-    pub fn potential(&self) -> &P {
-        &self.potential
-    }
-
-    /// The domain of the chains.
-    pub fn domain(&self) -> &B {
-        &self.domain
-    }
-
-    /// The sampler.
-    pub fn sampler(&self) -> &S {
-        &self.sampler
-    }
-
-    /// The sampler's kernel at the inverse temperature of the last step.
-    pub fn kernel(&self) -> &S::Kernel {
-        &self.kernel
-    }
-
-    /// The schedule.
-    pub fn schedule(&self) -> &C {
-        &self.schedule
-    }
-
-    /// The stopping rules.
-    pub fn stop(&self) -> &Stop<F> {
-        &self.stop
-    }
-}
-
-/// Steps on an [`Executor`]: the chains of every step in parts, on
-/// threads if the executor has them, with the same bits as
-/// [`step`](FlatOptimizer::step) and [`run`](FlatOptimizer::run) for any
-/// executor. Each part evaluates its own chains through the batch seam.
-impl<F, P, S, C, Dm, R, B, Fs, Is, Ds, Rs> FlatOptimizer<F, P, S, C, Dm, R, B, Fs, Is, Ds, Rs>
-where
-    F: Float + Send,
-    P: BatchPotential<F> + Sync,
-    S: Sampler<F>,
-    S::Kernel: Sync,
-    C: Schedule<F>,
-    Dm: Dim,
-    R: Rng + Send + 'static,
-    B: SliceDomain<F> + Sync,
-    Fs: FlatStorage<F>,
-    Is: FlatStorage<u64>,
-    Ds: FlatStorage<bool>,
-    Rs: FlatStorage<R>,
-{
-    /// [`step`](FlatOptimizer::step), the chains stepped by `executor`.
-    pub fn step_on<E: Executor>(&mut self, executor: &E) -> Result<(), Error> {
-        self.advance_by(|cx, chains| in_parts(executor, cx, chains))
-            .map(drop)
-    }
-
-    /// [`run`](FlatOptimizer::run), the chains of every step stepped by
-    /// `executor`.
-    pub fn run_on<E: Executor>(&mut self, executor: &E) -> Result<Report<F>, Error> {
-        if self.stop.is_empty() {
-            return Err(Error::NoStoppingRule);
-        }
-        self.run_with_on(executor, 0, |_| ControlFlow::Continue(()))
-    }
-
-    /// [`run_with`](FlatOptimizer::run_with), the chains of every step
-    /// stepped by `executor`; the observer runs on the calling thread.
-    pub fn run_with_on<E, O>(
+    fn search(
         &mut self,
-        executor: &E,
-        every: u64,
-        observer: O,
-    ) -> Result<Report<F>, Error>
-    where
-        E: Executor,
-        O: FnMut(&FlatProgress<'_, F>) -> ControlFlow<()>,
-    {
-        self.run_by(every, observer, &|cx, chains| {
-            in_parts(executor, cx, chains)
-        })
+        c: usize,
+        from: Origin,
+        lbfgs: &mut LbfgsIn<'_, F>,
+        potential: &P,
+        domain: &B,
+        settings: PolishSettings<F>,
+        k: u64,
+        calls: &Cell<u64>,
+    ) -> Result<Polished<F>, Error> {
+        let counted = Counted { potential, calls };
+        let start = match from {
+            Origin::Best => FlatChains::best(self, c).x,
+            Origin::Current => self.x(c),
+        };
+        let (done, x) = lbfgs.minimize_from(&counted, domain, start, settings);
+        let done = done?;
+        self.offer(c, Some(x), done.value, k);
+        Ok(done)
     }
-}
-
-/// One step of `chains`, in the executor's parts.
-fn in_parts<E, F, K, P, B, R>(
-    executor: &E,
-    cx: &FlatContext<'_, K, P, B>,
-    chains: Parts<'_, F, R>,
-) -> Sweep<F>
-where
-    E: Executor,
-    F: Float + Send,
-    K: Kernel<F> + Sync,
-    P: BatchPotential<F> + Sync,
-    B: SliceDomain<F> + Sync,
-    R: Rng + Send + 'static,
-{
-    executor
-        .fold_split(
-            chains,
-            |first, part| sweep_flat(cx, part, first),
-            Sweep::then,
-        )
-        .unwrap_or(Sweep::NOTHING)
-}
-
-/// What every chain's step needs: the kernel, the potential, the domain,
-/// the dimension, the new iterate's index and whether it is recorded.
-pub(crate) struct FlatContext<'a, K, P, B> {
-    kernel: &'a K,
-    potential: &'a P,
-    domain: &'a B,
-    d: usize,
-    k: u64,
-    record: bool,
 }
 
 /// A potential whose evaluations are counted.
 struct Counted<'a, P> {
     potential: &'a P,
-    calls: Cell<u64>,
+    calls: &'a Cell<u64>,
 }
 
 /// One point at a time through the batch seam: a batch of one.
@@ -965,7 +589,7 @@ impl<F: Float, P: BatchPotential<F>> SlicePotential<F> for Counted<'_, P> {
 /// (by [`LANES`] in lockstep where the const path would), confined, then
 /// evaluated in one batch and judged in chain order.
 fn sweep_flat<F, K, P, B, R>(
-    cx: &FlatContext<'_, K, P, B>,
+    cx: &Context<'_, K, P, B, F>,
     mut chains: Parts<'_, F, R>,
     offset: usize,
 ) -> Sweep<F>
@@ -976,7 +600,7 @@ where
     B: SliceDomain<F>,
     R: Rng + 'static,
 {
-    let (kernel, potential, d) = (cx.kernel, cx.potential, cx.d);
+    let (kernel, potential, d) = (cx.kernel, cx.potential, chains.d);
     let chains = &mut chains;
     let n = chains.len();
     let lockstep = lanes::VECTORS
@@ -1015,7 +639,7 @@ where
 /// judges them in order, recording their bests.
 #[inline(always)]
 fn evaluate_group<F, K, P, B, R>(
-    cx: &FlatContext<'_, K, P, B>,
+    cx: &Context<'_, K, P, B, F>,
     chains: &mut Parts<'_, F, R>,
     group: core::ops::Range<usize>,
     offset: usize,
@@ -1025,7 +649,7 @@ fn evaluate_group<F, K, P, B, R>(
     P: BatchPotential<F>,
     B: SliceDomain<F>,
 {
-    let (potential, domain, d) = (cx.potential, cx.domain, cx.d);
+    let (potential, domain, d) = (cx.potential, cx.domain, chains.d);
     let points = group.start * d..group.end * d;
     for ((x, y), &dead) in chains.x[points.clone()]
         .chunks_exact_mut(d)

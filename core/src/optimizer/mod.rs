@@ -6,7 +6,7 @@
 //! generator, seeded from the run's seed and its index only
 //! ([`chain_seed`]): chain `c`'s trajectory is a pure function of
 //! `(seed, c)`, whatever order or number of chains are stepped with it.
-//! [`Optimizer::builder`] assembles a run, [`Stop`] says when it ends, and
+//! [`Builder`] assembles a run, [`Stop`] says when it ends, and
 //! [`Report`] says why it ended.
 
 mod algorithm;
@@ -16,16 +16,19 @@ mod executor;
 mod flat;
 mod report;
 mod stop;
+mod store;
 mod stream;
 mod sweep;
 
 pub use algorithm::Optimizer;
-pub(crate) use builder::draw_point;
-pub use builder::{Builder, START_TRIES};
-pub use chain::{Best, Chain};
+pub use builder::Builder;
+pub use chain::{Chain, Chains};
 pub use executor::{Executor, Serial, Split};
-pub use flat::{BestRef, FlatChains, FlatOptimizer, FlatProgress, FlatSlices, FlatStorage};
-pub use report::{Progress, Report};
+pub use flat::{FlatChains, FlatSlices, FlatStorage};
+pub use report::{Observe, Progress, Report};
+pub use store::{Best, Store};
+
 pub use stop::{Stop, Termination};
 pub use stream::{chain_seed, splitmix64};
-pub(crate) use sweep::{Verdict, judge};
+pub use sweep::START_TRIES;
+pub(crate) use sweep::{Verdict, draw_point, judge};

@@ -1,6 +1,9 @@
-//! One step of a run of consecutive chains ([`sweep`]) and what it found
-//! ([`Sweep`]), the unit that the optimiser's step is made of, serially or
-//! in parallel parts ([`Executor`](super::Executor)).
+//! What every store's step shares: what a step of consecutive chains
+//! found ([`Sweep`]), the unit that the optimiser's step is made of,
+//! serially or in parallel parts ([`Executor`](super::Executor)); its
+//! read-only [`Context`]; and the one judgement of every point a run
+//! evaluates ([`judge`], [`draw_point`]). Each store steps its chains in
+//! its own hot loop (`chain.rs`, `flat.rs`).
 //!
 //! Chains are independent: a sweep of chains `i..j` touches nothing of any
 //! other chain, and [`Sweep::then`] combines the findings of neighbouring
@@ -9,23 +12,15 @@
 //!
 //! Where the target has float vectors, the chains use the default
 //! generator and the point is large enough to pay
-//! ([`LOCKSTEP_F64_FROM`] for `f64`), a sweep steps groups of [`LANES`]
+//! ([`LOCKSTEP_F64_FROM`] for `f64`), a sweep steps groups of
+//! [`LANES`](crate::LANES)
 //! live chains in lockstep
-//! ([`Kernel::step_lanes`]); elsewhere chain after chain. Each chain draws
-//! the same words either way.
+//! ([`Kernel::step_lanes`](crate::Kernel::step_lanes)); elsewhere chain
+//! after chain. Each chain draws the same words either way.
 
-use core::any::{Any, TypeId};
-
-use rand_core::Rng;
-use rand_xoshiro::Xoshiro256PlusPlus;
-
-use super::chain::Chain;
-use crate::domain::Domain;
+use crate::error::{Error, floor};
 use crate::float::Float;
-use crate::lanes;
-use crate::lockstep::{LANES, Xoshiro256Lanes};
-use crate::potential::Potential;
-use crate::sampler::{ChainState, Kernel};
+use crate::potential::SlicePotential;
 
 /// The smallest point size at which `f64` chains step in lockstep. Measured
 /// on 10-D Rastrigin (interleaved A/B, `bench/ab`, time in lockstep over
@@ -42,7 +37,7 @@ pub(crate) const LOCKSTEP_F64_FROM: usize = if cfg!(target_feature = "avx512f") 
 
 /// What one step of some chains found.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Sweep<F> {
+pub struct Sweep<F> {
     /// The lowest new value that improved its chain's best, with its chain:
     /// the first such chain on ties.
     pub best: Option<(F, usize)>,
@@ -80,7 +75,7 @@ impl<F: Float> Sweep<F> {
 
 /// The read-only context of a step: the kernel at `a_k`, the potential and
 /// the domain, the new iterate's index and whether it is recorded.
-pub(crate) struct Context<'a, K, P, B, F> {
+pub struct Context<'a, K, P, B, F> {
     pub kernel: &'a K,
     pub potential: &'a P,
     pub domain: &'a B,
@@ -89,127 +84,58 @@ pub(crate) struct Context<'a, K, P, B, F> {
     pub floor: F,
 }
 
-/// Steps every live chain of `chains` (chain `first + i` of the run is
-/// `chains[i]`) and evaluates it.
-pub(crate) fn sweep<F, K, P, B, R, const D: usize>(
-    cx: &Context<'_, K, P, B, F>,
-    chains: &mut [Chain<F, D, R>],
-    first: usize,
-) -> Sweep<F>
-where
-    F: Float,
-    K: Kernel<F>,
-    P: Potential<F, D>,
-    B: Domain<F, D>,
-    R: Rng + 'static,
-{
-    let mut found = Sweep::NOTHING;
-    let lockstep = lanes::VECTORS
-        && TypeId::of::<R>() == TypeId::of::<Xoshiro256PlusPlus>()
-        && (F::MANTISSA_DIGITS <= 24 || D >= LOCKSTEP_F64_FROM);
-    let grouped = if lockstep {
-        chains.len() / LANES * LANES
-    } else {
-        0
-    };
-    let (groups, rest) = chains.split_at_mut(grouped);
-    for (g, group) in groups.chunks_exact_mut(LANES).enumerate() {
-        let Ok(group) = <&mut [Chain<F, D, R>; LANES]>::try_from(group) else {
-            continue;
-        };
-        if group.iter().any(|c| c.diverged) || !step_lockstep(cx.kernel, group) {
-            for c in group.iter_mut().filter(|c| !c.diverged) {
-                cx.kernel.step(&mut c.x, &mut c.y, &c.grad, &mut c.rng);
-            }
-        }
-        let first = first + g * LANES;
-        for (i, c) in group.iter_mut().enumerate() {
-            if !c.diverged {
-                evaluate(cx, c, first + i, &mut found);
-            }
-        }
-    }
-    let first = first + grouped;
-    for (i, c) in rest.iter_mut().enumerate() {
-        if !c.diverged {
-            cx.kernel.step(&mut c.x, &mut c.y, &c.grad, &mut c.rng);
-            evaluate(cx, c, first + i, &mut found);
-        }
-    }
-    found
-}
+/// The most points drawn for one chain's start: a point where the
+/// potential or its gradient is not finite (a NaN, `+inf`) is infeasible,
+/// and the chain draws again from the start law, up to this many times in
+/// all. With a fraction `p` of the start law feasible, a chain fails with
+/// probability `(1 - p)^100`: below `1e-4` for `p = 0.09`.
+pub const START_TRIES: u32 = 100;
 
-/// Steps a group of live chains in lockstep; `false` (nothing stepped) if
-/// their generators are not xoshiro256++.
-#[inline]
-fn step_lockstep<F, K, R, const D: usize>(kernel: &K, group: &mut [Chain<F, D, R>; LANES]) -> bool
-where
-    F: Float,
-    K: Kernel<F>,
-    R: 'static,
-{
-    let generators = group
-        .each_ref()
-        .map(|c| (&c.rng as &dyn Any).downcast_ref::<Xoshiro256PlusPlus>());
-    let [Some(g0), Some(g1), Some(g2), Some(g3)] = generators else {
-        return false;
-    };
-    let mut rng = Xoshiro256Lanes::load([g0, g1, g2, g3]);
-    kernel.step_lanes(
-        group.each_mut().map(|c| ChainState {
-            x: &mut c.x,
-            y: &mut c.y,
-            grad: &c.grad,
-        }),
-        &mut rng,
-    );
-    let generators = group
-        .each_mut()
-        .map(|c| (&mut c.rng as &mut dyn Any).downcast_mut::<Xoshiro256PlusPlus>());
-    if let [Some(g0), Some(g1), Some(g2), Some(g3)] = generators {
-        rng.store([g0, g1, g2, g3]);
-    }
-    true
-}
-
-/// Confines a stepped chain to the domain, evaluates `U` and `∇U` there and
-/// updates its running best, or marks it diverged.
-#[inline(always)]
-fn evaluate<F, K, P, B, R, const D: usize>(
-    cx: &Context<'_, K, P, B, F>,
-    chain: &mut Chain<F, D, R>,
+/// Draws chain `c`'s initial point `x` with `place` (from the chain's
+/// generator) and evaluates it into `grad`, drawing again where the point
+/// is infeasible: up to [`START_TRIES`] points, each counted in
+/// `evaluations`, the redraws within `spare`. Its value, or
+/// [`Error::UnboundedBelow`] for a point below the floor,
+/// [`Error::NonFiniteStart`] when no point was feasible.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn draw_point<F, P, R>(
     c: usize,
-    found: &mut Sweep<F>,
-) where
+    x: &mut [F],
+    grad: &mut [F],
+    rng: &mut R,
+    potential: &P,
+    spare: &mut u64,
+    evaluations: &mut u64,
+    mut place: impl FnMut(&mut R, &mut [F]),
+) -> Result<F, Error>
+where
     F: Float,
-    P: Potential<F, D>,
-    B: Domain<F, D>,
+    P: SlicePotential<F> + ?Sized,
 {
-    cx.domain.confine(&mut chain.x, &mut chain.y);
-    let value = cx.potential.value_and_gradient(&chain.x, &mut chain.grad);
-    found.evaluated += 1;
-    chain.value = value;
-    match judge(&chain.x, value, &chain.grad, cx.floor) {
-        Verdict::Feasible => {}
-        verdict => {
-            // Frozen, so that a non-finite value or one below the floor
-            // never becomes the best.
-            if verdict == Verdict::Unbounded {
-                found.unbounded.get_or_insert((c, value));
+    let mut tries = 0;
+    loop {
+        place(rng, x);
+        let value = potential.value_and_gradient(x, grad);
+        *evaluations += 1;
+        tries += 1;
+        match judge(x, value, grad, floor()) {
+            Verdict::Feasible => return Ok(value),
+            Verdict::Unbounded => {
+                return Err(Error::UnboundedBelow {
+                    chain: c,
+                    value: value.to_f64(),
+                });
             }
-            chain.diverged = true;
-            found.diverged += 1;
-            return;
-        }
-    }
-    if cx.record && value < chain.best.value {
-        // Field by field: a whole `Best` would be built on the stack first,
-        // `D` floats of it.
-        chain.best.x = chain.x;
-        chain.best.value = value;
-        chain.best.iteration = cx.k;
-        if found.best.is_none_or(|(b, _)| value < b) {
-            found.best = Some((value, c));
+            Verdict::Infeasible(what) => {
+                if tries >= START_TRIES || *spare == 0 {
+                    return Err(Error::NonFiniteStart {
+                        chain: c,
+                        what,
+                        tries,
+                    });
+                }
+                *spare -= 1;
+            }
         }
     }
 }

@@ -10,7 +10,9 @@
 //! reads [`Optimizer::current_best`] at exactly the iterates wanted, and
 //! the progress bar is a counter in the same loop.
 
-use hrla::{AnySampler, AnySchedule, Builder, Chain, Gaussian, Optimizer, Point, Rastrigin, Stop};
+use hrla::{
+    AnySampler, AnySchedule, Builder, Chain, Chains, Gaussian, Optimizer, Point, Rastrigin, Stop,
+};
 use hrla_dyn::AnyStart;
 
 use crate::config::{RunSpec, StartSpec};
@@ -32,8 +34,13 @@ fn start<const D: usize>(spec: StartSpec) -> Result<AnyStart<D>, hrla::Error> {
 
 /// The kernel optimiser of one run: its `N` chains in one `Vec` it owns
 /// (on the heap, so T2's 10 000 chains never touch a worker's stack).
-pub type RunOptimizer<const D: usize> =
-    Optimizer<f64, Rastrigin, AnySampler<f64>, AnySchedule<f64>, Vec<Chain<f64, D>>, D>;
+pub type RunOptimizer<const D: usize> = Optimizer<
+    f64,
+    Rastrigin,
+    AnySampler<f64>,
+    AnySchedule<f64>,
+    Chains<f64, Vec<Chain<f64, D>>, D>,
+>;
 
 /// Builds the optimiser of one run of `spec` seeded with `seed` (see
 /// [`run_seed`](crate::seed::run_seed)): `spec.chains` chains, chain `c`
@@ -65,7 +72,7 @@ pub fn best_now<const D: usize>(opt: &RunOptimizer<D>) -> f64 {
 /// (`+inf`, within no tolerance), as before the kernel made it one.
 fn step<const D: usize>(opt: &mut RunOptimizer<D>) -> Result<(), hrla::Error> {
     match opt.step() {
-        Ok(()) | Err(hrla::Error::AllDiverged { .. }) => Ok(()),
+        Ok(_) | Err(hrla::Error::AllDiverged { .. }) => Ok(()),
         Err(e) => Err(e),
     }
 }

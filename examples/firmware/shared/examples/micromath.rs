@@ -293,7 +293,7 @@ fn seeds() {
                 let mut chains = hrla_embedded::chains::<F, hrla_embedded::Xoshiro128PlusPlus>();
                 let (opt, _) =
                     hrla_embedded::run::<F, _>(&mut chains, seed, STEPS).expect("valid setting");
-                let x = opt.best().x.map(Float::to_f64);
+                let x: [f64; 2] = core::array::from_fn(|i| opt.best().x[i].to_f64());
                 Rastrigin.value(&x)
             })
             .collect();

@@ -40,7 +40,9 @@
 #![deny(missing_docs)]
 
 use hrla::rand_core::{Rng, SeedableRng};
-use hrla::{Builder, Chain, Error, Float, Gaussian, Hrla, Optimizer, Rastrigin, Report, Stop};
+use hrla::{
+    Builder, Chain, Chains, Error, Float, Gaussian, Hrla, Optimizer, Rastrigin, Report, Stop,
+};
 pub use rand_xoshiro::{Xoshiro128PlusPlus, Xoshiro256PlusPlus};
 
 /// The dimension of the Rastrigin potential.
@@ -60,7 +62,7 @@ pub type DemoChain<F, R = Xoshiro128PlusPlus> = Chain<F, D, R>;
 /// The optimiser the example runs, over chains it borrows from the caller
 /// (it holds no array of chains itself).
 pub type Demo<'a, F, R = Xoshiro128PlusPlus> =
-    Optimizer<F, Rastrigin, Hrla<F>, F, &'a mut [DemoChain<F, R>], D, R>;
+    Optimizer<F, Rastrigin, Hrla<F>, F, Chains<F, &'a mut [DemoChain<F, R>], D, R>>;
 
 /// A per-chain generator the example can run with: its name in the
 /// variants' file names and on the host's command line.

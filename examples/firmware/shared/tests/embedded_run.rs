@@ -21,7 +21,7 @@ fn finds_the_minimum<F: Float>() {
         assert_eq!(report.termination, Termination::Steps);
         assert_eq!(report.iterations, STEPS);
         assert_eq!(report.value, opt.best().value);
-        let x = opt.best().x.map(Float::to_f64);
+        let x: [f64; 2] = std::array::from_fn(|i| opt.best().x[i].to_f64());
         let u = Rastrigin.value(&x);
         assert!(u < 1.5, "seed {seed}: U(best) = {u}");
         if u < 0.01 {
