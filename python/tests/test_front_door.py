@@ -1,0 +1,212 @@
+"""The front door's promises to a scipy user (issue #35): what ``minimize``
+does with the user's ``fun``, callback and arguments, in every method and
+every form of ``fun``."""
+
+import signal
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import hrla
+
+METHODS = ["auto", "hrla", "ula", "ola"]
+BOX = [(-2.0, 2.0)] * 3
+
+
+def bits(a):
+    return np.asarray(a, dtype=np.float64).tobytes()
+
+
+def same(a, b):
+    assert bits(a.x) == bits(b.x) and bits(a.fun) == bits(b.fun), (a.x, b.x, a.fun, b.fun)
+    assert (a.nfev, a.nit, a.termination) == (b.nfev, b.nit, b.termination)
+
+
+# --- Ctrl-C: at the next call of fun, in every method and form ----------
+
+
+def sphere_value(x):
+    return float(np.sum((np.asarray(x) - 0.3) ** 2))
+
+
+def form(name, body):
+    """``minimize``'s arguments for ``fun`` in the form ``name``, each call
+    of ``fun`` (or of ``jac``) running ``body()`` first."""
+    if name == "scalar":
+        return dict(fun=lambda x: (body(), sphere_value(x))[1])
+    if name == "3-point":
+        return dict(fun=lambda x: (body(), sphere_value(x))[1], jac="3-point")
+    if name == "jac":
+        return dict(fun=lambda x: (body(), (sphere_value(x), 2 * (x - 0.3)))[1], jac=True)
+    if name == "jac-callable":
+        return dict(fun=sphere_value, jac=lambda x: (body(), 2 * (x - 0.3))[1])
+    if name == "vectorized":
+        return dict(fun=lambda x: (body(), np.sum((x - 0.3) ** 2, axis=0))[1], vectorized=True)
+    if name == "map":
+        return dict(fun=lambda x: (body(), sphere_value(x))[1], workers=lambda f, xs: [f(x) for x in xs])
+    raise AssertionError(name)
+
+
+FORMS = ["scalar", "3-point", "jac", "jac-callable", "vectorized", "map"]
+
+
+@pytest.mark.timeout(600)
+@settings(max_examples=60, deadline=None, derandomize=True, suppress_health_check=list(HealthCheck))
+@given(name=st.sampled_from(FORMS), method=st.sampled_from(METHODS), k=st.integers(1, 400),
+       how=st.sampled_from(["signal", "raise"]), observed=st.booleans())
+def test_ctrl_c_in_fun_reaches_the_caller_at_once(name, method, k, how, observed):
+    # The k-th call of fun (or jac) is interrupted: by SIGINT, whose
+    # handler raises KeyboardInterrupt inside it, or by raising it. The
+    # run must end with it there: no call after it, whatever the method,
+    # the form of fun, and whether a callback and time limit watch.
+    calls = [0]
+
+    def body():
+        calls[0] += 1
+        if calls[0] == k:
+            if how == "signal":
+                signal.raise_signal(signal.SIGINT)
+            raise KeyboardInterrupt
+
+    watch = dict(callback=lambda intermediate_result: None, maxtime=1e6) if observed else {}
+    with pytest.raises(KeyboardInterrupt):
+        hrla.minimize(bounds=BOX, method=method, maxfun=10**7, rng=k, **form(name, body), **watch)
+    assert calls[0] == k
+
+
+def test_ctrl_c_from_a_timer_while_fun_sleeps():
+    # The issue's case: a fun that takes 10 ms, the default method, no
+    # observer, SIGINT from another thread. Each method must raise
+    # KeyboardInterrupt with no call of fun after the signal was handled.
+    # The 60 s limit only guards against a hang; the verdict is what
+    # happened, not how fast.
+    code = textwrap.dedent("""
+        import signal, threading, time
+        import numpy as np
+        import hrla
+
+        calls = [0]
+        seen = []
+
+        def handler(signum, frame):
+            seen.append(calls[0])
+            raise KeyboardInterrupt
+
+        signal.signal(signal.SIGINT, handler)
+
+        def f(x):
+            calls[0] += 1
+            time.sleep(0.01)
+            return float(np.sum((x - 0.3) ** 2))
+
+        for method in ("auto", "hrla"):
+            calls[0] = 0
+            del seen[:]
+            timer = threading.Timer(0.2, signal.raise_signal, (signal.SIGINT,))
+            timer.start()
+            try:
+                hrla.minimize(f, [(-5.0, 5.0)] * 3, method=method, maxfun=10**12, rng=1)
+            except KeyboardInterrupt:
+                pass
+            else:
+                raise AssertionError("no KeyboardInterrupt")
+            timer.join()
+            assert len(seen) == 1 and calls[0] == seen[0], (calls, seen)
+        print("ok")
+    """)
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0 and p.stdout.strip() == "ok", p.stderr[-3000:]
+
+
+def test_the_first_ctrl_c_ends_a_run_whose_worker_hangs(tmp_path):
+    # workers=2: the first call of fun at a point with x_0 > 1 signals the
+    # parent once (the file marks it done), then hangs for good. scipy
+    # raises at the first Ctrl-C; so must hrla, without a second call of
+    # the hanging fun. The limit only guards a hang.
+    code = textwrap.dedent("""
+        import os, signal, sys, time
+        import numpy as np
+        import hrla
+
+        def f(x, mark):
+            if x[0] > 1.0:
+                try:
+                    os.close(os.open(mark, os.O_CREAT | os.O_EXCL))
+                except FileExistsError:
+                    pass
+                else:
+                    os.kill(os.getppid(), signal.SIGINT)
+                time.sleep(3600)
+            return float(np.sum((x - 0.3) ** 2))
+
+        if __name__ == "__main__":
+            try:
+                hrla.minimize(f, [(-5.0, 5.0)] * 2, args=(sys.argv[1],), workers=2, maxfun=10**9, rng=1)
+            except KeyboardInterrupt:
+                print("ok")
+    """)
+    p = subprocess.run([sys.executable, "-c", code, str(tmp_path / "signalled")], capture_output=True, text=True,
+                       timeout=60)
+    assert p.returncode == 0 and p.stdout.strip() == "ok", p.stderr[-3000:]
+
+
+def pyrastrigin(X):
+    t = 2 * np.pi * X
+    return X.shape[1] + np.sum(X * X - np.cos(t), axis=1), 2 * X + 2 * np.pi * np.sin(t)
+
+
+def optimizer(potential):
+    return hrla.Optimizer(potential, hrla.Hrla.paper(0.01), 4.0, hrla.Gaussian([3.0] * 4, 3.0), chains=20,
+                          seed=4, stop=hrla.Stop().steps(10**12))
+
+
+def state(opt):
+    return (opt.iteration, opt.evaluations, bits(opt.x), bits(opt.y), bits(opt.gradient), bits(opt.best_x),
+            bits(opt.best_value), opt.best_chain)
+
+
+@pytest.mark.parametrize("k", [1, 7])
+def test_an_optimizer_interrupted_between_steps_goes_on_with_the_same_bits(k):
+    # Ctrl-C seen between two steps (here raised by the observer after
+    # step k) leaves the optimiser after a whole step: going on gives the
+    # bits of a run never interrupted.
+    def observer(iteration, evaluations, best):
+        if iteration == k:
+            raise KeyboardInterrupt
+
+    opt = optimizer(pyrastrigin)
+    with pytest.raises(KeyboardInterrupt):
+        opt.run(observer)
+    assert opt.iteration == k
+    opt.step(3)
+    fresh = optimizer(pyrastrigin)
+    fresh.step(k + 3)
+    assert state(opt) == state(fresh)
+
+
+def test_an_optimizer_interrupted_inside_its_potential_says_so():
+    # Ctrl-C inside the potential (its k-th call) ends the run there,
+    # with no call after it. That step's points were moved but never
+    # evaluated, so the optimiser cannot go on with the same bits: every
+    # later call says why instead of stepping a half-made state.
+    calls = [0]
+
+    def potential(X):
+        calls[0] += 1
+        if calls[0] == 5:
+            raise KeyboardInterrupt
+        return pyrastrigin(X)
+
+    opt = optimizer(potential)
+    with pytest.raises(KeyboardInterrupt):
+        opt.run()
+    assert calls[0] == 5
+    for again in (lambda: opt.step(1), opt.run, lambda: opt.polish(0)):
+        with pytest.raises(hrla.HrlaError, match="KeyboardInterrupt"):
+            again()
+    assert calls[0] == 5
