@@ -269,7 +269,9 @@ def minimize(
 
     - ``fun(x, *args) -> float`` at one point ``x`` of shape ``(D,)``, as
       scipy calls it; or a built-in potential (``hrla.Rastrigin()``, ...),
-      which runs in Rust;
+      which runs in Rust. Every call of ``fun`` (and ``jac``, and the
+      callback) gets an array of its own, a copy as scipy passes: writing
+      into it changes nothing of the run;
     - ``jac``: ``None`` or ``"2-point"`` (forward differences, ``D``
       calls of ``fun`` per gradient), ``"3-point"`` (central differences,
       ``2 D`` calls), both with the steps of

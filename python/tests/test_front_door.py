@@ -210,3 +210,49 @@ def test_an_optimizer_interrupted_inside_its_potential_says_so():
         with pytest.raises(hrla.HrlaError, match="KeyboardInterrupt"):
             again()
     assert calls[0] == 5
+
+
+# --- fun gets a copy of the point ----------------------------------------
+
+
+def writing(name, write):
+    """The arguments of ``form`` ``name`` whose calls write into their
+    ``x`` after computing the value when ``write``."""
+    def scrub(x):
+        if write:
+            x[...] = 0.3
+    if name == "scalar":
+        return dict(fun=lambda x: (sphere_value(x), scrub(x))[0])
+    if name == "jac":
+        return dict(fun=lambda x: ((sphere_value(x), 2 * (x - 0.3)), scrub(x))[0], jac=True)
+    if name == "jac-callable":
+        return dict(fun=lambda x: (sphere_value(x), scrub(x))[0], jac=lambda x: (2 * (x - 0.3), scrub(x))[0])
+    if name == "vectorized":
+        return dict(fun=lambda x: (np.sum((x - 0.3) ** 2, axis=0), scrub(x))[0], vectorized=True)
+    if name == "map":
+        return dict(fun=lambda x: (sphere_value(x), scrub(x))[0], workers=lambda f, xs: [f(x) for x in xs])
+    raise AssertionError(name)
+
+
+@pytest.mark.parametrize("method", ["auto", "hrla"])
+@pytest.mark.parametrize("name", ["scalar", "jac", "jac-callable", "vectorized", "map"])
+def test_fun_writing_into_its_argument_changes_nothing(method, name):
+    # scipy passes fun a copy of the point; so does hrla, in every path:
+    # a fun that writes into x changes neither the run nor the result.
+    clean = hrla.minimize(bounds=BOX, method=method, maxfun=3_000, rng=2, **writing(name, False))
+    dirty = hrla.minimize(bounds=BOX, method=method, maxfun=3_000, rng=2, **writing(name, True))
+    same(clean, dirty)
+    assert bits(clean.jac) == bits(dirty.jac)
+
+
+@pytest.mark.parametrize("method", ["auto", "hrla"])
+def test_a_callback_writing_into_its_point_changes_nothing(method):
+    def scribble(xk):
+        xk[...] = 0.3
+
+    def scribble_result(intermediate_result):
+        intermediate_result.x[...] = 0.3
+
+    clean = hrla.minimize(sphere_value, BOX, method=method, maxfun=3_000, rng=2, callback=lambda xk: None)
+    for cb in (scribble, scribble_result):
+        same(clean, hrla.minimize(sphere_value, BOX, method=method, maxfun=3_000, rng=2, callback=cb))
