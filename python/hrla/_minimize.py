@@ -128,10 +128,16 @@ def _sides(box: Box, d: Optional[int]) -> Tuple[Any, Any]:
 
 
 def _count(v: Any, name: str, minimum: int = 0) -> int:
-    """A count argument: an int in ``[minimum, 2**64)``, else an error
-    naming it."""
-    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-        raise TypeError(f"{name} must be an int, got {v!r}")
+    """A count argument: an int (Python's or numpy's) or a float with a
+    whole value (``maxfun=1e5``, as scipy's own defaults are written), in
+    ``[minimum, 2**64)``; else an error naming it."""
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer, float, np.floating)):
+        raise TypeError(f"{name} must be an int (or a float with a whole value, such as 1e5), got {v!r}")
+    if isinstance(v, (float, np.floating)):
+        if not math.isfinite(v):
+            raise ValueError(f"{name} must be finite, got {float(v)!r}")
+        if not float(v).is_integer():
+            raise ValueError(f"{name} must be a whole number, got {float(v)!r}")
     count = int(v)
     if count < minimum:
         raise ValueError(f"{name} must be >= {minimum}, got {count}")
@@ -217,7 +223,8 @@ class _Watch:
                     answer = self.callback(x)
             except StopIteration:
                 return self.stop("Callback")
-            if answer is True:
+            # Any true answer stops, as scipy's callbacks do (np.True_, 1).
+            if answer:
                 return self.stop("Callback")
         return False
 
@@ -242,8 +249,8 @@ def minimize(
     jac: Any = None,
     x0: Any = None,
     method: str = "auto",
-    maxfun: Optional[int] = None,
-    maxiter: Optional[int] = None,
+    maxfun: Optional[float] = None,
+    maxiter: Optional[float] = None,
     maxtime: Optional[float] = None,
     target: Optional[float] = None,
     stall: Optional[Tuple[int, float]] = None,
@@ -314,11 +321,15 @@ def minimize(
     (``x``, ``fun``: the best so far; ``nfev``, ``nit``) once per step or
     round (a callback with another parameter name gets ``x``, as scipy's
     older convention) and stops the run by raising ``StopIteration`` or
-    returning ``True``. ``disp=True`` prints a progress line (steps or
+    returning a true value (``True``, ``np.True_``, ``1``: any answer whose
+    ``bool`` is true, as scipy tests it). ``disp=True`` prints a progress line (steps or
     rounds, evaluations, best value, rate) at most once a second.
 
     ``budget`` and ``steps`` are the older names of ``maxfun`` and
-    ``maxiter`` (deprecated). An argument the method does not use raises
+    ``maxiter`` (deprecated). Counts (``maxfun``, ``maxiter``, ``chains``,
+    ``dim``, ``polish``, ``stall``'s window) are ints, numpy integers or
+    floats with a whole value (``maxfun=1e5``, as scipy writes its
+    defaults); another float raises ``ValueError`` naming the argument. An argument the method does not use raises
     ``ValueError`` naming it.
 
     Returns an :class:`OptimizeResult`. Bad input raises ``TypeError`` or

@@ -256,3 +256,42 @@ def test_a_callback_writing_into_its_point_changes_nothing(method):
     clean = hrla.minimize(sphere_value, BOX, method=method, maxfun=3_000, rng=2, callback=lambda xk: None)
     for cb in (scribble, scribble_result):
         same(clean, hrla.minimize(sphere_value, BOX, method=method, maxfun=3_000, rng=2, callback=cb))
+
+
+# --- a callback stops the run with any true answer ------------------------
+
+
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("answer", [True, np.True_, 1, np.int64(2), "stop"])
+def test_a_true_answer_of_the_callback_stops_the_run(method, answer):
+    res = hrla.minimize(sphere_value, BOX, method=method, maxfun=20_000, rng=1, callback=lambda xk: answer)
+    assert res.termination == "Callback" and not res.success
+
+
+@pytest.mark.parametrize("answer", [False, np.False_, 0, None, ""])
+def test_a_false_answer_of_the_callback_goes_on(answer):
+    res = hrla.minimize(sphere_value, BOX, maxfun=3_000, rng=1, callback=lambda xk: answer)
+    assert res.termination == "Evaluations"
+
+
+# --- counts as integral floats ------------------------------------------
+
+
+@pytest.mark.parametrize("method", ["auto", "hrla"])
+def test_counts_may_be_integral_floats_or_numpy_integers(method):
+    plain = hrla.minimize(sphere_value, BOX, method=method, maxfun=3_000, maxiter=40, rng=1)
+    for maxfun, maxiter in ((3e3, 40.0), (np.int64(3_000), np.uint8(40)), (np.float32(3_000), np.float64(40))):
+        same(plain, hrla.minimize(sphere_value, BOX, method=method, maxfun=maxfun, maxiter=maxiter, rng=1))
+
+
+@pytest.mark.parametrize("kw, error, text", [
+    ({"maxfun": 1e5 + 0.5}, ValueError, "maxfun must be a whole number, got 100000.5"),
+    ({"maxfun": float("inf")}, ValueError, "maxfun must be finite, got inf"),
+    ({"maxfun": float("nan")}, ValueError, "maxfun must be finite, got nan"),
+    ({"maxiter": 2.5}, ValueError, "maxiter must be a whole number"),
+    ({"maxfun": "1e5"}, TypeError, "maxfun must be an int"),
+    ({"maxfun": True}, TypeError, "maxfun must be an int"),
+])
+def test_a_count_that_is_not_whole_is_named(kw, error, text):
+    with pytest.raises(error, match=text):
+        hrla.minimize(sphere_value, BOX, **kw)
