@@ -309,8 +309,13 @@ class Objective:
         return u, g.reshape(n, d)
 
     def each(self, function: Callable[..., Any], x: np.ndarray) -> List[Any]:
-        """``function`` at each row of ``x``, through the workers."""
-        return list(self.mapper.map(Call(function, self.args), list(x)))
+        """``function`` at each row of ``x``, through the workers: one
+        answer a row, or ``ValueError`` naming the map."""
+        answers = list(self.mapper.map(Call(function, self.args), list(x)))
+        if len(answers) != len(x):
+            raise ValueError(f"the workers map returned {len(answers)} results for {len(x)} points: a map-like "
+                             f"workers must return one result per point, in order, as the builtin map")
+        return answers
 
     @staticmethod
     def column_gradients(g: Any, n: int, d: int, what: str) -> np.ndarray:

@@ -295,3 +295,20 @@ def test_counts_may_be_integral_floats_or_numpy_integers(method):
 def test_a_count_that_is_not_whole_is_named(kw, error, text):
     with pytest.raises(error, match=text):
         hrla.minimize(sphere_value, BOX, **kw)
+
+
+# --- a workers map's answers are counted ----------------------------------
+
+
+@pytest.mark.parametrize("jac", [None, True, "callable"])
+@pytest.mark.parametrize("wrong", [lambda xs: xs[:3], lambda xs: xs + xs[:1], lambda xs: []])
+def test_a_workers_map_with_the_wrong_number_of_results_is_named(jac, wrong):
+    # A map that drops or adds results would misalign values and points
+    # (or fail deep in numpy): the one path through the workers counts.
+    def mapper(f, xs):
+        return wrong([f(x) for x in xs])
+
+    kw = {None: {}, True: {"jac": True}, "callable": {"jac": lambda x: 2 * (x - 0.3)}}[jac]
+    fun = (lambda x: (sphere_value(x), 2 * (x - 0.3))) if jac is True else sphere_value
+    with pytest.raises(ValueError, match=r"the workers map returned \d+ results for \d+ points"):
+        hrla.minimize(fun, BOX, method="hrla", workers=mapper, maxfun=3_000, rng=1, **kw)
