@@ -54,9 +54,28 @@ class OptimizeResult(Dict[str, Any]):
       (``"auto"``);
     - ``success``: ``True`` only when ``fun`` is finite, some chain is still
       alive and a stopping rule other than the callback ended the run;
-      ``status``: the index of ``termination`` in :data:`TERMINATIONS`;
-      ``termination``: why it ended (``"Evaluations"``, ``"Steps"``,
-      ``"Target"``, ``"Stalled"``, ``"Time"``, ``"Callback"``);
+      ``termination``: why it ended; ``status``: its index in
+      :data:`TERMINATIONS`. scipy's ``status`` is 0 for success and a
+      solver's own code otherwise; hrla's names only why the run ended,
+      and ``success`` says whether it succeeded (a spent budget is a
+      normal end, as ``maxiter`` is for ``dual_annealing``):
+
+      ======  ===============  =======  ==================================
+      status  termination      success  the run ended when
+      ======  ===============  =======  ==================================
+      0       ``Steps``        yes      ``maxiter`` steps or rounds ran
+      1       ``Evaluations``  yes      ``maxfun`` left no whole step
+      2       ``Target``       yes      the best reached ``target``
+      3       ``Stalled``      yes      ``stall``'s window saw no gain
+      4       ``Observer``     no       an observer of the run-time
+                                        objects asked to stop
+      5       ``Time``         yes      ``maxtime`` seconds passed
+      6       ``Callback``     no       the callback asked to stop
+      ======  ===============  =======  ==================================
+
+      (``success`` is also ``False`` when ``fun`` is not finite or every
+      chain diverged.)
+
     - ``all_diverged``, ``diverged_chains``, ``chains``, ``method``,
       ``seed`` (the seed the run used: the same call with ``rng=seed``
       gives the same bits);
@@ -72,9 +91,43 @@ class OptimizeResult(Dict[str, Any]):
     __setattr__ = dict.__setitem__
     __delattr__ = dict.__delitem__
 
+    #: The keys printed first, in this order (scipy's order, with
+    #: ``termination`` beside ``status``); the others follow as stored.
+    _order_keys = ("message", "success", "status", "termination", "fun", "x", "nit", "jac", "nfev", "njev")
+
     def __repr__(self) -> str:
-        keys = ("fun", "x", "nfev", "nit", "success", "status", "termination", "message")
-        return "OptimizeResult(" + ", ".join(f"{k}={self[k]!r}" for k in keys if k in self) + ")"
+        """One field a line, keys right-aligned, as scipy's
+        ``OptimizeResult`` prints (and arrays as scipy prints them)."""
+        if not self:
+            return type(self).__name__ + "()"
+
+        def rank(item: Tuple[str, Any]) -> float:
+            return self._order_keys.index(item[0]) if item[0] in self._order_keys else math.inf
+
+        return _formatted(dict(sorted(self.items(), key=rank)))
+
+
+def _formatted(d: Any, indent: int = 0) -> str:
+    """scipy's ``_dict_formatter``: a dict one key a line, each key
+    right-aligned to the longest plus one and its value's later lines
+    indented under the value; a value as ``str`` with numpy's print options
+    of scipy's results (floats in ten characters, arrays of more than 12
+    entries cut to their first and last two)."""
+    if isinstance(d, dict):
+        width = max(map(len, d)) + 1
+        return "\n".join(k.rjust(width) + ": " + _formatted(v, width + indent + 2).replace("\n", "\n" + " " * (width + 2))
+                         for k, v in d.items())
+    with np.printoptions(linewidth=76 - indent, edgeitems=2, threshold=12, formatter={"float_kind": _float10}):
+        return str(d)
+
+
+def _float10(x: Any) -> str:
+    """A float in exactly ten characters, as scipy prints a result's."""
+    if np.isnan(x):
+        return "       nan"
+    if np.isinf(x):
+        return "       inf" if x > 0 else "      -inf"
+    return np.format_float_scientific(x, precision=3, pad_left=2, unique=False)
 
 
 Box = Union[None, Interval, List[Tuple[float, float]]]

@@ -312,3 +312,20 @@ def test_a_workers_map_with_the_wrong_number_of_results_is_named(jac, wrong):
     fun = (lambda x: (sphere_value(x), 2 * (x - 0.3))) if jac is True else sphere_value
     with pytest.raises(ValueError, match=r"the workers map returned \d+ results for \d+ points"):
         hrla.minimize(fun, BOX, method="hrla", workers=mapper, maxfun=3_000, rng=1, **kw)
+
+
+# --- the result prints as scipy's ------------------------------------------
+
+
+@pytest.mark.parametrize("method", ["auto", "hrla"])
+@pytest.mark.parametrize("dim", [3, 20])
+def test_the_result_prints_one_field_a_line_as_scipys(method, dim):
+    so = pytest.importorskip("scipy.optimize")
+    res = hrla.minimize(sphere_value, [(-2.0, 2.0)] * dim, method=method, maxfun=3_000 * dim, rng=1)
+    text = repr(res)
+    assert str(res) == text and text.count("\n") == len(res) - 1
+    assert text.splitlines()[0].strip().startswith("message: ")
+    # scipy's own printer, given the same order of keys, prints the same.
+    peer = so.OptimizeResult(**res, _order_keys=list(hrla.OptimizeResult._order_keys))
+    assert repr(peer) == text
+    assert repr(hrla.OptimizeResult()) == "OptimizeResult()"
