@@ -366,7 +366,12 @@ def minimize(
     counted), ``maxiter`` steps or rounds, the ``target`` value, ``stall =
     (window, tolerance)`` (the best has not fallen by more than
     ``tolerance`` over ``window`` steps or rounds), ``maxtime`` seconds,
-    the callback, Ctrl-C (``KeyboardInterrupt``).
+    the callback, Ctrl-C (``KeyboardInterrupt``). Every method reads the
+    limits alike: ``maxiter=0`` evaluates the starts only (the samplers then
+    polish, as ``differential_evolution`` does); ``target=inf`` is reached
+    by any finite value, so the run stops at its first look, and
+    ``target=-inf`` is never reached (no target); a ``stall`` tolerance of
+    ``inf`` stalls the run after its window.
 
     ``rng`` (or ``seed``) is ``None`` (fresh entropy), an int or a
     ``numpy.random.Generator``; the result's ``seed`` repeats the run.
@@ -411,6 +416,8 @@ def minimize(
     if maxtime is not None and maxtime < 0:
         raise ValueError(f"maxtime must be >= 0 seconds, got {maxtime}")
     target = None if target is None else _number(target, "target")
+    if target == -math.inf:
+        target = None  # never reached: no target
     if stall is not None:
         try:
             window, tolerance = stall
@@ -556,12 +563,18 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
             raise ValueError(f"maxfun leaves no step to {n} chains before a polish of {polish_k} gradients "
                              f"({cost} calls of fun each): raise maxfun, or lower polish or chains")
         steps = sampling if steps is None else min(steps, sampling)
-    if steps is not None:
+    # The limits as the kernel's rules, which take only finite numbers and
+    # a step budget of one or more; every method reads them the same way
+    # (maxiter=0: the starts only; target=inf: any finite value reaches
+    # it, so the run stops at its first look; stall's tolerance inf: the
+    # run stalls after its window), so the largest float stands for inf,
+    # and no step budget for maxiter=0, whose run is not started.
+    if steps:
         stop = stop.steps(steps)
     if target is not None:
-        stop = stop.target(target)
+        stop = stop.target(min(target, sys.float_info.max))
     if stall is not None:
-        stop = stop.stall(*stall)
+        stop = stop.stall(stall[0], min(stall[1], sys.float_info.max))
     opt = Optimizer(potential, _SAMPLERS[method].paper(0.01 if h is None else h),
                     4.0 if schedule is None else schedule, start, chains=n, seed=seed, stop=stop, domain=box, dim=dim)
     if x0 is not None:
@@ -570,8 +583,11 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
     w = _Watch(method, target=None, stall=None, maxiter=None, maxtime=maxtime, callback=callback, disp=disp,
                nfev=nfev)
     observed = maxtime is not None or callback is not None or disp
-    report = opt.run(w if observed else None, with_x=callback is not None)
-    termination = report.termination
+    report: Any = None
+    termination = "Steps"
+    if steps != 0:
+        report = opt.run(w if observed else None, with_x=callback is not None)
+        termination = report.termination
     if termination == "Observer" and w.reason:
         # A kernel rule that holds too comes first.
         termination = opt.termination() or w.reason
@@ -583,17 +599,17 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
         # polish only adds evaluations and lowers the best), unless a
         # target is now reached, which comes first.
         report = opt.report() or report
-        if report.termination != "Observer":
+        if report is not None and report.termination != "Observer":
             termination = report.termination
     x, value, _ = opt.best
     jac = _gradient(x, objective, builtin, fun)
     if disp:
-        w.show(report.iterations, opt.evaluations, value, _clock())
+        w.show(opt.iteration, opt.evaluations, value, _clock())
     return _result(
         x=x, fun=value, jac=jac, nfev=nfev(opt.evaluations),
-        njev=objective.njev if objective is not None else opt.evaluations, nit=report.iterations,
-        termination=termination, diverged_chains=report.diverged_chains, chains=report.chains, method=method,
-        seed=seed, kernel_message=report.message,
+        njev=objective.njev if objective is not None else opt.evaluations, nit=opt.iteration,
+        termination=termination, diverged_chains=opt.diverged_chains, chains=len(opt), method=method,
+        seed=seed, kernel_message="" if report is None else report.message,
     )
 
 

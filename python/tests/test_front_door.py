@@ -329,3 +329,28 @@ def test_the_result_prints_one_field_a_line_as_scipys(method, dim):
     peer = so.OptimizeResult(**res, _order_keys=list(hrla.OptimizeResult._order_keys))
     assert repr(peer) == text
     assert repr(hrla.OptimizeResult()) == "OptimizeResult()"
+
+
+# --- one reading of the limits in every method -----------------------------
+
+
+INF = float("inf")
+
+
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("kw, termination, nit", [
+    ({"maxiter": 0}, "Steps", 0),            # the starts only
+    ({"target": INF}, "Target", 0),          # any finite value reaches it: the first look stops
+    ({"stall": (1, INF)}, "Stalled", 1),     # no fall exceeds inf: stalled after the window
+    ({"stall": (3, INF)}, "Stalled", 3),
+])
+def test_every_method_reads_the_limits_alike(method, kw, termination, nit):
+    res = hrla.minimize(sphere_value, BOX, method=method, maxfun=20_000, rng=1, **kw)
+    assert (res.termination, res.nit, res.success) == (termination, nit, True), res
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_a_target_of_minus_inf_is_no_target(method):
+    # Never reached: the run is the one without a target.
+    same(hrla.minimize(sphere_value, BOX, method=method, maxfun=5_000, rng=1),
+         hrla.minimize(sphere_value, BOX, method=method, maxfun=5_000, rng=1, target=-INF))
