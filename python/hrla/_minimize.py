@@ -41,6 +41,16 @@ _SAMPLER_ONLY = ("h", "schedule", "start", "polish")
 #: The default of ``maxfun``.
 MAXFUN = 125_000
 
+#: The ``context`` of a three-argument ``callback(x, f, context)``, as
+#: ``scipy.optimize.dual_annealing`` passes it: where the best ``f`` was
+#: last seen. ``SAMPLING`` (0, dual_annealing's "the annealing"): during
+#: the run, once per step (samplers) or round (``"auto"``, each of whose
+#: rounds ends its moves with quenches); ``LOCAL_SEARCH`` (1, its "the
+#: local search"): after the end's L-BFGS polish, once, when that lowered
+#: the best. (dual_annealing's 2 has no counterpart.)
+SAMPLING = 0
+LOCAL_SEARCH = 1
+
 
 class OptimizeResult(Dict[str, Any]):
     """The outcome of :func:`minimize`, as ``scipy.optimize.OptimizeResult``:
@@ -240,7 +250,8 @@ class _Watch:
         self.maxiter = maxiter
         self.maxtime = maxtime
         self.callback = callback
-        self.intermediate = callback is not None and _objective.returns_intermediate_result(callback)
+        self.form = "x" if callback is None else _objective.callback_form(callback)
+        self.seen: Optional[float] = None
         self.disp = disp
         self.nfev = nfev
         self.reason: Optional[str] = None
@@ -269,9 +280,14 @@ class _Watch:
             return self.stop("Time")
         if self.callback is not None and iteration != self.called_at:
             self.called_at = iteration
+            self.seen = value
             try:
-                if self.intermediate:
+                if self.form == "intermediate_result":
                     answer = self.callback(OptimizeResult(x=x, fun=value, nfev=self.nfev(evaluations), nit=iteration))
+                elif self.form == "x, f, context":
+                    answer = self.callback(x, value, SAMPLING)
+                elif self.form == "x, f":
+                    answer = self.callback(x, value)
                 else:
                     answer = self.callback(x)
             except StopIteration:
@@ -284,6 +300,19 @@ class _Watch:
     def stop(self, reason: str) -> bool:
         self.reason = reason
         return True
+
+    def polished(self, x: np.ndarray, value: float, termination: str) -> None:
+        """``callback(x, f, LOCAL_SEARCH)`` once for the end's polish, when
+        it lowered the best the callback last saw (``dual_annealing``'s
+        call for a local search's minimum); its answer is moot, the run
+        being over. Only the three-argument form can tell the two apart."""
+        if (self.form == "x, f, context" and self.callback is not None and termination != "Callback"
+                and self.seen is not None and value < self.seen):
+            self.seen = value
+            try:
+                self.callback(np.array(x, dtype=np.float64), value, LOCAL_SEARCH)
+            except StopIteration:
+                pass
 
     def show(self, iteration: int, evaluations: int, value: float, now: float) -> None:
         nfev = self.nfev(evaluations)
@@ -377,8 +406,15 @@ def minimize(
     ``numpy.random.Generator``; the result's ``seed`` repeats the run.
     ``callback(intermediate_result)`` gets an :class:`OptimizeResult`
     (``x``, ``fun``: the best so far; ``nfev``, ``nit``) once per step or
-    round (a callback with another parameter name gets ``x``, as scipy's
-    older convention) and stops the run by raising ``StopIteration`` or
+    round; a callback with another parameter name gets the best point,
+    by the number of its positional parameters without a default:
+    ``callback(x)`` (scipy's older convention), ``callback(x, f)``, or
+    ``callback(x, f, context)`` as ``dual_annealing`` calls it (and
+    ``basinhopping``'s ``callback(x, f, accept)``), ``context`` saying
+    where the best was seen: 0 during the run (the sampling: steps, or
+    rounds of moves and quenches), 1 in one more call after the end's
+    L-BFGS polish when that lowered the best (the local search; as
+    ``dual_annealing``'s 0 and 1, which has a 2 with no counterpart here). It stops the run by raising ``StopIteration`` or
     returning a true value (``True``, ``np.True_``, ``1``: any answer whose
     ``bool`` is true, as scipy tests it). ``disp=True`` prints a progress line (steps or
     rounds, evaluations, best value, rate) at most once a second.
@@ -528,6 +564,7 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
                         with_x=watch["callback"] is not None)
     termination = w.reason if s.termination == "Observer" and w.reason else s.termination
     x = np.asarray(s.x)
+    w.polished(x, s.value, termination)
     jac = _gradient(x, objective, builtin, fun)
     if watch["disp"]:
         w.show(s.rounds, s.evaluations, s.value, _clock())
@@ -602,6 +639,7 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
         if report is not None and report.termination != "Observer":
             termination = report.termination
     x, value, _ = opt.best
+    w.polished(x, value, termination)
     jac = _gradient(x, objective, builtin, fun)
     if disp:
         w.show(opt.iteration, opt.evaluations, value, _clock())

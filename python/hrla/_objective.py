@@ -188,14 +188,23 @@ class Mapper:
             self.pool = None
 
 
-def returns_intermediate_result(callback: Callable[..., Any]) -> bool:
-    """Whether ``callback`` takes scipy's ``intermediate_result`` (an
-    ``OptimizeResult``) rather than the point ``xk``: scipy's test, its
-    one parameter's name."""
+def callback_form(callback: Callable[..., Any]) -> str:
+    """How ``callback`` is called, from its signature: ``"intermediate_result"``
+    (scipy's test: its one parameter has that name) gets an
+    ``OptimizeResult``; else by the positional parameters without a
+    default: three or more, ``"x, f, context"`` (``dual_annealing``'s form,
+    and ``basinhopping``'s ``(x, f, accept)``, whose third is then the
+    context); two, ``"x, f"``; fewer (or no signature), ``"x"``, scipy's
+    older ``callback(xk)``."""
     try:
-        return set(inspect.signature(callback).parameters) == {"intermediate_result"}
+        parameters = inspect.signature(callback).parameters
     except (TypeError, ValueError):
-        return False
+        return "x"
+    if set(parameters) == {"intermediate_result"}:
+        return "intermediate_result"
+    positional = (inspect.Parameter.POSITIONAL_ONLY, inspect.Parameter.POSITIONAL_OR_KEYWORD)
+    required = sum(p.kind in positional and p.default is inspect.Parameter.empty for p in parameters.values())
+    return "x, f, context" if required >= 3 else "x, f" if required == 2 else "x"
 
 
 class Objective:

@@ -354,3 +354,51 @@ def test_a_target_of_minus_inf_is_no_target(method):
     # Never reached: the run is the one without a target.
     same(hrla.minimize(sphere_value, BOX, method=method, maxfun=5_000, rng=1),
          hrla.minimize(sphere_value, BOX, method=method, maxfun=5_000, rng=1, target=-INF))
+
+
+# --- scipy's callback forms ---------------------------------------------------
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_a_callback_of_dual_annealings_form_gets_x_f_and_where(method):
+    seen = []
+
+    def callback(x, f, context):
+        seen.append((x.copy(), f, context))
+
+    res = hrla.minimize(sphere_value, BOX, method=method, maxfun=5_000, rng=1, callback=callback)
+    assert seen and {c for _, _, c in seen} <= {0, 1} and seen[0][2] == 0
+    # The last call saw the result; a call of context 1 only for the
+    # polish's lower best, and only last.
+    assert bits(seen[-1][0]) == bits(res.x) and seen[-1][1] == res.fun
+    assert all(c == 0 for _, _, c in seen[:-1])
+    if seen[-1][2] == 1:
+        assert seen[-1][1] < seen[-2][1]
+    for x, f, _ in seen:
+        assert f == sphere_value(x)
+
+
+def test_the_samplers_report_their_polish_as_a_local_search():
+    seen = []
+    hrla.minimize(sphere_value, BOX, method="hrla", maxiter=5, maxfun=5_000, rng=1,
+                  callback=lambda x, f, context: seen.append(context))
+    assert seen == [0] * 5 + [1]
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_a_callback_of_two_or_three_arguments_stops_the_run(method):
+    for callback in (lambda x, f, context: True, lambda x, f, accept=None: True, lambda x, f: True):
+        res = hrla.minimize(sphere_value, BOX, method=method, maxfun=20_000, rng=1, callback=callback)
+        assert res.termination == "Callback"
+
+
+def test_one_callback_serves_dual_annealing_and_hrla():
+    so = pytest.importorskip("scipy.optimize")
+    calls = []
+
+    def callback(x, f, context):
+        calls.append(context)
+
+    so.dual_annealing(sphere_value, BOX, maxiter=5, rng=1, callback=callback)
+    hrla.minimize(sphere_value, BOX, maxfun=3_000, rng=1, callback=callback)
+    assert calls
