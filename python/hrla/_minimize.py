@@ -6,7 +6,7 @@ import math
 import sys
 import time
 import warnings
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -89,7 +89,11 @@ class OptimizeResult(Dict[str, Any]):
     - ``all_diverged``, ``diverged_chains``, ``chains``, ``method``,
       ``seed`` (the seed the run used: the same call with ``rng=seed``
       gives the same bits);
-    - ``message``: the kernel's report of the final state, written last.
+    - ``message``: why the run ended and what it found, written last; when
+      its budget ended it short of ``maxfun``, the calls used and what the
+      rest was left for (less than one step of the chains, the polish's
+      share it did not need, the gradient kept back for ``jac``, less than
+      one gradient).
     """
 
     def __getattr__(self, name: str) -> Any:
@@ -530,15 +534,46 @@ def minimize(
         def nfev(evaluations: int) -> int:
             return objective.nfev if objective is not None else evaluations
 
+        spend = _Budget(maxfun, cost, spare)
         if method == "auto":
-            return _auto(potential, box, budget_k, run_seed, chains, dim, x0, objective, builtin, fun, nfev,
+            return _auto(potential, box, budget_k, run_seed, chains, dim, x0, objective, builtin, fun, nfev, spend,
                          target=target, stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
         return _sampler(method, potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
-                        cost=cost, h=h, schedule=schedule, start=start, polish=polish, x0=x0, target=target,
+                        spend, h=h, schedule=schedule, start=start, polish=polish, x0=x0, target=target,
                         stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
     finally:
         if mapper is not None:
             mapper.close()
+
+
+class _Budget(NamedTuple):
+    """How ``maxfun`` is spent: the kernel's budget is ``maxfun // cost -
+    spare`` gradients of ``cost`` calls of ``fun`` each, ``spare`` of them
+    kept back for the result's ``jac``."""
+
+    maxfun: int
+    cost: int
+    spare: int
+
+    def note(self, nfev: int, njev: int, evaluations: int, unspent: List[Tuple[int, str]]) -> str:
+        """What a run that ended for its budget left of ``maxfun``, and
+        why: the calls used, then each share left over (``unspent``: the
+        kernel's own, in gradients, each with its reason; then the spare
+        gradient not needed and the calls fewer than one gradient), when
+        they add up to what is left; ``""`` when nothing is left."""
+        left = self.maxfun - nfev
+        if left <= 0:
+            return ""
+        shares = [(k * self.cost, why) for k, why in unspent]
+        # The gradient kept back for jac and not needed: the run had it.
+        shares.append((self.cost * (self.spare - (njev - evaluations)),
+                       "kept back for the result's jac, which the run had computed at x"))
+        shares.append((self.maxfun % self.cost, f"fewer than one gradient ({self.cost} calls of fun)"))
+        shares = [(calls, why) for calls, why in shares if calls > 0]
+        text = f"; {nfev:,} of maxfun={self.maxfun:,} calls of fun used"
+        if sum(calls for calls, _ in shares) == left:
+            text += f"; the {left:,} left: " + "; ".join(f"{calls:,} {why}" for calls, why in shares)
+        return text
 
 
 def _renamed(new: Any, old: Any, name: str, old_name: str) -> Any:
@@ -552,8 +587,8 @@ def _renamed(new: Any, old: Any, name: str, old_name: str) -> Any:
 
 
 def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int], dim: Optional[int],
-          x0: Optional[np.ndarray], objective: Optional[_objective.Objective], builtin: bool, fun: Any, nfev: Callable[[int], int],
-          **watch: Any) -> OptimizeResult:
+          x0: Optional[np.ndarray], objective: Optional[_objective.Objective], builtin: bool, fun: Any,
+          nfev: Callable[[int], int], spend: _Budget, **watch: Any) -> OptimizeResult:
     if box is None:
         raise ValueError('method="auto" needs bounds: D (lo, hi) pairs, scipy.optimize.Bounds, or (lo, hi) with dim=')
 
@@ -568,9 +603,16 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
     jac = _gradient(x, objective, builtin, fun)
     if watch["disp"]:
         w.show(s.rounds, s.evaluations, s.value, _clock())
+    njev = objective.njev if objective is not None else s.evaluations
+    note = ""
+    if termination == "Evaluations":
+        # Auto's rounds stop when what is left would not fit one more, and
+        # its final polish gets the rest.
+        note = spend.note(nfev(s.evaluations), njev, s.evaluations,
+                          [(budget - s.evaluations, "not needed by the final polish (it converged first)")])
     return _result(
-        x=x, fun=s.value, jac=jac, nfev=nfev(s.evaluations),
-        njev=objective.njev if objective is not None else s.evaluations, nit=s.rounds, termination=termination,
+        x=x, fun=s.value, jac=jac, nfev=nfev(s.evaluations), budget_note=note,
+        njev=njev, nit=s.rounds, termination=termination,
         diverged_chains=s.diverged_chains, chains=s.chains, method="auto", seed=seed, step=s.step,
         inverse_temperature=s.inverse_temperature,
         # Auto's chains always hold a feasible basin: an infeasible last
@@ -581,7 +623,7 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
 
 def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chains: Optional[int],
              dim: Optional[int], objective: Optional[_objective.Objective], builtin: bool, fun: Any,
-             nfev: Callable[[int], int], *, cost: int, h: Optional[float], schedule: Any, start: Any,
+             nfev: Callable[[int], int], spend: _Budget, *, h: Optional[float], schedule: Any, start: Any,
              polish: Optional[int], x0: Optional[np.ndarray], target: Optional[float],
              stall: Optional[Tuple[int, float]], maxiter: Optional[int], maxtime: Optional[float],
              callback: Optional[Callable[..., Any]], disp: bool) -> OptimizeResult:
@@ -590,6 +632,7 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
             raise ValueError("give bounds or a start (hrla.Gaussian, hrla.Point, hrla.Interval)")
         start = box
     n = 10 if chains is None else chains
+    cost = spend.cost
     polish_k = min(1000, budget // 4) if polish is None else polish // cost
     stop = Stop().evaluations(budget)
     steps = maxiter
@@ -630,7 +673,9 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
         termination = opt.termination() or w.reason
     # A run stopped by its target, time limit or callback stops there: the
     # polish would spend evaluations the user asked not to spend.
-    if polish_k > 0 and termination not in ("Target", "Time", "Callback"):
+    sampled = opt.evaluations
+    polished = polish_k > 0 and termination not in ("Target", "Time", "Callback")
+    if polished:
         opt.polish(opt.best_chain, PolishSettings(polish_k))
         # The report of the polished state: its rule still holds (the
         # polish only adds evaluations and lowers the best), unless a
@@ -643,9 +688,22 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
     jac = _gradient(x, objective, builtin, fun)
     if disp:
         w.show(opt.iteration, opt.evaluations, value, _clock())
+    njev = objective.njev if objective is not None else opt.evaluations
+    note = ""
+    # The step budget maxfun leaves, or maxfun itself, ended the run.
+    if termination == "Evaluations" or (termination == "Steps" and steps != maxiter):
+        polish_left = polish_k - (opt.evaluations - sampled) if polished else 0
+        k = opt.diverged_chains
+        left_by_steps = (f"fewer than one step of its {n} chains ({n * cost:,} calls)" if not k
+                         else f"left by the steps of its {n} chains, {k} of which diverged")
+        note = spend.note(nfev(opt.evaluations), njev, opt.evaluations, [
+            (budget - opt.evaluations - polish_left, left_by_steps),
+            (polish_left, f"of the polish's share of {polish_k * cost:,} calls, which converged after "
+                          f"{(polish_k - polish_left) * cost:,}"),
+        ])
     return _result(
-        x=x, fun=value, jac=jac, nfev=nfev(opt.evaluations),
-        njev=objective.njev if objective is not None else opt.evaluations, nit=opt.iteration,
+        x=x, fun=value, jac=jac, nfev=nfev(opt.evaluations), budget_note=note,
+        njev=njev, nit=opt.iteration,
         termination=termination, diverged_chains=opt.diverged_chains, chains=len(opt), method=method,
         seed=seed, kernel_message="" if report is None else report.message,
     )
@@ -663,10 +721,11 @@ def _gradient(x: np.ndarray, objective: Optional[_objective.Objective], builtin:
     return np.asarray(g[0])
 
 
-def _message(kernel: str, termination: str, r: OptimizeResult) -> str:
+def _message(kernel: str, termination: str, r: OptimizeResult, budget_note: str) -> str:
     """Why the run ended and what it found, in the user's units: calls of
     ``fun`` (the kernel counts gradients, each of which may be several
-    calls), and ``f`` to its last digit."""
+    calls), and ``f`` to its last digit; for a run its budget ended, what
+    it left of ``maxfun`` and why (``budget_note``)."""
     reason = _REASONS.get(termination) or kernel.split(": ", 1)[0]
     unit = "rounds" if r["method"] == "auto" else "steps"
     text = (f"{reason}: best f = {float(r['fun'])!r} after {r['nfev']} calls of fun "
@@ -676,11 +735,11 @@ def _message(kernel: str, termination: str, r: OptimizeResult) -> str:
         text += f"; the last proposal of {k} of {n} chains met a point where f is not finite (rejected)"
     elif k:
         text += f"; {k} of {n} chains diverged"
-    return text
+    return text + budget_note
 
 
 def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, kernel_message: str,
-            holds_basins: bool = False, **rest: Any) -> OptimizeResult:
+            holds_basins: bool = False, budget_note: str = "", **rest: Any) -> OptimizeResult:
     """An :class:`OptimizeResult` whose ``success`` and ``status`` follow
     from the termination and the value (and, for the samplers, from whether
     any chain is still alive); ``message`` last."""
@@ -691,5 +750,5 @@ def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, 
         status=TERMINATIONS.index(termination), termination=termination,
         all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
     )
-    r["message"] = _message(kernel_message, termination, r)
+    r["message"] = _message(kernel_message, termination, r, budget_note)
     return r

@@ -402,3 +402,37 @@ def test_one_callback_serves_dual_annealing_and_hrla():
     so.dual_annealing(sphere_value, BOX, maxiter=5, rng=1, callback=callback)
     hrla.minimize(sphere_value, BOX, maxfun=3_000, rng=1, callback=callback)
     assert calls
+
+
+# --- what a spent budget left -------------------------------------------------
+
+
+def left_of(message):
+    """The calls left and their shares, from a message's budget note."""
+    used, total = message.split(" calls of fun used")[0].rsplit("; ", 1)[1].split(" of maxfun=")
+    shares = message.split(" left: ", 1)[1].split("; ") if " left: " in message else []
+    return int(used.replace(",", "")), int(total.replace(",", "")), shares
+
+
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("kw", [{"maxfun": 10_007}, {"jac": "3-point", "maxfun": 12_345},
+                                {"chains": 16, "maxfun": 30_000}])
+def test_a_budget_spent_says_what_it_left_and_why(method, kw):
+    res = hrla.minimize(sphere_value, BOX, method=method, rng=1, **kw)
+    maxfun = kw["maxfun"]
+    assert res.nfev < maxfun and res.termination in ("Evaluations", "Steps"), res
+    used, total, shares = left_of(res.message)
+    assert (used, total) == (res.nfev, maxfun), res.message
+    # Each share names its calls; together they are what is left.
+    assert sum(int(share.split(" ", 1)[0].replace(",", "")) for share in shares) == maxfun - res.nfev, res.message
+    assert all(" " in share for share in shares)
+
+
+def test_a_budget_spent_whole_adds_no_note():
+    res = hrla.minimize(hrla.Rastrigin(), BOX, maxfun=10_000, rng=1)
+    assert res.nfev == 10_000 and "maxfun=" not in res.message, res.message
+
+
+def test_a_run_maxiter_ended_adds_no_note():
+    res = hrla.minimize(sphere_value, BOX, method="hrla", maxiter=5, rng=1)
+    assert res.termination == "Steps" and "maxfun=" not in res.message, res.message
