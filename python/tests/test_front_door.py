@@ -436,3 +436,21 @@ def test_a_budget_spent_whole_adds_no_note():
 def test_a_run_maxiter_ended_adds_no_note():
     res = hrla.minimize(sphere_value, BOX, method="hrla", maxiter=5, rng=1)
     assert res.termination == "Steps" and "maxfun=" not in res.message, res.message
+
+
+# --- the README's table of scipy's keywords ---------------------------------
+
+
+def test_the_readme_tables_every_keyword_of_scipys_global_optimisers():
+    so = pytest.importorskip("scipy.optimize")
+    import inspect
+    import re
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    section = readme.split("Every keyword of scipy's global optimisers", 1)[1].split("\n\n", 2)[1]
+    tabled = {name for row in section.splitlines() if row.startswith("| `")
+              for name in re.findall(r"`(\w+)`", row.split(" | ")[0])}
+    for f in (so.dual_annealing, so.differential_evolution, so.basinhopping):
+        missing = set(inspect.signature(f).parameters) - tabled
+        assert not missing, (f.__name__, missing)
