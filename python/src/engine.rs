@@ -30,9 +30,10 @@ pub fn signal_steps(n: usize, d: usize) -> u64 {
 
 /// Steps the engine: a built-in's in chunks with the GIL released, a
 /// check for Ctrl-C between two; a Python function's one at a time (it
-/// needs the GIL), a check after each. An interrupted call leaves the
-/// optimiser after a whole step, so that going on gives the bits of a
-/// run never interrupted.
+/// needs the GIL), a check after each. A call interrupted by a check
+/// leaves the optimiser after a whole step, so that going on gives the
+/// bits of a run never interrupted; an exception of the potential ends it
+/// at once and cuts the run ([`Cut`]).
 fn step(py: Python<'_>, engine: &mut dyn Engine, cut: &Cut, steps: u64) -> PyResult<()> {
     if engine.is_user() {
         for _ in 0..steps {
@@ -61,7 +62,8 @@ fn step(py: Python<'_>, engine: &mut dyn Engine, cut: &Cut, steps: u64) -> PyRes
 /// is called at the same steps (once a step), after the check:
 /// `observer(iteration, evaluations, best_value[, best_x])`; a true answer ends the
 /// run ([`hrla::Termination::Observer`]), an exception ends it with that
-/// exception.
+/// exception. An exception of the potential ends it at once and cuts the
+/// run ([`Cut`]).
 fn run(
     py: Python<'_>,
     engine: &mut dyn Engine,
