@@ -50,8 +50,12 @@ potential:
 Errors form one hierarchy under :class:`HrlaError` (a ``ValueError``):
 ``DivergedError``, ``UnboundedBelowError``,
 ``BusyError`` and ``InternalError`` (both also ``RuntimeError``). Storage
-that cannot be allocated raises ``MemoryError``; Ctrl-C stops a run after
-a whole step with ``KeyboardInterrupt``, and the run can go on.
+that cannot be allocated raises ``MemoryError``. Ctrl-C raises
+``KeyboardInterrupt`` at the next call of a Python function, or between
+two steps of a built-in's run; a Python function is never called again
+after it raised. An :class:`Optimizer` interrupted between two steps can
+go on with the bits of a run never interrupted; one whose Python
+potential raised in the middle of a step refuses to go on, saying why.
 
 Entry points: :func:`minimize` (scipy.optimize's conventions, returns an
 :class:`OptimizeResult`), :class:`Optimizer` (step by step, chains as numpy

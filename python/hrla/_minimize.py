@@ -6,7 +6,7 @@ import math
 import sys
 import time
 import warnings
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -41,6 +41,16 @@ _SAMPLER_ONLY = ("h", "schedule", "start", "polish")
 #: The default of ``maxfun``.
 MAXFUN = 125_000
 
+#: The ``context`` of a three-argument ``callback(x, f, context)``, as
+#: ``scipy.optimize.dual_annealing`` passes it: where the best ``f`` was
+#: last seen. ``SAMPLING`` (0, dual_annealing's "the annealing"): during
+#: the run, once per step (samplers) or round (``"auto"``, each of whose
+#: rounds ends its moves with quenches); ``LOCAL_SEARCH`` (1, its "the
+#: local search"): after the end's L-BFGS polish, once, when that lowered
+#: the best. (dual_annealing's 2 has no counterpart.)
+SAMPLING = 0
+LOCAL_SEARCH = 1
+
 
 class OptimizeResult(Dict[str, Any]):
     """The outcome of :func:`minimize`, as ``scipy.optimize.OptimizeResult``:
@@ -54,13 +64,36 @@ class OptimizeResult(Dict[str, Any]):
       (``"auto"``);
     - ``success``: ``True`` only when ``fun`` is finite, some chain is still
       alive and a stopping rule other than the callback ended the run;
-      ``status``: the index of ``termination`` in :data:`TERMINATIONS`;
-      ``termination``: why it ended (``"Evaluations"``, ``"Steps"``,
-      ``"Target"``, ``"Stalled"``, ``"Time"``, ``"Callback"``);
+      ``termination``: why it ended; ``status``: its index in
+      :data:`TERMINATIONS`. scipy's ``status`` is 0 for success and a
+      solver's own code otherwise; hrla's names only why the run ended,
+      and ``success`` says whether it succeeded (a spent budget is a
+      normal end, as ``maxiter`` is for ``dual_annealing``):
+
+      ======  ===============  =======  ==================================
+      status  termination      success  the run ended when
+      ======  ===============  =======  ==================================
+      0       ``Steps``        yes      ``maxiter`` steps or rounds ran
+      1       ``Evaluations``  yes      ``maxfun`` left no whole step
+      2       ``Target``       yes      the best reached ``target``
+      3       ``Stalled``      yes      ``stall``'s window saw no gain
+      4       ``Observer``     no       an observer of the run-time
+                                        objects asked to stop
+      5       ``Time``         yes      ``maxtime`` seconds passed
+      6       ``Callback``     no       the callback asked to stop
+      ======  ===============  =======  ==================================
+
+      (``success`` is also ``False`` when ``fun`` is not finite or every
+      chain diverged.)
+
     - ``all_diverged``, ``diverged_chains``, ``chains``, ``method``,
       ``seed`` (the seed the run used: the same call with ``rng=seed``
       gives the same bits);
-    - ``message``: the kernel's report of the final state, written last.
+    - ``message``: why the run ended and what it found, written last; when
+      its budget ended it short of ``maxfun``, the calls used and what the
+      rest was left for (less than one step of the chains, the polish's
+      share it did not need, the gradient kept back for ``jac``, less than
+      one gradient).
     """
 
     def __getattr__(self, name: str) -> Any:
@@ -72,9 +105,43 @@ class OptimizeResult(Dict[str, Any]):
     __setattr__ = dict.__setitem__
     __delattr__ = dict.__delitem__
 
+    #: The keys printed first, in this order (scipy's order, with
+    #: ``termination`` beside ``status``); the others follow as stored.
+    _order_keys = ("message", "success", "status", "termination", "fun", "x", "nit", "jac", "nfev", "njev")
+
     def __repr__(self) -> str:
-        keys = ("fun", "x", "nfev", "nit", "success", "status", "termination", "message")
-        return "OptimizeResult(" + ", ".join(f"{k}={self[k]!r}" for k in keys if k in self) + ")"
+        """One field a line, keys right-aligned, as scipy's
+        ``OptimizeResult`` prints (and arrays as scipy prints them)."""
+        if not self:
+            return type(self).__name__ + "()"
+
+        def rank(item: Tuple[str, Any]) -> float:
+            return self._order_keys.index(item[0]) if item[0] in self._order_keys else math.inf
+
+        return _formatted(dict(sorted(self.items(), key=rank)))
+
+
+def _formatted(d: Any, indent: int = 0) -> str:
+    """scipy's ``_dict_formatter``: a dict one key a line, each key
+    right-aligned to the longest plus one and its value's later lines
+    indented under the value; a value as ``str`` with numpy's print options
+    of scipy's results (floats in ten characters, arrays of more than 12
+    entries cut to their first and last two)."""
+    if isinstance(d, dict):
+        width = max(map(len, d)) + 1
+        return "\n".join(k.rjust(width) + ": " + _formatted(v, width + indent + 2).replace("\n", "\n" + " " * (width + 2))
+                         for k, v in d.items())
+    with np.printoptions(linewidth=76 - indent, edgeitems=2, threshold=12, formatter={"float_kind": _float10}):
+        return str(d)
+
+
+def _float10(x: Any) -> str:
+    """A float in exactly ten characters, as scipy prints a result's."""
+    if np.isnan(x):
+        return "       nan"
+    if np.isinf(x):
+        return "       inf" if x > 0 else "      -inf"
+    return np.format_float_scientific(x, precision=3, pad_left=2, unique=False)
 
 
 Box = Union[None, Interval, List[Tuple[float, float]]]
@@ -128,10 +195,16 @@ def _sides(box: Box, d: Optional[int]) -> Tuple[Any, Any]:
 
 
 def _count(v: Any, name: str, minimum: int = 0) -> int:
-    """A count argument: an int in ``[minimum, 2**64)``, else an error
-    naming it."""
-    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-        raise TypeError(f"{name} must be an int, got {v!r}")
+    """A count argument: an int (Python's or numpy's) or a float with a
+    whole value (``maxfun=1e5``, as scipy's own defaults are written), in
+    ``[minimum, 2**64)``; else an error naming it."""
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer, float, np.floating)):
+        raise TypeError(f"{name} must be an int (or a float with a whole value, such as 1e5), got {v!r}")
+    if isinstance(v, (float, np.floating)):
+        if not math.isfinite(v):
+            raise ValueError(f"{name} must be finite, got {float(v)!r}")
+        if not float(v).is_integer():
+            raise ValueError(f"{name} must be a whole number, got {float(v)!r}")
     count = int(v)
     if count < minimum:
         raise ValueError(f"{name} must be >= {minimum}, got {count}")
@@ -181,7 +254,8 @@ class _Watch:
         self.maxiter = maxiter
         self.maxtime = maxtime
         self.callback = callback
-        self.intermediate = callback is not None and _objective.returns_intermediate_result(callback)
+        self.form = "x" if callback is None else _objective.callback_form(callback)
+        self.seen: Optional[float] = None
         self.disp = disp
         self.nfev = nfev
         self.reason: Optional[str] = None
@@ -210,20 +284,39 @@ class _Watch:
             return self.stop("Time")
         if self.callback is not None and iteration != self.called_at:
             self.called_at = iteration
+            self.seen = value
             try:
-                if self.intermediate:
+                if self.form == "intermediate_result":
                     answer = self.callback(OptimizeResult(x=x, fun=value, nfev=self.nfev(evaluations), nit=iteration))
+                elif self.form == "x, f, context":
+                    answer = self.callback(x, value, SAMPLING)
+                elif self.form == "x, f":
+                    answer = self.callback(x, value)
                 else:
                     answer = self.callback(x)
             except StopIteration:
                 return self.stop("Callback")
-            if answer is True:
+            # Any true answer stops, as scipy's callbacks do (np.True_, 1).
+            if answer:
                 return self.stop("Callback")
         return False
 
     def stop(self, reason: str) -> bool:
         self.reason = reason
         return True
+
+    def polished(self, x: np.ndarray, value: float, termination: str) -> None:
+        """``callback(x, f, LOCAL_SEARCH)`` once for the end's polish, when
+        it lowered the best the callback last saw (``dual_annealing``'s
+        call for a local search's minimum); its answer is moot, the run
+        being over. Only the three-argument form can tell the two apart."""
+        if (self.form == "x, f, context" and self.callback is not None and termination != "Callback"
+                and self.seen is not None and value < self.seen):
+            self.seen = value
+            try:
+                self.callback(np.array(x, dtype=np.float64), value, LOCAL_SEARCH)
+            except StopIteration:
+                pass
 
     def show(self, iteration: int, evaluations: int, value: float, now: float) -> None:
         nfev = self.nfev(evaluations)
@@ -242,8 +335,8 @@ def minimize(
     jac: Any = None,
     x0: Any = None,
     method: str = "auto",
-    maxfun: Optional[int] = None,
-    maxiter: Optional[int] = None,
+    maxfun: Optional[float] = None,
+    maxiter: Optional[float] = None,
     maxtime: Optional[float] = None,
     target: Optional[float] = None,
     stall: Optional[Tuple[int, float]] = None,
@@ -269,7 +362,9 @@ def minimize(
 
     - ``fun(x, *args) -> float`` at one point ``x`` of shape ``(D,)``, as
       scipy calls it; or a built-in potential (``hrla.Rastrigin()``, ...),
-      which runs in Rust;
+      which runs in Rust. Every call of ``fun`` (and ``jac``, and the
+      callback) gets an array of its own, a copy as scipy passes: writing
+      into it changes nothing of the run;
     - ``jac``: ``None`` or ``"2-point"`` (forward differences, ``D``
       calls of ``fun`` per gradient), ``"3-point"`` (central differences,
       ``2 D`` calls), both with the steps of
@@ -304,19 +399,35 @@ def minimize(
     counted), ``maxiter`` steps or rounds, the ``target`` value, ``stall =
     (window, tolerance)`` (the best has not fallen by more than
     ``tolerance`` over ``window`` steps or rounds), ``maxtime`` seconds,
-    the callback, Ctrl-C (``KeyboardInterrupt``).
+    the callback, Ctrl-C (``KeyboardInterrupt``). Every method reads the
+    limits alike: ``maxiter=0`` evaluates the starts only (the samplers then
+    polish, as ``differential_evolution`` does); ``target=inf`` is reached
+    by any finite value, so the run stops at its first look, and
+    ``target=-inf`` is never reached (no target); a ``stall`` tolerance of
+    ``inf`` stalls the run after its window.
 
     ``rng`` (or ``seed``) is ``None`` (fresh entropy), an int or a
     ``numpy.random.Generator``; the result's ``seed`` repeats the run.
     ``callback(intermediate_result)`` gets an :class:`OptimizeResult`
     (``x``, ``fun``: the best so far; ``nfev``, ``nit``) once per step or
-    round (a callback with another parameter name gets ``x``, as scipy's
-    older convention) and stops the run by raising ``StopIteration`` or
-    returning ``True``. ``disp=True`` prints a progress line (steps or
+    round; a callback with another parameter name gets the best point,
+    by the number of its positional parameters without a default:
+    ``callback(x)`` (scipy's older convention), ``callback(x, f)``, or
+    ``callback(x, f, context)`` as ``dual_annealing`` calls it (and
+    ``basinhopping``'s ``callback(x, f, accept)``), ``context`` saying
+    where the best was seen: 0 during the run (the sampling: steps, or
+    rounds of moves and quenches), 1 in one more call after the end's
+    L-BFGS polish when that lowered the best (the local search; as
+    ``dual_annealing``'s 0 and 1, which has a 2 with no counterpart here). It stops the run by raising ``StopIteration`` or
+    returning a true value (``True``, ``np.True_``, ``1``: any answer whose
+    ``bool`` is true, as scipy tests it). ``disp=True`` prints a progress line (steps or
     rounds, evaluations, best value, rate) at most once a second.
 
     ``budget`` and ``steps`` are the older names of ``maxfun`` and
-    ``maxiter`` (deprecated). An argument the method does not use raises
+    ``maxiter`` (deprecated). Counts (``maxfun``, ``maxiter``, ``chains``,
+    ``dim``, ``polish``, ``stall``'s window) are ints, numpy integers or
+    floats with a whole value (``maxfun=1e5``, as scipy writes its
+    defaults); another float raises ``ValueError`` naming the argument. An argument the method does not use raises
     ``ValueError`` naming it.
 
     Returns an :class:`OptimizeResult`. Bad input raises ``TypeError`` or
@@ -345,6 +456,8 @@ def minimize(
     if maxtime is not None and maxtime < 0:
         raise ValueError(f"maxtime must be >= 0 seconds, got {maxtime}")
     target = None if target is None else _number(target, "target")
+    if target == -math.inf:
+        target = None  # never reached: no target
     if stall is not None:
         try:
             window, tolerance = stall
@@ -421,15 +534,46 @@ def minimize(
         def nfev(evaluations: int) -> int:
             return objective.nfev if objective is not None else evaluations
 
+        spend = _Budget(maxfun, cost, spare)
         if method == "auto":
-            return _auto(potential, box, budget_k, run_seed, chains, dim, x0, objective, builtin, fun, nfev,
+            return _auto(potential, box, budget_k, run_seed, chains, dim, x0, objective, builtin, fun, nfev, spend,
                          target=target, stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
         return _sampler(method, potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
-                        cost=cost, h=h, schedule=schedule, start=start, polish=polish, x0=x0, target=target,
+                        spend, h=h, schedule=schedule, start=start, polish=polish, x0=x0, target=target,
                         stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
     finally:
         if mapper is not None:
             mapper.close()
+
+
+class _Budget(NamedTuple):
+    """How ``maxfun`` is spent: the kernel's budget is ``maxfun // cost -
+    spare`` gradients of ``cost`` calls of ``fun`` each, ``spare`` of them
+    kept back for the result's ``jac``."""
+
+    maxfun: int
+    cost: int
+    spare: int
+
+    def note(self, nfev: int, njev: int, evaluations: int, unspent: List[Tuple[int, str]]) -> str:
+        """What a run that ended for its budget left of ``maxfun``, and
+        why: the calls used, then each share left over (``unspent``: the
+        kernel's own, in gradients, each with its reason; then the spare
+        gradient not needed and the calls fewer than one gradient), when
+        they add up to what is left; ``""`` when nothing is left."""
+        left = self.maxfun - nfev
+        if left <= 0:
+            return ""
+        shares = [(k * self.cost, why) for k, why in unspent]
+        # The gradient kept back for jac and not needed: the run had it.
+        shares.append((self.cost * (self.spare - (njev - evaluations)),
+                       "kept back for the result's jac, which the run had computed at x"))
+        shares.append((self.maxfun % self.cost, f"fewer than one gradient ({self.cost} calls of fun)"))
+        shares = [(calls, why) for calls, why in shares if calls > 0]
+        text = f"; {nfev:,} of maxfun={self.maxfun:,} calls of fun used"
+        if sum(calls for calls, _ in shares) == left:
+            text += f"; the {left:,} left: " + "; ".join(f"{calls:,} {why}" for calls, why in shares)
+        return text
 
 
 def _renamed(new: Any, old: Any, name: str, old_name: str) -> Any:
@@ -443,8 +587,8 @@ def _renamed(new: Any, old: Any, name: str, old_name: str) -> Any:
 
 
 def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int], dim: Optional[int],
-          x0: Optional[np.ndarray], objective: Optional[_objective.Objective], builtin: bool, fun: Any, nfev: Callable[[int], int],
-          **watch: Any) -> OptimizeResult:
+          x0: Optional[np.ndarray], objective: Optional[_objective.Objective], builtin: bool, fun: Any,
+          nfev: Callable[[int], int], spend: _Budget, **watch: Any) -> OptimizeResult:
     if box is None:
         raise ValueError('method="auto" needs bounds: D (lo, hi) pairs, scipy.optimize.Bounds, or (lo, hi) with dim=')
 
@@ -455,12 +599,20 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
                         with_x=watch["callback"] is not None)
     termination = w.reason if s.termination == "Observer" and w.reason else s.termination
     x = np.asarray(s.x)
+    w.polished(x, s.value, termination)
     jac = _gradient(x, objective, builtin, fun)
     if watch["disp"]:
         w.show(s.rounds, s.evaluations, s.value, _clock())
+    njev = objective.njev if objective is not None else s.evaluations
+    note = ""
+    if termination == "Evaluations":
+        # Auto's rounds stop when what is left would not fit one more, and
+        # its final polish gets the rest.
+        note = spend.note(nfev(s.evaluations), njev, s.evaluations,
+                          [(budget - s.evaluations, "not needed by the final polish (it converged first)")])
     return _result(
-        x=x, fun=s.value, jac=jac, nfev=nfev(s.evaluations),
-        njev=objective.njev if objective is not None else s.evaluations, nit=s.rounds, termination=termination,
+        x=x, fun=s.value, jac=jac, nfev=nfev(s.evaluations), budget_note=note,
+        njev=njev, nit=s.rounds, termination=termination,
         diverged_chains=s.diverged_chains, chains=s.chains, method="auto", seed=seed, step=s.step,
         inverse_temperature=s.inverse_temperature,
         # Auto's chains always hold a feasible basin: an infeasible last
@@ -471,7 +623,7 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
 
 def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chains: Optional[int],
              dim: Optional[int], objective: Optional[_objective.Objective], builtin: bool, fun: Any,
-             nfev: Callable[[int], int], *, cost: int, h: Optional[float], schedule: Any, start: Any,
+             nfev: Callable[[int], int], spend: _Budget, *, h: Optional[float], schedule: Any, start: Any,
              polish: Optional[int], x0: Optional[np.ndarray], target: Optional[float],
              stall: Optional[Tuple[int, float]], maxiter: Optional[int], maxtime: Optional[float],
              callback: Optional[Callable[..., Any]], disp: bool) -> OptimizeResult:
@@ -480,6 +632,7 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
             raise ValueError("give bounds or a start (hrla.Gaussian, hrla.Point, hrla.Interval)")
         start = box
     n = 10 if chains is None else chains
+    cost = spend.cost
     polish_k = min(1000, budget // 4) if polish is None else polish // cost
     stop = Stop().evaluations(budget)
     steps = maxiter
@@ -490,12 +643,18 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
             raise ValueError(f"maxfun leaves no step to {n} chains before a polish of {polish_k} gradients "
                              f"({cost} calls of fun each): raise maxfun, or lower polish or chains")
         steps = sampling if steps is None else min(steps, sampling)
-    if steps is not None:
+    # The limits as the kernel's rules, which take only finite numbers and
+    # a step budget of one or more; every method reads them the same way
+    # (maxiter=0: the starts only; target=inf: any finite value reaches
+    # it, so the run stops at its first look; stall's tolerance inf: the
+    # run stalls after its window), so the largest float stands for inf,
+    # and no step budget for maxiter=0, whose run is not started.
+    if steps:
         stop = stop.steps(steps)
     if target is not None:
-        stop = stop.target(target)
+        stop = stop.target(min(target, sys.float_info.max))
     if stall is not None:
-        stop = stop.stall(*stall)
+        stop = stop.stall(stall[0], min(stall[1], sys.float_info.max))
     opt = Optimizer(potential, _SAMPLERS[method].paper(0.01 if h is None else h),
                     4.0 if schedule is None else schedule, start, chains=n, seed=seed, stop=stop, domain=box, dim=dim)
     if x0 is not None:
@@ -504,30 +663,49 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
     w = _Watch(method, target=None, stall=None, maxiter=None, maxtime=maxtime, callback=callback, disp=disp,
                nfev=nfev)
     observed = maxtime is not None or callback is not None or disp
-    report = opt.run(w if observed else None, with_x=callback is not None)
-    termination = report.termination
+    report: Any = None
+    termination = "Steps"
+    if steps != 0:
+        report = opt.run(w if observed else None, with_x=callback is not None)
+        termination = report.termination
     if termination == "Observer" and w.reason:
         # A kernel rule that holds too comes first.
         termination = opt.termination() or w.reason
     # A run stopped by its target, time limit or callback stops there: the
     # polish would spend evaluations the user asked not to spend.
-    if polish_k > 0 and termination not in ("Target", "Time", "Callback"):
+    sampled = opt.evaluations
+    polished = polish_k > 0 and termination not in ("Target", "Time", "Callback")
+    if polished:
         opt.polish(opt.best_chain, PolishSettings(polish_k))
         # The report of the polished state: its rule still holds (the
         # polish only adds evaluations and lowers the best), unless a
         # target is now reached, which comes first.
         report = opt.report() or report
-        if report.termination != "Observer":
+        if report is not None and report.termination != "Observer":
             termination = report.termination
     x, value, _ = opt.best
+    w.polished(x, value, termination)
     jac = _gradient(x, objective, builtin, fun)
     if disp:
-        w.show(report.iterations, opt.evaluations, value, _clock())
+        w.show(opt.iteration, opt.evaluations, value, _clock())
+    njev = objective.njev if objective is not None else opt.evaluations
+    note = ""
+    # The step budget maxfun leaves, or maxfun itself, ended the run.
+    if termination == "Evaluations" or (termination == "Steps" and steps != maxiter):
+        polish_left = polish_k - (opt.evaluations - sampled) if polished else 0
+        k = opt.diverged_chains
+        left_by_steps = (f"fewer than one step of its {n} chains ({n * cost:,} calls)" if not k
+                         else f"left by the steps of its {n} chains, {k} of which diverged")
+        note = spend.note(nfev(opt.evaluations), njev, opt.evaluations, [
+            (budget - opt.evaluations - polish_left, left_by_steps),
+            (polish_left, f"of the polish's share of {polish_k * cost:,} calls, which converged after "
+                          f"{(polish_k - polish_left) * cost:,}"),
+        ])
     return _result(
-        x=x, fun=value, jac=jac, nfev=nfev(opt.evaluations),
-        njev=objective.njev if objective is not None else opt.evaluations, nit=report.iterations,
-        termination=termination, diverged_chains=report.diverged_chains, chains=report.chains, method=method,
-        seed=seed, kernel_message=report.message,
+        x=x, fun=value, jac=jac, nfev=nfev(opt.evaluations), budget_note=note,
+        njev=njev, nit=opt.iteration,
+        termination=termination, diverged_chains=opt.diverged_chains, chains=len(opt), method=method,
+        seed=seed, kernel_message="" if report is None else report.message,
     )
 
 
@@ -543,10 +721,11 @@ def _gradient(x: np.ndarray, objective: Optional[_objective.Objective], builtin:
     return np.asarray(g[0])
 
 
-def _message(kernel: str, termination: str, r: OptimizeResult) -> str:
+def _message(kernel: str, termination: str, r: OptimizeResult, budget_note: str) -> str:
     """Why the run ended and what it found, in the user's units: calls of
     ``fun`` (the kernel counts gradients, each of which may be several
-    calls), and ``f`` to its last digit."""
+    calls), and ``f`` to its last digit; for a run its budget ended, what
+    it left of ``maxfun`` and why (``budget_note``)."""
     reason = _REASONS.get(termination) or kernel.split(": ", 1)[0]
     unit = "rounds" if r["method"] == "auto" else "steps"
     text = (f"{reason}: best f = {float(r['fun'])!r} after {r['nfev']} calls of fun "
@@ -556,11 +735,11 @@ def _message(kernel: str, termination: str, r: OptimizeResult) -> str:
         text += f"; the last proposal of {k} of {n} chains met a point where f is not finite (rejected)"
     elif k:
         text += f"; {k} of {n} chains diverged"
-    return text
+    return text + budget_note
 
 
 def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, kernel_message: str,
-            holds_basins: bool = False, **rest: Any) -> OptimizeResult:
+            holds_basins: bool = False, budget_note: str = "", **rest: Any) -> OptimizeResult:
     """An :class:`OptimizeResult` whose ``success`` and ``status`` follow
     from the termination and the value (and, for the samplers, from whether
     any chain is still alive); ``message`` last."""
@@ -571,5 +750,5 @@ def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, 
         status=TERMINATIONS.index(termination), termination=termination,
         all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
     )
-    r["message"] = _message(kernel_message, termination, r)
+    r["message"] = _message(kernel_message, termination, r, budget_note)
     return r

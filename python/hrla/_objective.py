@@ -142,14 +142,21 @@ def _show(v: Any) -> str:
 
 
 class Call:
-    """``fun(x, *args)``: a picklable callable, for a process pool."""
+    """``fun(x, *args)`` on a copy of ``x``: a picklable callable, for a
+    process pool. Every call of the user's ``fun`` or ``jac`` goes through
+    it, so that each gets an array of its own, as scipy passes a copy: a
+    ``fun`` that writes into its argument changes neither the run's points
+    nor its result. (A read-only view would cost no copy but break a
+    ``fun`` written for scipy that works in place on its ``x``; the copy
+    costs far less than the call.) The copy keeps the memory order, so
+    that ``fun`` computes the same bits as on the original."""
 
     def __init__(self, fun: Callable[..., Any], args: Tuple[Any, ...]) -> None:
         self.fun = fun
         self.args = args
 
     def __call__(self, x: np.ndarray) -> Any:
-        return self.fun(x, *self.args)
+        return self.fun(np.array(x, order="K"), *self.args)
 
 
 class Mapper:
@@ -181,14 +188,23 @@ class Mapper:
             self.pool = None
 
 
-def returns_intermediate_result(callback: Callable[..., Any]) -> bool:
-    """Whether ``callback`` takes scipy's ``intermediate_result`` (an
-    ``OptimizeResult``) rather than the point ``xk``: scipy's test, its
-    one parameter's name."""
+def callback_form(callback: Callable[..., Any]) -> str:
+    """How ``callback`` is called, from its signature: ``"intermediate_result"``
+    (scipy's test: its one parameter has that name) gets an
+    ``OptimizeResult``; else by the positional parameters without a
+    default: three or more, ``"x, f, context"`` (``dual_annealing``'s form,
+    and ``basinhopping``'s ``(x, f, accept)``, whose third is then the
+    context); two, ``"x, f"``; fewer (or no signature), ``"x"``, scipy's
+    older ``callback(xk)``."""
     try:
-        return set(inspect.signature(callback).parameters) == {"intermediate_result"}
+        parameters = inspect.signature(callback).parameters
     except (TypeError, ValueError):
-        return False
+        return "x"
+    if set(parameters) == {"intermediate_result"}:
+        return "intermediate_result"
+    positional = (inspect.Parameter.POSITIONAL_ONLY, inspect.Parameter.POSITIONAL_OR_KEYWORD)
+    required = sum(p.kind in positional and p.default is inspect.Parameter.empty for p in parameters.values())
+    return "x, f, context" if required >= 3 else "x, f" if required == 2 else "x"
 
 
 class Objective:
@@ -271,20 +287,19 @@ class Objective:
         n = len(x)
         self.nfev += n
         if self.vectorized:
-            u = real(self.fun(x.T, *self.args), "fun's values")
+            u = real(Call(self.fun, self.args)(x.T), "fun's values")
             if u.shape != (n,):
                 raise ValueError(f"a vectorized fun must return shape ({n},) for x of shape "
                                  f"{(x.shape[1], n)}, got {u.shape}")
             return u
-        return np.array([scalar(v) for v in self.mapper.map(Call(self.fun, self.args), list(x))],
-                        dtype=np.float64)
+        return np.array([scalar(v) for v in self.each(self.fun, x)], dtype=np.float64)
 
     def gradients(self, x: np.ndarray) -> np.ndarray:
         """``jac`` at the rows of ``x``."""
         n, d = x.shape
         if self.vectorized:
-            return self.column_gradients(self.jac(x.T, *self.args), n, d, "jac")
-        rows = [vector(g, d, "jac") for g in self.mapper.map(Call(self.jac, self.args), list(x))]
+            return self.column_gradients(Call(self.jac, self.args)(x.T), n, d, "jac")
+        rows = [vector(g, d, "jac") for g in self.each(self.jac, x)]
         return np.array(rows, dtype=np.float64).reshape(n, d)
 
     def values_and_gradients(self, x: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
@@ -292,15 +307,24 @@ class Objective:
         n, d = x.shape
         self.nfev += n
         if self.vectorized:
-            u, g = pair(self.fun(x.T, *self.args))
+            u, g = pair(Call(self.fun, self.args)(x.T))
             u = real(u, "fun's values")
             if u.shape != (n,):
                 raise ValueError(f"a vectorized fun must return f of shape ({n},), got {u.shape}")
             return u, self.column_gradients(g, n, d, "fun's gradient")
-        answers = [pair(a) for a in self.mapper.map(Call(self.fun, self.args), list(x))]
+        answers = [pair(a) for a in self.each(self.fun, x)]
         u = np.array([scalar(f) for f, _ in answers], dtype=np.float64)
         g = np.array([vector(g, d, "fun's gradient") for _, g in answers], dtype=np.float64)
         return u, g.reshape(n, d)
+
+    def each(self, function: Callable[..., Any], x: np.ndarray) -> List[Any]:
+        """``function`` at each row of ``x``, through the workers: one
+        answer a row, or ``ValueError`` naming the map."""
+        answers = list(self.mapper.map(Call(function, self.args), list(x)))
+        if len(answers) != len(x):
+            raise ValueError(f"the workers map returned {len(answers)} results for {len(x)} points: a map-like "
+                             f"workers must return one result per point, in order, as the builtin map")
+        return answers
 
     @staticmethod
     def column_gradients(g: Any, n: int, d: int, what: str) -> np.ndarray:

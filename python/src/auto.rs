@@ -171,7 +171,10 @@ impl PyAuto {
             ..Auto::default()
         };
         // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated
-        // (counted, so where it looks is the same on every machine).
+        // (counted, so where it looks is the same on every machine), and
+        // at every look of a Python potential's run (whose calls cost far
+        // more). A Python potential's own exception (Ctrl-C while it ran
+        // included) needs no look: the layer ends the run at once with it.
         let mut checked = 0;
         let mut seen: Option<(u64, f64)> = None;
         let mut stopped: Option<PyErr> = None;
@@ -194,7 +197,7 @@ impl PyAuto {
                 }
             }
             let every = (SIGNAL_WORK / p.dim as u64).max(1);
-            if p.evaluations - checked < every {
+            if !user && p.evaluations - checked < every {
                 return ControlFlow::Continue(());
             }
             checked = p.evaluations;

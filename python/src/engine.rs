@@ -1,7 +1,8 @@
 //! `hrla.Optimizer`: the layer's run ([`hrla_dyn::Engine`]), with its
 //! chains readable as numpy arrays; this module adds only what Python
 //! needs around it: the GIL released while the kernel runs a built-in,
-//! Ctrl-C between steps, and one call at a time.
+//! Ctrl-C between steps, one call at a time, and the end of a run whose
+//! Python potential raised.
 
 use std::ops::ControlFlow;
 use std::sync::{Mutex, MutexGuard, TryLockError};
@@ -13,7 +14,7 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
 use crate::config::{self, PyPolishSettings, PyPolished, PyReport, PyStop};
-use crate::errors::{busy, guard, internal, layer};
+use crate::errors::{HrlaError, busy, guard, internal, layer};
 use crate::potential;
 
 /// Coordinate-steps (chains x `D` per step) of a built-in potential's
@@ -29,13 +30,14 @@ pub fn signal_steps(n: usize, d: usize) -> u64 {
 
 /// Steps the engine: a built-in's in chunks with the GIL released, a
 /// check for Ctrl-C between two; a Python function's one at a time (it
-/// needs the GIL), a check after each. An interrupted call leaves the
-/// optimiser after a whole step, so that going on gives the bits of a
-/// run never interrupted.
-fn step(py: Python<'_>, engine: &mut Engine, steps: u64) -> PyResult<()> {
+/// needs the GIL), a check after each. A call interrupted by a check
+/// leaves the optimiser after a whole step, so that going on gives the
+/// bits of a run never interrupted; an exception of the potential ends it
+/// at once and cuts the run ([`Cut`]).
+fn step(py: Python<'_>, engine: &mut Engine, cut: &Cut, steps: u64) -> PyResult<()> {
     if engine.is_user() {
         for _ in 0..steps {
-            engine.step(1).map_err(layer)?;
+            engine.step(1).map_err(|e| cut.error(py, e))?;
             py.check_signals()?;
         }
         return Ok(());
@@ -60,10 +62,12 @@ fn step(py: Python<'_>, engine: &mut Engine, steps: u64) -> PyResult<()> {
 /// is called at the same steps (once a step), after the check:
 /// `observer(iteration, evaluations, best_value[, best_x])`; a true answer ends the
 /// run ([`hrla::Termination::Observer`]), an exception ends it with that
-/// exception.
+/// exception. An exception of the potential ends it at once and cuts the
+/// run ([`Cut`]).
 fn run(
     py: Python<'_>,
     engine: &mut Engine,
+    cut: &Cut,
     user_observer: Option<&Py<PyAny>>,
     with_x: bool,
 ) -> PyResult<PyReport> {
@@ -105,7 +109,7 @@ fn run(
     };
     match interrupted {
         Some(e) => Err(e),
-        None => report.map(Into::into).map_err(layer),
+        None => report.map(Into::into).map_err(|e| cut.error(py, e)),
     }
 }
 
@@ -113,6 +117,7 @@ fn run(
 fn local_search(
     py: Python<'_>,
     engine: &mut Engine,
+    cut: &Cut,
     chain: usize,
     settings: PolishSettings<f64>,
     quench: bool,
@@ -122,7 +127,7 @@ fn local_search(
     } else {
         py.detach(|| engine.local_search(chain, settings, quench))
     };
-    done.map(Into::into).map_err(layer)
+    done.map(Into::into).map_err(|e| cut.error(py, e))
 }
 
 /// Algorithm 1 of the paper, step by step: `N` independent chains of a
@@ -138,6 +143,8 @@ fn local_search(
 #[pyclass(frozen, module = "hrla", name = "Optimizer")]
 pub struct PyOptimizer {
     engine: Mutex<Engine>,
+    /// Set when the potential raised in the middle of a step or search.
+    cut: Cut,
     /// Where the chains are: fixed for the optimiser's life (the kernel
     /// never moves or resizes its chains), so the views need no lock.
     layout: Layout,
@@ -174,6 +181,59 @@ impl PyOptimizer {
             };
             body(&mut engine)
         })
+    }
+
+    /// [`with`](Self::with) for a call that evaluates the potential
+    /// (`step`, `run`, `polish`, `quench`, `restart`): refused with
+    /// `HrlaError` once the potential has raised in the middle of one.
+    fn evaluating<T>(
+        &self,
+        body: impl FnOnce(&mut Engine, &Cut) -> PyResult<T>,
+    ) -> PyResult<T> {
+        if let Some(why) = self.cut.why() {
+            return Err(HrlaError::new_err(why));
+        }
+        self.with(|e| body(e, &self.cut))
+    }
+}
+
+/// Whether, and how, a run was cut short by its Python potential. An
+/// exception of the potential (Ctrl-C's `KeyboardInterrupt` included)
+/// ends the call at once, with no second call of the potential; the step
+/// or search it interrupted had already moved its points, whose values
+/// never came. That state is not one a run never interrupted passes
+/// through, so every later call that would evaluate refuses, saying why;
+/// the views and the best stay readable. (Ctrl-C seen between two steps
+/// leaves a whole step, and the run can go on.)
+#[derive(Default)]
+struct Cut(Mutex<Option<String>>);
+
+impl Cut {
+    /// The sentence of the cut, if the run was cut.
+    fn why(&self) -> Option<String> {
+        self.0.lock().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+
+    /// `e` as Python's exception; an exception of the potential is kept
+    /// as it was raised, and the cut noted.
+    fn error(&self, py: Python<'_>, e: hrla_dyn::Error) -> PyErr {
+        let from_potential = matches!(e, hrla_dyn::Error::User(_));
+        let err = layer(e);
+        if from_potential {
+            let what = err
+                .get_type(py)
+                .name()
+                .map_or_else(|_| "an exception".to_owned(), |n| n.to_string());
+            let mut cut = self.0.lock().unwrap_or_else(|e| e.into_inner());
+            cut.get_or_insert(format!(
+                "the run ended when its potential raised {what} in the middle of a step, polish, \
+                 quench or restart: the points of that call were moved and never evaluated, so the \
+                 optimiser cannot go on as a run never interrupted would; its views and best can \
+                 still be read (Ctrl-C seen between two steps leaves a whole step, and the run can \
+                 go on)"
+            ));
+        }
+        err
     }
 }
 
@@ -218,23 +278,26 @@ impl PyOptimizer {
                 dim: engine.dim(),
                 len: engine.len(),
                 engine: Mutex::new(engine),
+                cut: Cut::default(),
             })
         })
     }
 
     /// Advances every live chain by `steps` steps (default 1), without
-    /// consulting the stopping rules. Ctrl-C interrupts it after a whole
-    /// step (`KeyboardInterrupt`); calling it again goes on as if
-    /// uninterrupted.
+    /// consulting the stopping rules. Ctrl-C seen between two steps
+    /// interrupts it after a whole step (`KeyboardInterrupt`), and calling
+    /// it again goes on as if uninterrupted. An exception of a Python
+    /// potential (`KeyboardInterrupt` raised while it runs included) ends
+    /// the call at once, the potential not called again, and ends the run:
+    /// later calls that evaluate raise `HrlaError` saying so.
     #[pyo3(signature = (steps = None))]
     fn step(&self, py: Python<'_>, steps: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
         let steps = config::unsigned_opt(steps, "steps")?.unwrap_or(1);
-        self.with(|e| step(py, e, steps))
+        self.evaluating(|e, cut| step(py, e, cut, steps))
     }
 
     /// Steps until a stopping rule holds; returns the `Report`. Ctrl-C
-    /// interrupts it after a whole step (`KeyboardInterrupt`); calling it
-    /// again goes on as if uninterrupted.
+    /// and the potential's exceptions end it as they end `step`.
     ///
     /// `observer(iteration, evaluations, best_value)`, when given, is
     /// called after every step of a Python potential's run and every few
@@ -251,7 +314,7 @@ impl PyOptimizer {
         with_x: bool,
     ) -> PyResult<PyReport> {
         let observer = observer_of(observer)?;
-        self.with(|e| run(py, e, observer.as_ref(), with_x))
+        self.evaluating(|e, cut| run(py, e, cut, observer.as_ref(), with_x))
     }
 
     /// The first stopping rule that holds now (`"Steps"`, `"Evaluations"`,
@@ -277,7 +340,7 @@ impl PyOptimizer {
         settings: Option<PyPolishSettings>,
     ) -> PyResult<PyPolished> {
         let s = settings.map_or(PolishSettings::new(1000), |s| s.0);
-        self.with(|e| local_search(py, e, chain, s, false))
+        self.evaluating(|e, cut| local_search(py, e, cut, chain, s, false))
     }
 
     /// L-BFGS from a copy of chain `chain`'s current point (the bottom of
@@ -290,13 +353,13 @@ impl PyOptimizer {
         settings: Option<PyPolishSettings>,
     ) -> PyResult<PyPolished> {
         let s = settings.map_or(PolishSettings::new(1000), |s| s.0);
-        self.with(|e| local_search(py, e, chain, s, true))
+        self.evaluating(|e, cut| local_search(py, e, cut, chain, s, true))
     }
 
     /// Moves chain `chain` to `x` (confined) with zero velocity and
     /// evaluates it: one evaluation; `False` when none is left.
-    fn restart(&self, chain: usize, x: Vec<f64>) -> PyResult<bool> {
-        self.with(|e| e.restart(chain, &x).map_err(layer))
+    fn restart(&self, py: Python<'_>, chain: usize, x: Vec<f64>) -> PyResult<bool> {
+        self.evaluating(|e, cut| e.restart(chain, &x).map_err(|e| cut.error(py, e)))
     }
 
     /// Positions `x_k`, shape `(N, D)`: a read-only view, no copy.

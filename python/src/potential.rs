@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use hrla_dyn::{BatchFunction, BuiltinKind, BuiltinSpec, PotentialSpec, UserError};
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
-use pyo3::exceptions::{PyKeyboardInterrupt, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::errors::{guard, layer};
@@ -132,20 +132,11 @@ impl BatchFunction for PyFunction {
         values: &mut [f64],
         grads: &mut [f64],
     ) -> Result<(), UserError> {
-        let (u, g) = Python::attach(|py| match call(py, &self.0, points, d) {
-            // Ctrl-C while the function ran: the step it belongs to has
-            // already moved the chains, so it is finished with a second
-            // call, and the interrupt raised again for the check that
-            // follows the step. An interrupted run thus stops after a
-            // whole step and goes on with the bits of one never stopped.
-            Err(e) if e.is_instance_of::<PyKeyboardInterrupt>(py) => {
-                let answer = call(py, &self.0, points, d)?;
-                py.import("_thread")?.call_method0("interrupt_main")?;
-                Ok(answer)
-            }
-            answer => answer,
-        })
-        .map_err(UserError::from)?;
+        // An exception of the function (Ctrl-C's `KeyboardInterrupt`
+        // included) is handed back as it was raised, with no second call:
+        // the batch seam keeps it, makes the rest of the run's evaluations
+        // no-ops, and the run ends at once with it.
+        let (u, g) = Python::attach(|py| call(py, &self.0, points, d)).map_err(UserError::from)?;
         values.copy_from_slice(&u);
         grads.copy_from_slice(&g);
         Ok(())

@@ -427,7 +427,7 @@ def test_workers_evaluate_in_parallel_with_the_same_bits():
 @pytest.mark.parametrize("kw, error, text", [
     ({"maxfun": -1}, ValueError, "maxfun must be >= 1, got -1"),
     ({"maxfun": 0}, ValueError, "maxfun must be >= 1, got 0"),
-    ({"maxfun": 2.5}, TypeError, "maxfun must be an int"),
+    ({"maxfun": 2.5}, ValueError, "maxfun must be a whole number, got 2.5"),
     ({"maxiter": -1}, ValueError, "maxiter must be >= 0, got -1"),
     ({"chains": -3}, ValueError, "chains must be >= 1, got -3"),
     ({"dim": -1}, ValueError, "dim must be >= 1, got -1"),
