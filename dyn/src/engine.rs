@@ -264,13 +264,11 @@ impl Engine {
     /// The kernel's loop until a stopping rule holds, `steps` more steps
     /// are done (`None`: no bound) or `observer` returns `Break`: the
     /// report when a stopping rule or the observer ended it, `None` when
-    /// the steps ran out. `observer` is called on every improvement and
-    /// every `every` steps (a user's function or an escape radius: after
-    /// every step).
+    /// the steps ran out. `observer` is called as `when` says.
     fn drive(
         &mut self,
         steps: Option<u64>,
-        every: u64,
+        when: Observe,
         observer: &mut dyn FnMut(&Progress) -> ControlFlow<()>,
     ) -> Result<Option<Report<f64>>, Error> {
         self.check()?;
@@ -279,13 +277,10 @@ impl Engine {
         }
         let end = steps.map(|k| self.opt.iteration().saturating_add(k));
         let (user, escape2) = (self.user.clone(), self.escape2);
-        let when = match every {
-            _ if user.is_some() || escape2.is_some() => Observe::Always,
-            0 => Observe::NewBest,
-            n => Observe::EveryAndNewBest(n),
-        };
         let (chains, dim) = (self.opt.chains().len(), self.opt.dim());
         let (mut away, mut ran_out) = (None, false);
+        // The layer's own stops look after every step; the caller's
+        // observer, as it asked.
         let report = self.opt.run_with(Observe::Always, |p| {
             if user.as_ref().is_some_and(UserBatch::failed) {
                 return ControlFlow::Break(());
@@ -323,20 +318,18 @@ impl Engine {
     }
 
     /// Steps until a stopping rule holds and returns the report;
-    /// `observer` is called on every improvement and every `every` steps
-    /// (a user's function or an escape radius: after every step), and
-    /// ends the run with [`Termination::Observer`] by returning `Break`. A
-    /// run without a stopping rule is refused
-    /// ([`hrla::Error::NoStoppingRule`]).
+    /// `observer` is called after the steps `when` says, and ends the run
+    /// with [`Termination::Observer`] by returning `Break`. A run without
+    /// a stopping rule is refused ([`hrla::Error::NoStoppingRule`]).
     pub fn run(
         &mut self,
-        every: u64,
+        when: Observe,
         observer: &mut dyn FnMut(&Progress) -> ControlFlow<()>,
     ) -> Result<Report<f64>, Error> {
         if self.opt.stop().is_empty() {
             return Err(hrla::Error::NoStoppingRule.into());
         }
-        match self.drive(None, every, observer)? {
+        match self.drive(None, when, observer)? {
             Some(report) => Ok(report),
             None => unreachable!("a run without a step bound never runs out of steps"),
         }
@@ -346,7 +339,9 @@ impl Engine {
     /// observer: the stopping rule that ended them, if one held (a run
     /// without stopping rules steps `steps` times).
     pub fn run_for(&mut self, steps: u64) -> Result<Option<Termination>, Error> {
-        let report = self.drive(Some(steps), 0, &mut |_| ControlFlow::Continue(()))?;
+        let report = self.drive(Some(steps), Observe::Never, &mut |_| {
+            ControlFlow::Continue(())
+        })?;
         Ok(report.map(|r| r.termination))
     }
 

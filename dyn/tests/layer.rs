@@ -103,7 +103,9 @@ fn a_builtin_run_is_the_kernels_run() {
     let (report, x) = kernel_run();
     let mut engine = settings(rastrigin()).build().unwrap();
     let ours = engine
-        .run(1000, &mut |_| ControlFlow::Continue(()))
+        .run(hrla::Observe::EveryAndNewBest(1000), &mut |_| {
+            ControlFlow::Continue(())
+        })
         .unwrap();
     assert_eq!(ours, report);
     assert_eq!(ours.termination, Termination::Steps);
@@ -118,7 +120,11 @@ fn a_batched_function_gives_the_same_bits_in_one_call_per_step() {
     let f = Arc::new(Batched(AtomicUsize::new(0)));
     let mut engine = settings(PotentialSpec::User(f.clone())).build().unwrap();
     assert!(engine.is_user());
-    let ours = engine.run(1, &mut |_| ControlFlow::Continue(())).unwrap();
+    let ours = engine
+        .run(hrla::Observe::EveryAndNewBest(1), &mut |_| {
+            ControlFlow::Continue(())
+        })
+        .unwrap();
     assert_eq!(ours, report);
     assert_eq!(f.0.load(Ordering::Relaxed), 201);
     assert_eq!(positions(&engine), x);
@@ -129,7 +135,7 @@ fn the_observer_ends_the_run() {
     for user in [false, true] {
         let mut engine = settings(rastrigin_as(user)).build().unwrap();
         let report = engine
-            .run(1, &mut |p| {
+            .run(hrla::Observe::EveryAndNewBest(1), &mut |p| {
                 if p.iteration >= 10 {
                     ControlFlow::Break(())
                 } else {
@@ -155,7 +161,7 @@ fn the_observer_sees_the_best_point() {
         let mut engine = settings(rastrigin_as(user)).build().unwrap();
         let mut calls = 0;
         engine
-            .run(1, &mut |p| {
+            .run(hrla::Observe::EveryAndNewBest(1), &mut |p| {
                 check(p);
                 calls += 1;
                 ControlFlow::Continue(())
@@ -220,7 +226,9 @@ impl BatchFunction for Failing {
 fn a_failing_function_is_its_own_error() {
     let f = Arc::new(Failing(AtomicUsize::new(0), 5));
     let mut engine = settings(PotentialSpec::User(f.clone())).build().unwrap();
-    let Err(Error::User(e)) = engine.run(1, &mut |_| ControlFlow::Continue(())) else {
+    let Err(Error::User(e)) = engine.run(hrla::Observe::EveryAndNewBest(1), &mut |_| {
+        ControlFlow::Continue(())
+    }) else {
         panic!("the function's error must end the run");
     };
     assert!(e.downcast_ref::<Refused>().is_some());
@@ -305,7 +313,9 @@ fn a_box_per_coordinate_is_the_kernels_bounds() {
     s.domain = Some(BoxSpec::PerCoordinate(sides.clone()));
     s.start = StartSpec::Box(BoxSpec::PerCoordinate(sides.clone()));
     let mut engine = s.build().unwrap();
-    let report = engine.run(0, &mut |_| ControlFlow::Continue(())).unwrap();
+    let report = engine
+        .run(hrla::Observe::NewBest, &mut |_| ControlFlow::Continue(()))
+        .unwrap();
 
     let lo: [f64; 10] = std::array::from_fn(|i| sides[i].0);
     let hi: [f64; 10] = std::array::from_fn(|i| sides[i].1);
@@ -522,7 +532,9 @@ fn a_native_function_runs_as_a_builtin() {
         .unwrap();
     assert!(!engine.is_user());
     let ours = engine
-        .run(1000, &mut |_| ControlFlow::Continue(()))
+        .run(hrla::Observe::EveryAndNewBest(1000), &mut |_| {
+            ControlFlow::Continue(())
+        })
         .unwrap();
     assert_eq!(ours, report);
     assert_eq!(positions(&engine), x);
@@ -557,7 +569,9 @@ fn every_chain_beyond_the_escape_radius_fails_the_run() {
     }
     assert!(matches!(stepped.step(1), Err(Error::RanAway(a)) if a == away));
     let mut run = s.build().unwrap();
-    let Err(Error::RanAway(same)) = run.run(1, &mut |_| ControlFlow::Continue(())) else {
+    let Err(Error::RanAway(same)) = run.run(hrla::Observe::EveryAndNewBest(1), &mut |_| {
+        ControlFlow::Continue(())
+    }) else {
         panic!("run must fail the same way");
     };
     assert_eq!((same, run.iteration()), (away, at));
@@ -600,7 +614,9 @@ fn a_run_at_d17_is_the_kernels_const_run() {
         s.start = start;
         s.dim = Some(D);
         let mut engine = s.build().unwrap();
-        let ours = engine.run(0, &mut |_| ControlFlow::Continue(())).unwrap();
+        let ours = engine
+            .run(hrla::Observe::NewBest, &mut |_| ControlFlow::Continue(()))
+            .unwrap();
 
         let chains: Vec<Chain<f64, D>> = (0..6).map(|_| Chain::new()).collect();
         let (sampler, schedule, stop) = (

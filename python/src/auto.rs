@@ -9,8 +9,8 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 
 use crate::config;
-use crate::engine::{SIGNAL_WORK, observer_of};
 use crate::errors::{guard, layer};
+use crate::observer::{SIGNAL_WORK, observe, observer_of};
 use crate::potential;
 
 /// The default solver: Langevin basin hopping on a ladder of inverse
@@ -232,24 +232,6 @@ impl PyAuto {
             message: s.message,
         })
     }
-}
-
-/// A user's observer called on `p`: `observer(iteration, evaluations,
-/// best_value)`, and the best point (copied) after them when `with_x`;
-/// whether it answered true.
-pub fn observe(py: Python<'_>, o: &Py<PyAny>, p: &Progress<'_>, with_x: bool) -> PyResult<bool> {
-    let o = o.bind(py);
-    let answer = if with_x {
-        o.call1((
-            p.iteration,
-            p.evaluations,
-            p.value,
-            PyArray1::from_slice(py, p.x),
-        ))?
-    } else {
-        o.call1((p.iteration, p.evaluations, p.value))?
-    };
-    answer.is_truthy()
 }
 
 #[pymethods]

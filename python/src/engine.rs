@@ -7,26 +7,15 @@
 use std::ops::ControlFlow;
 use std::sync::{Mutex, MutexGuard, TryLockError};
 
-use hrla::PolishSettings;
+use hrla::{Observe, PolishSettings};
 use hrla_dyn::{Engine, Layout, Settings};
 use numpy::{PyArray1, PyArray2};
-use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
 use crate::config::{self, PyPolishSettings, PyPolished, PyReport, PyStop};
 use crate::errors::{HrlaError, busy, guard, internal, layer};
+use crate::observer::{observer_of, signal_steps};
 use crate::potential;
-
-/// Coordinate-steps (chains x `D` per step) of a built-in potential's
-/// run between two checks for a signal (Ctrl-C): a few milliseconds at
-/// the kernel's 5 to 20 ns per coordinate-step. Counted in work, not
-/// time, so that where a run checks never depends on the machine.
-pub const SIGNAL_WORK: u64 = 1 << 18;
-
-/// Steps between two checks for a signal, for `n` chains of dimension `d`.
-pub fn signal_steps(n: usize, d: usize) -> u64 {
-    (SIGNAL_WORK / (n as u64).saturating_mul(d as u64).max(1)).max(1)
-}
 
 /// Steps the engine: a built-in's in chunks with the GIL released, a
 /// check for Ctrl-C between two; a Python function's one at a time (it
@@ -78,18 +67,11 @@ fn run(
         signal_steps(engine.len(), engine.dim())
     };
     let mut interrupted = None;
-    let mut last = None;
     let mut observer = |p: &hrla_dyn::Progress| {
-        // Called at every improvement too: only the multiples of `every`
-        // count, each once.
-        if !p.iteration.is_multiple_of(every) || last == Some(p.iteration) {
-            return ControlFlow::Continue(());
-        }
-        last = Some(p.iteration);
         let answer = Python::attach(|py| {
             py.check_signals()?;
             match user_observer {
-                Some(o) => crate::auto::observe(py, o, p, with_x),
+                Some(o) => crate::observer::observe(py, o, p, with_x),
                 None => Ok(false),
             }
         });
@@ -103,9 +85,9 @@ fn run(
         }
     };
     let report = if user {
-        engine.run(every, &mut observer)
+        engine.run(Observe::Every(every), &mut observer)
     } else {
-        py.detach(|| engine.run(every, &mut observer))
+        py.detach(|| engine.run(Observe::Every(every), &mut observer))
     };
     match interrupted {
         Some(e) => Err(e),
@@ -186,10 +168,7 @@ impl PyOptimizer {
     /// [`with`](Self::with) for a call that evaluates the potential
     /// (`step`, `run`, `polish`, `quench`, `restart`): refused with
     /// `HrlaError` once the potential has raised in the middle of one.
-    fn evaluating<T>(
-        &self,
-        body: impl FnOnce(&mut Engine, &Cut) -> PyResult<T>,
-    ) -> PyResult<T> {
+    fn evaluating<T>(&self, body: impl FnOnce(&mut Engine, &Cut) -> PyResult<T>) -> PyResult<T> {
         if let Some(why) = self.cut.why() {
             return Err(HrlaError::new_err(why));
         }
@@ -458,18 +437,6 @@ impl PyOptimizer {
     /// The number of chains `N`.
     fn __len__(&self) -> usize {
         self.len
-    }
-}
-
-/// A run's observer as given: `None` (or Python's `None`) for none, a
-/// callable kept, anything else a `TypeError`.
-pub fn observer_of(observer: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Py<PyAny>>> {
-    match observer.filter(|o| !o.is_none()) {
-        Some(o) if !o.is_callable() => Err(PyTypeError::new_err(format!(
-            "observer must be callable, got {}",
-            o.get_type().name()?
-        ))),
-        o => Ok(o.map(|o| o.clone().unbind())),
     }
 }
 

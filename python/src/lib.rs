@@ -19,6 +19,7 @@ mod auto;
 mod config;
 mod engine;
 mod errors;
+mod observer;
 mod potential;
 mod views;
 

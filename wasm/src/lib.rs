@@ -123,6 +123,10 @@ pub struct Optimizer {
     seed: u64,
     /// Whether the run has stopping rules to consult before each step.
 
+    /// Whether the page set stopping rules: without, it steps past the
+    /// end of an annealing schedule (at its last temperature), never
+    /// consulting the step budget the schedule's length gives the kernel.
+    stops: bool,
     /// Why the run stopped, once it has.
     termination: Option<Termination>,
     /// The run's failure when every chain ran away, returned again by
@@ -180,6 +184,7 @@ impl Optimizer {
             engine,
             landscape: settings.landscape.clone(),
             seed: settings.seed,
+            stops: stop.is_some(),
             termination: None,
             failed: None,
             positions: vec![0.0; 2 * n],
@@ -211,15 +216,21 @@ impl Optimizer {
             return Ok(0);
         }
         let before = self.engine.iteration();
-        let result = self.engine.run_for(u64::from(steps)).map_err(Error::from);
+        let steps = u64::from(steps);
+        let result = if self.stops {
+            self.engine.run_for(steps)
+        } else {
+            self.engine.step(steps).map(|()| None)
+        };
+        let result = result.map_err(Error::from);
         match &result {
             Ok(termination) => self.termination = self.termination.or(*termination),
             Err(e @ Error::RanAway { .. }) => self.failed = Some(e.clone()),
             Err(_) => {}
         }
         self.publish();
-        // At most `steps`: the count fits.
-        let done = u32::try_from(self.engine.iteration() - before).unwrap_or(steps);
+        // At most `steps`, a `u32`: the count fits.
+        let done = u32::try_from(self.engine.iteration() - before).unwrap_or(u32::MAX);
         result.map(|_| done)
     }
 
