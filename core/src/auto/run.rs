@@ -19,7 +19,7 @@ use crate::optimizer::{Chain, Termination, chain_seed, draw_point};
 use crate::optimizer::{Verdict, judge};
 use crate::polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished};
 use crate::potential::{BatchPotential, SlicePotential};
-use crate::sampler::{Hrla, Kernel, Sampler};
+use crate::sampler::{Hrla, Kernel, OuKernel, Sampler};
 
 /// Why a run ended early.
 pub(super) enum Stop {
@@ -32,6 +32,15 @@ pub(super) enum Stop {
 }
 
 type Flow = ControlFlow<Stop>;
+
+/// A proposal's point as it goes through a round's steps: its value where
+/// known, not yet evaluated, or rejected (an infeasible point met).
+#[derive(Clone, Copy)]
+enum Point<F> {
+    Known(F),
+    Unknown,
+    Rejected,
+}
 
 /// Chains whose curvature is probed: their median suffices.
 const PROBES: usize = 16;
@@ -654,18 +663,42 @@ where
     }
 
     /// Chain `c` leaves its basin (global move, then sampling), quenches,
-    /// and accepts the new basin by Metropolis at its temperature.
+    /// and accepts the new basin by Metropolis at its temperature: the
+    /// four steps of a round, each its own method.
     fn propose(&mut self, c: usize) -> Flow {
-        let n = self.chains.len();
-        let auto = self.tally.auto;
-        let domain = self.tally.domain;
-        let parts = auto.parts;
         let a = self.rung(c);
         self.x.copy_from_slice(self.chains.x(c));
         self.y.copy_from_slice(self.chains.chain(c).y);
         self.grad.fill(F::ZERO);
-        let mut value = self.chains.value(c);
-        let mut known = true;
+        let point = if self.global_move(c) {
+            Point::Unknown
+        } else {
+            Point::Known(self.chains.value(c))
+        };
+        let n = self.chains.len();
+        let slot = if n > SLOTS { c * SLOTS / n } else { c };
+        let h = measure::clamp(self.h * self.scale[slot], measure::H_RANGE);
+        let kernel = match Hrla::paper(h).and_then(|s| s.at(a)) {
+            Ok(k) => k,
+            Err(e) => return ControlFlow::Break(Stop::Failed(e)),
+        };
+        let point = self.sample(c, &kernel, point)?;
+        if !matches!(point, Point::Rejected) {
+            self.chains.chain(c).y.copy_from_slice(self.y);
+        }
+        match self.settle(c, point)? {
+            Point::Known(value) => self.accept(c, a, slot, value),
+            _ => self.reject(c),
+        }
+    }
+
+    /// Step 1, the global move: with probability [`Auto::jump_rate`] (or
+    /// always, without sampling), the proposal starts from a differential
+    /// move along two other chains' basins; whether it did.
+    fn global_move(&mut self, c: usize) -> bool {
+        let n = self.chains.len();
+        let auto = self.tally.auto;
+        let parts = auto.parts;
         let jump = parts.global_moves
             && n >= 3
             && (parts.sampling == Sampling::Off
@@ -686,25 +719,32 @@ where
                 self.chains.x(i),
                 self.chains.x(j),
                 gamma,
-                domain,
+                self.tally.domain,
                 self.g0,
             );
-            known = false;
         }
-        let slot = if n > SLOTS { c * SLOTS / n } else { c };
-        let h = measure::clamp(self.h * self.scale[slot], measure::H_RANGE);
-        let kernel = match Hrla::paper(h).and_then(|s| s.at(a)) {
-            Ok(k) => k,
-            Err(e) => return ControlFlow::Break(Stop::Failed(e)),
-        };
-        match parts.sampling {
+        jump
+    }
+
+    /// Step 2, sampling: [`Auto::steps`] steps of `kernel` from the
+    /// proposal's point (each evaluated, with Langevin sampling), or free
+    /// moves (jump sampling), or none.
+    fn sample(
+        &mut self,
+        c: usize,
+        kernel: &OuKernel<F>,
+        point: Point<F>,
+    ) -> ControlFlow<Stop, Point<F>> {
+        let steps = self.tally.auto.steps;
+        match self.tally.auto.parts.sampling {
             Sampling::Langevin => {
-                if !known {
-                    match self.tally.evaluate(self.x, self.grad)? {
-                        Some(v) => value = v,
-                        None => return self.reject(c),
-                    }
-                }
+                let mut value = match point {
+                    Point::Known(value) => value,
+                    _ => match self.tally.evaluate(self.x, self.grad)? {
+                        Some(value) => value,
+                        None => return ControlFlow::Continue(Point::Rejected),
+                    },
+                };
                 // The trajectory in unit coordinates (`self.x`, with the
                 // momentum), each point evaluated at its place in the box
                 // (`self.base`).
@@ -713,7 +753,7 @@ where
                 let unit = self.tally.unit;
                 let identity = unit.is_identity();
                 unit.scale_in(self.x);
-                for _ in 0..auto.steps {
+                for _ in 0..steps {
                     let g: &[F] = if identity {
                         self.grad
                     } else {
@@ -730,47 +770,58 @@ where
                     };
                     match self.tally.evaluate(at, self.grad)? {
                         Some(v) => value = v,
-                        None => return self.reject(c),
+                        None => return ControlFlow::Continue(Point::Rejected),
                     }
                     self.observe()?;
                 }
                 if !identity {
                     self.x.copy_from_slice(self.base);
                 }
-                known = true;
+                ControlFlow::Continue(Point::Known(value))
             }
             Sampling::Jump => {
                 let unit = self.tally.unit;
                 unit.scale_in(self.x);
                 moves::free(
-                    &kernel,
+                    kernel,
                     self.x,
                     self.y,
                     self.g0,
-                    auto.steps,
+                    steps,
                     &unit,
                     self.chains.chain(c).rng,
                 );
                 unit.scale_out(self.x);
-                known = false;
+                ControlFlow::Continue(Point::Unknown)
             }
-            Sampling::Off => {}
+            Sampling::Off => ControlFlow::Continue(point),
         }
-        self.chains.chain(c).y.copy_from_slice(self.y);
-        if parts.quenches {
-            match self.tally.quench(c, self.x, self.base)? {
-                Some(v) => {
-                    value = v;
-                    self.grad.fill(F::ZERO);
-                }
-                None => return self.reject(c),
-            }
-        } else if !known {
-            match self.tally.evaluate(self.x, self.grad)? {
-                Some(v) => value = v,
-                None => return self.reject(c),
-            }
+    }
+
+    /// Step 3, the quench: L-BFGS from the proposal's point to the bottom
+    /// of its basin (or, without quenches, the point evaluated where its
+    /// value is not known).
+    fn settle(&mut self, c: usize, point: Point<F>) -> ControlFlow<Stop, Point<F>> {
+        if let Point::Rejected = point {
+            return ControlFlow::Continue(point);
         }
+        let found = if self.tally.auto.parts.quenches {
+            let found = self.tally.quench(c, self.x, self.base)?;
+            if found.is_some() {
+                self.grad.fill(F::ZERO);
+            }
+            found
+        } else if let Point::Known(value) = point {
+            Some(value)
+        } else {
+            self.tally.evaluate(self.x, self.grad)?
+        };
+        ControlFlow::Continue(found.map_or(Point::Rejected, Point::Known))
+    }
+
+    /// Step 4, acceptance: Metropolis on the quenched values at `a`; the
+    /// rung's step then follows the verdict.
+    fn accept(&mut self, c: usize, a: F, slot: usize, value: F) -> Flow {
         let chain = self.chains.chain(c);
         *chain.diverged = false;
         let old = *chain.value;
