@@ -9,9 +9,10 @@ use rand_xoshiro::Xoshiro128PlusPlus;
 use crate::device::{Gpu, bytes_of, words};
 use crate::error::GpuError;
 use crate::potential::DevicePotential;
-use crate::shader::{Arithmetic, Layout, Precision, StepKind, WORKGROUP, Ziggurat, program};
+use crate::precision::Precision;
+use crate::shader::{Arithmetic, Layout, Program, WORKGROUP, Ziggurat};
 use crate::start::Start;
-use crate::step::{DeviceKernel, StepCoefficients};
+use crate::step::{DeviceKernel, StepCoefficients, StepKind};
 
 /// The most eps values one [`Ensemble::probability`] call takes.
 pub const MAX_EPS: usize = 64;
@@ -238,13 +239,10 @@ where
             value: self.stride as usize,
             max: u32::MAX as usize,
         })?;
-        if let Some(d) = self.potential.dimension().filter(|&d| d != dim) {
-            return Err(GpuError::Dimension {
-                expected: dim,
-                got: d,
-                what: "potential",
-            });
-        }
+        let program = Program::new(&self.potential, &self.start)?
+            .arithmetic(self.arithmetic)
+            .precision(self.precision)
+            .start_in_best(self.start_in_best);
         if self.precision == Precision::F64 && !gpu.supports_f64() {
             return Err(GpuError::Unsupported(format!(
                 "f64: the adapter {} has no SHADER_F64",
@@ -261,15 +259,7 @@ where
         let coefficients: Box<dyn Fn(u64) -> Result<StepCoefficients, hrla::Error>> =
             Box::new(move |k| Ok(sampler.at(schedule.inverse_temperature(k))?.coefficients()));
         let first = coefficients(0)?;
-        let source = program(
-            dim,
-            &self.potential,
-            &self.start,
-            first.kind(),
-            self.arithmetic,
-            self.precision,
-            self.start_in_best,
-        );
+        let source = program.step(first.kind()).wgsl();
         let mut ensemble = Ensemble::allocate(
             gpu,
             &source,
