@@ -690,7 +690,9 @@ impl<'g> Ensemble<'g> {
     /// Advances every live chain by `steps` steps, in dispatches of at
     /// most [`steps_per_dispatch`](EnsembleBuilder::steps_per_dispatch).
     ///
-    /// Errors: the sampler's, if it refuses some `a_k` of the schedule
+    /// Errors: [`hrla::Error::Count`] for a run that would pass iterate
+    /// `2^32 - 2` (the device counts iterates in 32 bits), before any
+    /// step; the sampler's, if it refuses some `a_k` of the schedule
     /// (the chains then stand at iterate `k`, as the CPU optimiser's do);
     /// [`hrla::Error::UnboundedBelow`] if a chain's potential fell below
     /// `-sqrt(MAX)` of the device's float type (the earliest such iterate,
@@ -701,16 +703,21 @@ impl<'g> Ensemble<'g> {
         if let Some(e) = &self.failed {
             return Err(e.clone());
         }
-        if self.iteration + steps >= u64::from(u32::MAX) {
+        // Iterates are 32-bit on the device; a sum past u64 is as far out.
+        let Some(end) = self
+            .iteration
+            .checked_add(steps)
+            .filter(|&end| end < u64::from(u32::MAX))
+        else {
+            let end = self.iteration.saturating_add(steps);
             return Err(hrla::Error::Count {
                 name: "iterations",
-                value: (self.iteration + steps) as usize,
+                value: usize::try_from(end).unwrap_or(usize::MAX),
                 max: u32::MAX as usize - 1,
             }
             .into());
-        }
+        };
         let per = u64::from(self.steps_per_dispatch);
-        let end = self.iteration + steps;
         while self.iteration < end {
             let s = (end - self.iteration).min(per);
             // This dispatch's coefficients; a refused a_k ends it (and the
