@@ -7,7 +7,8 @@ use core::fmt;
 use wasm_bindgen::JsValue;
 
 use crate::formula::FormulaError;
-use crate::landscape::{GridError, UnknownLandscape};
+use crate::landscape::{CustomError, GridError, UnknownLandscape};
+use crate::num::Num;
 
 /// Why the wrapper refused a settings object or an argument, or why the
 /// kernel did ([`Error::Kernel`]).
@@ -248,28 +249,17 @@ impl From<hrla_dyn::Error> for Error {
     }
 }
 
-impl From<GridError> for Error {
-    fn from(e: GridError) -> Self {
-        Self::Grid(e)
+impl From<CustomError> for Error {
+    fn from(e: CustomError) -> Self {
+        match e {
+            CustomError::Formula(e) => Self::Formula(e),
+            CustomError::Grid(e) => Self::Grid(e),
+        }
     }
 }
 
-/// A number as a person reads it: whole numbers in full up to `2^53`,
-/// others in exponent form when very large or small (so that `1e308` is
-/// not 309 digits).
-pub(crate) struct Num(pub(crate) f64);
-
-impl fmt::Display for Num {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let (v, a) = (self.0, self.0.abs());
-        let plain = a == 0.0
-            || !a.is_finite()
-            || (v.fract() == 0.0 && a < 9_007_199_254_740_992.0)
-            || (1e-4..1e6).contains(&a);
-        if plain {
-            write!(f, "{v}")
-        } else {
-            write!(f, "{v:e}")
-        }
+impl From<GridError> for Error {
+    fn from(e: GridError) -> Self {
+        Self::Grid(e)
     }
 }

@@ -58,6 +58,7 @@ mod error;
 mod formula;
 mod gpu;
 mod landscape;
+mod num;
 mod read;
 mod settings;
 
@@ -69,7 +70,7 @@ use wasm_bindgen::prelude::*;
 pub use descent::Descent;
 pub use error::Error;
 pub use formula::{Formula, FormulaError, FormulaErrorKind, MAX_FORMULA_DEPTH, MAX_FORMULA_LEN};
-pub use landscape::{Custom, GridError, Landscape, MAX_GRID, UnknownLandscape};
+pub use landscape::{Custom, CustomError, GridError, Landscape, MAX_GRID, UnknownLandscape};
 pub use settings::{KEYS, Settings, Temperature, parse_sampler, potential};
 
 /// The most chains a run may have (the page offers up to 1024): more is

@@ -115,7 +115,7 @@ pub fn potential(value: &JsValue) -> Result<Landscape, Error> {
             .as_f64()
             .ok_or(Error::BadFormulaPotential)?;
     }
-    Landscape::formula(&text, b)
+    Ok(Landscape::formula(&text, b)?)
 }
 
 /// Largest integer a JS number holds exactly, `2^53 - 1`.
