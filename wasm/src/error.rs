@@ -46,8 +46,8 @@ pub enum Error {
     NotACount {
         /// The argument.
         name: &'static str,
-        /// The value given (NaN when it was not a number at all).
-        value: f64,
+        /// What was given.
+        given: Given,
         /// The smallest count allowed.
         min: u64,
         /// The largest count allowed.
@@ -114,13 +114,12 @@ impl fmt::Display for Error {
             Self::NotAnInteger(name) => write!(f, "`{name}` must be a whole number >= 0"),
             Self::NotACount {
                 name,
-                value,
+                given,
                 min,
                 max,
             } => write!(
                 f,
-                "`{name}` must be a whole number between {min} and {max}, got {}",
-                Num(*value)
+                "`{name}` must be a whole number between {min} and {max}, got {given}"
             ),
             Self::UnknownSampler => f.write_str("`sampler` must be \"hrla\", \"ula\" or \"ola\""),
             Self::BadAnnealing => f.write_str(
@@ -261,5 +260,35 @@ impl From<CustomError> for Error {
 impl From<GridError> for Error {
     fn from(e: GridError) -> Self {
         Self::Grid(e)
+    }
+}
+
+/// What JavaScript handed in where a number was asked for, as a message
+/// names it: a number by its value, anything else by its type, so that
+/// `5n` is not reported as NaN.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Given {
+    /// A JS number (NaN and the infinities included).
+    Number(f64),
+    /// A BigInt, by its decimal digits (a sign and at most 20 digits;
+    /// longer ones by their count, [`Given::LongBigInt`]).
+    BigInt(String),
+    /// A BigInt of this many characters, too long to repeat.
+    LongBigInt(usize),
+    /// Anything else, by its type as a message says it (`"a string"`,
+    /// `"undefined"`, `"null"`, `"a boolean"`, `"a symbol"`,
+    /// `"a function"`, `"an object"`).
+    Other(&'static str),
+}
+
+impl fmt::Display for Given {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Number(v) => Num(*v).fmt(f),
+            Self::BigInt(digits) => write!(f, "a BigInt {digits}n; pass a Number"),
+            Self::LongBigInt(len) => write!(f, "a BigInt of {len} characters; pass a Number"),
+            Self::Other(kind) => write!(f, "{kind}; pass a Number"),
+        }
     }
 }

@@ -19,6 +19,9 @@ use rand_xoshiro::Xoshiro128PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use wasm_bindgen::prelude::*;
 
+use crate::error::Error;
+use crate::read;
+
 // The kernel's own tables, from its source file (no copy to drift).
 #[allow(dead_code)]
 #[path = "../../core/src/ziggurat_tables.rs"]
@@ -111,18 +114,30 @@ pub fn gpu_tables(
     Ok(t)
 }
 
-/// The generators of chains `first .. first + count` of a run of `seed`:
-/// four 32-bit words each, chain `c`'s
-/// `Xoshiro128PlusPlus::seed_from_u64(chain_seed(seed, c))` as `hrla-gpu`
-/// seeds it (its state's bytes read as little-endian words).
-#[wasm_bindgen]
-pub fn gpu_generators(seed: u64, first: u32, count: u32) -> Result<Vec<u32>, JsError> {
-    let end = first
-        .checked_add(count)
-        .filter(|&e| e <= GPU_MAX_CHAINS)
-        .ok_or_else(|| refuse(format!("chains beyond {GPU_MAX_CHAINS}")))?;
+/// The chains `first .. first + count` of a run of `seed`, read as `new
+/// Optimizer` reads them: the seed a whole JS number up to `2^53 - 1` or a
+/// BigInt below `2^64`, the counts whole JS numbers; chains beyond
+/// [`GPU_MAX_CHAINS`] refused.
+fn chains(seed: &JsValue, first: &JsValue, count: &JsValue) -> Result<(u64, u32, u32), JsValue> {
+    let max = GPU_MAX_CHAINS;
+    let read = || -> Result<_, Error> {
+        Ok((
+            read::seed(seed)?,
+            read::count(first, "first", 0, max.into())?,
+            read::count(count, "count", 0, max.into())?,
+        ))
+    };
+    let (seed, first, count) = read().map_err(|e| e.to_js())?;
+    match (u32::try_from(first), u32::try_from(count)) {
+        (Ok(first), Ok(count)) if first + count <= max => Ok((seed, first, count)),
+        _ => Err(refuse(format!("chains beyond {max}")).into()),
+    }
+}
+
+/// The words of [`gpu_generators`], from what it has read.
+fn generators(seed: u64, first: u32, count: u32) -> Vec<u32> {
     let mut words = Vec::with_capacity(4 * count as usize);
-    for c in first..end {
+    for c in first..first + count {
         let state = Xoshiro128PlusPlus::seed_from_u64(chain_seed(seed, u64::from(c))).state();
         words.extend(
             state
@@ -130,28 +145,30 @@ pub fn gpu_generators(seed: u64, first: u32, count: u32) -> Result<Vec<u32>, JsE
                 .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
         );
     }
-    Ok(words)
+    words
 }
 
-/// The start of chains `first .. first + count` of a run of `seed` from
-/// `N(centre, spread^2 I)`, as the kernel draws it in f32 on the CPU from
-/// the generators of [`gpu_generators`]: `centre_i + spread * z` with the
-/// kernel's `f32::standard_normal`, coordinate-major (`x1` of the `k`-th
-/// chain at `k`, `x2` at `count + k`). The device's `init` draws the same
-/// numbers; the browser tests compare the two bit for bit.
+/// The generators of chains `first .. first + count` of a run of `seed`
+/// (a whole number or a BigInt, as `new Optimizer` takes it; `first` and
+/// `count` whole numbers, the chains within [`GPU_MAX_CHAINS`]): four
+/// 32-bit words each, chain `c`'s
+/// `Xoshiro128PlusPlus::seed_from_u64(chain_seed(seed, c))` as `hrla-gpu`
+/// seeds it (its state's bytes read as little-endian words).
 #[wasm_bindgen]
-pub fn gpu_kernel_starts(
-    seed: u64,
-    first: u32,
-    count: u32,
-    centre_x: f64,
-    centre_y: f64,
-    spread: f64,
-) -> Result<Vec<f32>, JsError> {
-    check_start(centre_x, centre_y, spread)?;
-    let words = gpu_generators(seed, first, count)?;
-    let (m, s) = ([centre_x as f32, centre_y as f32], spread as f32);
-    let n = count as usize;
+pub fn gpu_generators(
+    seed: &JsValue,
+    first: &JsValue,
+    count: &JsValue,
+) -> Result<Vec<u32>, JsValue> {
+    let (seed, first, count) = chains(seed, first, count)?;
+    Ok(generators(seed, first, count))
+}
+
+/// The start of `count` chains from `N(centre, spread^2 I)`, drawn from
+/// the generators `words` (four words each) as the kernel draws it in f32
+/// on the CPU, coordinate-major.
+fn kernel_starts(words: &[u32], centre: [f32; 2], spread: f32) -> Vec<f32> {
+    let n = words.len() / 4;
     let mut out = vec![0.0f32; 2 * n];
     for (k, w) in words.chunks_exact(4).enumerate() {
         let mut state = [0u8; 16];
@@ -159,11 +176,37 @@ pub fn gpu_kernel_starts(
             bytes.copy_from_slice(&word.to_le_bytes());
         }
         let mut rng = Xoshiro128PlusPlus::from_seed(state);
-        for (i, mi) in m.iter().enumerate() {
-            out[i * n + k] = mi + s * f32::standard_normal(&mut rng);
+        for (i, mi) in centre.iter().enumerate() {
+            out[i * n + k] = mi + spread * f32::standard_normal(&mut rng);
         }
     }
-    Ok(out)
+    out
+}
+
+/// The start of chains `first .. first + count` of a run of `seed` (read
+/// as [`gpu_generators`] reads them) from `N(centre, spread^2 I)`, as the
+/// kernel draws it in f32 on the CPU from the generators of
+/// [`gpu_generators`]: `centre_i + spread * z` with the kernel's
+/// `f32::standard_normal`, coordinate-major (`x1` of the `k`-th chain at
+/// `k`, `x2` at `count + k`). The device's `init` draws the same numbers;
+/// the browser tests compare the two bit for bit.
+#[wasm_bindgen]
+pub fn gpu_kernel_starts(
+    seed: &JsValue,
+    first: &JsValue,
+    count: &JsValue,
+    centre_x: f64,
+    centre_y: f64,
+    spread: f64,
+) -> Result<Vec<f32>, JsValue> {
+    check_start(centre_x, centre_y, spread)?;
+    let (seed, first, count) = chains(seed, first, count)?;
+    let words = generators(seed, first, count);
+    Ok(kernel_starts(
+        &words,
+        [centre_x as f32, centre_y as f32],
+        spread as f32,
+    ))
 }
 
 /// The most chains the page's device path runs.
@@ -272,7 +315,7 @@ mod tests {
 
     #[test]
     fn generators_are_chain_seeds() {
-        let w = gpu_generators(7, 3, 2).unwrap();
+        let w = generators(7, 3, 2);
         let s = Xoshiro128PlusPlus::seed_from_u64(chain_seed(7, 4)).state();
         assert_eq!(w[4], u32::from_le_bytes([s[0], s[1], s[2], s[3]]));
         assert_eq!(w.len(), 8);
@@ -280,7 +323,7 @@ mod tests {
 
     #[test]
     fn kernel_starts_are_the_kernels_gaussian_draws() {
-        let x = gpu_kernel_starts(5, 10, 3, 3.0, -1.0, 0.5).unwrap();
+        let x = kernel_starts(&generators(5, 10, 3), [3.0, -1.0], 0.5);
         let mut rng = Xoshiro128PlusPlus::seed_from_u64(chain_seed(5, 11));
         let x1 = 3.0f32 + 0.5 * f32::standard_normal(&mut rng);
         let x2 = -1.0f32 + 0.5 * f32::standard_normal(&mut rng);

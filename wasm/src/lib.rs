@@ -68,7 +68,7 @@ use hrla_dyn::{Engine, StartSpec};
 use wasm_bindgen::prelude::*;
 
 pub use descent::Descent;
-pub use error::Error;
+pub use error::{Error, Given};
 pub use formula::{Formula, FormulaError, FormulaErrorKind, MAX_FORMULA_DEPTH, MAX_FORMULA_LEN};
 pub use landscape::{Custom, CustomError, GridError, Landscape, MAX_GRID, UnknownLandscape};
 pub use settings::{KEYS, Settings, Temperature, parse_sampler, potential};
@@ -254,7 +254,7 @@ impl Optimizer {
         if chain >= n {
             return Err(Error::NotACount {
                 name: "chain",
-                value: chain as f64,
+                given: Given::Number(chain as f64),
                 min: 0,
                 max: n as u64 - 1,
             });
