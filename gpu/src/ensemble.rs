@@ -9,9 +9,10 @@ use rand_xoshiro::Xoshiro128PlusPlus;
 use crate::device::{Gpu, bytes_of, words};
 use crate::error::GpuError;
 use crate::potential::DevicePotential;
-use crate::shader::{Arithmetic, Layout, Precision, StepKind, WORKGROUP, Ziggurat, program};
+use crate::precision::Precision;
+use crate::shader::{Arithmetic, Layout, Program, WORKGROUP, Ziggurat};
 use crate::start::Start;
-use crate::step::{DeviceKernel, StepCoefficients};
+use crate::step::{DeviceKernel, StepCoefficients, StepKind};
 
 /// The most eps values one [`Ensemble::probability`] call takes.
 pub const MAX_EPS: usize = 64;
@@ -238,13 +239,10 @@ where
             value: self.stride as usize,
             max: u32::MAX as usize,
         })?;
-        if let Some(d) = self.potential.dimension().filter(|&d| d != dim) {
-            return Err(GpuError::Dimension {
-                expected: dim,
-                got: d,
-                what: "potential",
-            });
-        }
+        let program = Program::new(&self.potential, &self.start)?
+            .arithmetic(self.arithmetic)
+            .precision(self.precision)
+            .start_in_best(self.start_in_best);
         if self.precision == Precision::F64 && !gpu.supports_f64() {
             return Err(GpuError::Unsupported(format!(
                 "f64: the adapter {} has no SHADER_F64",
@@ -261,15 +259,7 @@ where
         let coefficients: Box<dyn Fn(u64) -> Result<StepCoefficients, hrla::Error>> =
             Box::new(move |k| Ok(sampler.at(schedule.inverse_temperature(k))?.coefficients()));
         let first = coefficients(0)?;
-        let source = program(
-            dim,
-            &self.potential,
-            &self.start,
-            first.kind(),
-            self.arithmetic,
-            self.precision,
-            self.start_in_best,
-        );
+        let source = program.step(first.kind()).wgsl();
         let mut ensemble = Ensemble::allocate(
             gpu,
             &source,
@@ -700,7 +690,9 @@ impl<'g> Ensemble<'g> {
     /// Advances every live chain by `steps` steps, in dispatches of at
     /// most [`steps_per_dispatch`](EnsembleBuilder::steps_per_dispatch).
     ///
-    /// Errors: the sampler's, if it refuses some `a_k` of the schedule
+    /// Errors: [`hrla::Error::Count`] for a run that would pass iterate
+    /// `2^32 - 2` (the device counts iterates in 32 bits), before any
+    /// step; the sampler's, if it refuses some `a_k` of the schedule
     /// (the chains then stand at iterate `k`, as the CPU optimiser's do);
     /// [`hrla::Error::UnboundedBelow`] if a chain's potential fell below
     /// `-sqrt(MAX)` of the device's float type (the earliest such iterate,
@@ -711,16 +703,21 @@ impl<'g> Ensemble<'g> {
         if let Some(e) = &self.failed {
             return Err(e.clone());
         }
-        if self.iteration + steps >= u64::from(u32::MAX) {
+        // Iterates are 32-bit on the device; a sum past u64 is as far out.
+        let Some(end) = self
+            .iteration
+            .checked_add(steps)
+            .filter(|&end| end < u64::from(u32::MAX))
+        else {
+            let end = self.iteration.saturating_add(steps);
             return Err(hrla::Error::Count {
                 name: "iterations",
-                value: (self.iteration + steps) as usize,
+                value: usize::try_from(end).unwrap_or(usize::MAX),
                 max: u32::MAX as usize - 1,
             }
             .into());
-        }
+        };
         let per = u64::from(self.steps_per_dispatch);
-        let end = self.iteration + steps;
         while self.iteration < end {
             let s = (end - self.iteration).min(per);
             // This dispatch's coefficients; a refused a_k ends it (and the

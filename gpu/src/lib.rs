@@ -79,6 +79,15 @@
 //! polynomials. Ackley and Levy, which need the device's `sin`, `cos` and
 //! `exp`, run in `f32` only.
 //!
+//! # Without wgpu
+//!
+//! The default feature `device` brings in wgpu and everything that runs on
+//! a device ([`Gpu`], [`Ensemble`]). Without it (`default-features =
+//! false`) the crate is what needs no device, and builds for
+//! `wasm32-unknown-unknown`: the WGSL program ([`Program`]), the
+//! potentials, starts and step coefficients it is made from. A web page
+//! that drives WebGPU itself takes its program from there.
+//!
 //! # Without a GPU
 //!
 //! A software Vulkan runs everything: Debian's `mesa-vulkan-drivers`
@@ -87,21 +96,28 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+#[cfg(feature = "device")]
 mod device;
+#[cfg(feature = "device")]
 mod ensemble;
 mod error;
 mod potential;
+mod precision;
 mod shader;
 mod start;
 mod step;
 
+#[cfg(feature = "device")]
 pub use device::Gpu;
+#[cfg(feature = "device")]
 pub use ensemble::{
     BestPoint, ChainSnapshot, Ensemble, EnsembleBuilder, GroupBest, MAX_DIM, MAX_EPS, Probability,
 };
 pub use error::GpuError;
 pub use potential::DevicePotential;
-pub use shader::{Arithmetic, Precision};
+pub use precision::Precision;
+pub use shader::{Arithmetic, Compiler, Program};
 pub use start::Start;
-pub use step::{DeviceKernel, StepCoefficients};
+pub use step::{DeviceKernel, StepCoefficients, StepKind};
+#[cfg(feature = "device")]
 pub use wgpu;

@@ -2,7 +2,7 @@
 //! and a user's WGSL function.
 
 use crate::error::GpuError;
-use crate::shader::Precision;
+use crate::precision::Precision;
 
 /// A potential that runs on the device.
 ///
@@ -132,6 +132,7 @@ impl DevicePotential {
 
     /// Whether the device can evaluate it in `precision`: Ackley and
     /// Levy need `sin`, `cos` and `exp`, which Vulkan has in f32 only.
+    #[cfg_attr(not(feature = "device"), allow(dead_code))]
     pub(crate) fn supports(&self, precision: Precision) -> bool {
         precision == Precision::F32 || !matches!(self, Self::Ackley | Self::Levy)
     }

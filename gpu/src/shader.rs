@@ -1,39 +1,24 @@
 //! The WGSL program of one problem: the potential's source, the constants
 //! (dimension, Ziggurat, fdlibm, the potential's own) as exact hexadecimal
 //! literals, the generator and normals, and the chains' kernels with the
-//! sampler's step spliced in.
+//! sampler's step spliced in. It needs no device: a page that drives
+//! WebGPU itself takes its program from here.
 
+use std::borrow::Cow;
+
+use crate::error::GpuError;
 use crate::potential::{DevicePotential, PotentialSource};
+use crate::precision::{Precision, f32_literal};
 use crate::start::Start;
+use crate::step::StepKind;
 
 /// Invocations per workgroup.
 pub(crate) const WORKGROUP: u32 = 64;
 
-/// `v` as a WGSL f32 literal with the same bits: hexadecimal for normal
-/// numbers, so that no decimal rounding (single or double) intervenes.
-pub(crate) fn f32_literal(v: f32) -> String {
-    if v == 0.0 {
-        return if v.is_sign_negative() {
-            "-0.0f"
-        } else {
-            "0.0f"
-        }
-        .to_string();
-    }
-    if !v.is_normal() {
-        // Infinities, NaN and subnormals have no exact literal.
-        return format!("bitcast<f32>({:#010x}u)", v.to_bits());
-    }
-    let bits = v.to_bits();
-    let sign = if bits >> 31 == 1 { "-" } else { "" };
-    let exponent = ((bits >> 23) & 0xff) as i32 - 127;
-    let mantissa = (bits & 0x7f_ffff) << 1;
-    format!("{sign}0x1.{mantissa:06x}p{exponent}f")
-}
-
 /// The kernel's Ziggurat tables (layer edges `X`, densities `F`, tail start
 /// `R`), read from the kernel's own source so that the two can never
 /// drift apart, and rounded to f32 as the kernel rounds them.
+#[cfg_attr(not(feature = "device"), allow(dead_code))]
 pub(crate) struct Ziggurat {
     pub x: Vec<f32>,
     pub f: Vec<f32>,
@@ -163,41 +148,6 @@ const FDLIBM64: [(&str, u64); 23] = [
     ("EXP_2_M53", 0x3ca0_0000_0000_0000),
 ];
 
-/// The float type the device computes in.
-///
-/// `F64` needs the adapter's `SHADER_F64` ([`Gpu::supports_f64`](crate::Gpu::supports_f64)).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum Precision {
-    /// `f32`, with xoshiro128++ and the kernel's `f32` Ziggurat.
-    #[default]
-    F32,
-    /// `f64`, with xoshiro128++ (two words per 64-bit draw, as the
-    /// kernel's `f64` Ziggurat takes them from a 32-bit generator).
-    F64,
-}
-
-impl Precision {
-    /// Bytes of one float.
-    pub(crate) fn bytes(self) -> u64 {
-        match self {
-            Self::F32 => 4,
-            Self::F64 => 8,
-        }
-    }
-
-    /// `v` as a WGSL literal of this type with the same value (rounded
-    /// once to f32 for `F32`).
-    pub(crate) fn literal(self, v: f64) -> String {
-        match self {
-            Self::F32 => f32_literal(v as f32),
-            // An abstract float is an f64, and the shortest decimal that
-            // reads back as `v` is `v`.
-            Self::F64 => format!("{v:e}"),
-        }
-    }
-}
-
 /// How the device may round the kernel's sums and products.
 ///
 /// WGSL lets a driver contract `a * b + c` into one fused multiply-add (one
@@ -223,15 +173,6 @@ pub enum Arithmetic {
     /// The driver fuses as it likes: the same law, not the same bits, and
     /// fewer instructions.
     Fused,
-}
-
-/// Which sampler's step the kernel runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum StepKind {
-    /// The exact OU step of HRLA and ULA.
-    Ou,
-    /// OLA's Euler–Maruyama step.
-    Ola,
 }
 
 const OU_STEP: &str = "
@@ -275,179 +216,289 @@ impl Layout {
     }
 }
 
-/// The whole program. The potential's source comes first, so that the
-/// line numbers of a user's compile errors are those of the user's text.
-pub(crate) fn program(
-    dim: usize,
-    potential: &DevicePotential,
-    start: &Start,
+/// Which WGSL compiler a program is written for. The two differ in one
+/// place: a function whose last statement is a loop that only leaves by
+/// `return`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Compiler {
+    /// naga, wgpu's compiler, which asks for a `return` after such a loop
+    /// (the backend's own ensembles).
+    #[default]
+    Naga,
+    /// A compiler that follows the WGSL specification's analysis of
+    /// behaviours (Chromium's Tint): it accepts the function without that
+    /// `return` and warns about it as unreachable, on a page's console.
+    Tint,
+}
+
+/// The end of the Ziggurat's slow path (`normal_slow` in `normal32.wgsl`,
+/// `normal_slow64` in `normal64.wgsl`): a loop that only returns, and the
+/// `return` after it that naga asks for.
+const SLOW_PATH_END: &str = "    }\n    return 0.0;\n}\n";
+
+impl Compiler {
+    /// A file of normals (`normal32.wgsl`, `normal64.wgsl`) as this
+    /// compiler takes it.
+    fn normals(self, file: &'static str) -> Cow<'static, str> {
+        match self {
+            Self::Naga => Cow::Borrowed(file),
+            Self::Tint => Cow::Owned(file.replacen(SLOW_PATH_END, "    }\n}\n", 1)),
+        }
+    }
+}
+
+/// The WGSL program of one problem, built up from its pieces; [`Program::wgsl`]
+/// writes it.
+///
+/// The program's entry points (`init`, `step`, `argmin`, `groups`,
+/// `census`, `normals`) and bindings are those the backend's ensembles
+/// drive; a page that drives WebGPU itself takes the same text from here.
+/// Its constants buffer holds the Ziggurat's `X` and `F` (257 floats each),
+/// then from index 514 the start's mean (`D` floats) and standard
+/// deviation, `U*`, the eps values and the step's coefficients.
+///
+/// ```
+/// use hrla_gpu::{DevicePotential, Precision, Program, Start, StepKind};
+///
+/// let start = Start::paper(2);
+/// let wgsl = Program::new(&DevicePotential::Rastrigin, &start)?
+///     .step(StepKind::Ola)
+///     .precision(Precision::F32)
+///     .wgsl();
+/// assert!(wgsl.contains("fn step("));
+/// # Ok::<(), hrla_gpu::GpuError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Program<'a> {
+    potential: &'a DevicePotential,
+    start: &'a Start,
     step: StepKind,
     arithmetic: Arithmetic,
     precision: Precision,
     start_in_best: bool,
-) -> String {
-    let z = Ziggurat::from_kernel();
-    let layout = Layout::new(dim);
-    let lit = |v: f64| precision.literal(v);
-    let mut src = String::new();
-    match potential.source(precision) {
-        PotentialSource::Builtin(text, constants) => {
-            src.push_str(text);
-            for (name, value) in constants {
-                src.push_str(&format!("const {name}: Real = {};\n", lit(value)));
+    compiler: Compiler,
+}
+
+impl<'a> Program<'a> {
+    /// The program of `potential` from `start` (whose dimension is the
+    /// program's `D`): by default HRLA's and ULA's step
+    /// ([`StepKind::Ou`]), [`Arithmetic::Ieee`], [`Precision::F32`], the
+    /// start counted in the best, for [`Compiler::Naga`].
+    ///
+    /// Errors: [`GpuError::Kernel`] with [`hrla::Error::Zero`] for a
+    /// start of dimension 0, [`GpuError::Dimension`] for a potential whose
+    /// own dimension (a quadratic's centre) is not the start's.
+    pub fn new(potential: &'a DevicePotential, start: &'a Start) -> Result<Self, GpuError> {
+        let dim = start.dimension();
+        if dim == 0 {
+            return Err(hrla::Error::Zero {
+                name: "dimension D",
             }
-            if let Some(centre) = potential.centre() {
-                let items: Vec<String> = centre.iter().map(|&v| lit(v)).collect();
+            .into());
+        }
+        if let Some(d) = potential.dimension().filter(|&d| d != dim) {
+            return Err(GpuError::Dimension {
+                expected: dim,
+                got: d,
+                what: "potential",
+            });
+        }
+        Ok(Self {
+            potential,
+            start,
+            step: StepKind::Ou,
+            arithmetic: Arithmetic::Ieee,
+            precision: Precision::F32,
+            start_in_best: true,
+            compiler: Compiler::Naga,
+        })
+    }
+
+    /// The sampler's kind of step.
+    pub fn step(mut self, step: StepKind) -> Self {
+        self.step = step;
+        self
+    }
+
+    /// How the device may round sums and products.
+    pub fn arithmetic(mut self, arithmetic: Arithmetic) -> Self {
+        self.arithmetic = arithmetic;
+        self
+    }
+
+    /// The float type of the device. The program of a potential that the
+    /// device cannot evaluate in that type (Ackley or Levy in `f64`) does
+    /// not compile.
+    pub fn precision(mut self, precision: Precision) -> Self {
+        self.precision = precision;
+        self
+    }
+
+    /// Whether a chain's start counts as a point of its running best.
+    pub fn start_in_best(mut self, include: bool) -> Self {
+        self.start_in_best = include;
+        self
+    }
+
+    /// The compiler the text is written for.
+    pub fn compiler(mut self, compiler: Compiler) -> Self {
+        self.compiler = compiler;
+        self
+    }
+
+    /// The whole program. The potential's source comes first, so that the
+    /// line numbers of a user's compile errors are those of the user's
+    /// text.
+    pub fn wgsl(&self) -> String {
+        let Self {
+            potential,
+            start,
+            step,
+            arithmetic,
+            precision,
+            start_in_best,
+            compiler,
+        } = *self;
+        let dim = start.dimension();
+        let z = Ziggurat::from_kernel();
+        let layout = Layout::new(dim);
+        let lit = |v: f64| precision.literal(v);
+        let mut src = String::new();
+        match potential.source(precision) {
+            PotentialSource::Builtin(text, constants) => {
+                src.push_str(text);
+                for (name, value) in constants {
+                    src.push_str(&format!("const {name}: Real = {};\n", lit(value)));
+                }
+                if let Some(centre) = potential.centre() {
+                    let items: Vec<String> = centre.iter().map(|&v| lit(v)).collect();
+                    src.push_str(&format!(
+                        "const QUADRATIC_CENTRE = array<Real, {dim}>({});\n",
+                        items.join(", ")
+                    ));
+                }
+            }
+            PotentialSource::Wgsl(text) => src.push_str(text),
+        }
+        src.push_str("\n// ---- hrla-gpu ----\n");
+        let (real, max) = match precision {
+            Precision::F32 => ("f32", f64::from(f32::MAX)),
+            Precision::F64 => ("f64", f64::MAX),
+        };
+        src.push_str(&format!("alias Real = {real};\n"));
+        // The fences of `Arithmetic::Ieee`: in f32, an integer exclusive-or
+        // with an unseen 0. In f64, whose bits WGSL does not expose: a product
+        // plus an unseen -0.0 (which leaves every value, -0.0 included, as it
+        // is; at most it fuses into a multiply-add that rounds the product
+        // alone), and a sum times an unseen 1.0 (an addition would join the
+        // sums that a compiler reorders; factoring `(a + b) * 1 + (c + d) * 1`
+        // into `(a + b + c + d) * 1` rounds as written).
+        src.push_str(match (arithmetic, precision) {
+            (Arithmetic::Ieee, Precision::F32) => {
+                "fn rounded(s: Real) -> Real {\n    return bitcast<f32>(bitcast<u32>(s) ^ params.zero);\n}\n\
+                 fn mul(a: Real, b: Real) -> Real {\n    return rounded(a * b);\n}\n"
+            }
+            (Arithmetic::Ieee, Precision::F64) => {
+                "fn rounded(s: Real) -> Real {\n    return s * Real(params.one);\n}\n\
+                 fn mul(a: Real, b: Real) -> Real {\n    return a * b + Real(params.negative_zero);\n}\n"
+            }
+            (Arithmetic::Fused, _) => {
+                "fn rounded(s: Real) -> Real {\n    return s;\n}\n\
+                 fn mul(a: Real, b: Real) -> Real {\n    return a * b;\n}\n"
+            }
+        });
+        src.push_str(match precision {
+            Precision::F32 => {
+                "fn finite(v: Real) -> bool {\n    return (bitcast<u32>(v) & 0x7f800000u) != 0x7f800000u;\n}\n"
+            }
+            Precision::F64 => "fn finite(v: Real) -> bool {\n    return abs(v) <= REAL_MAX;\n}\n",
+        });
+        // +inf, out of the compiler's sight (WGSL refuses it as a constant).
+        src.push_str(
+            "fn none() -> Real {\n    return Real(bitcast<f32>(0x7f800000u | params.zero));\n}\n",
+        );
+        src.push_str(&format!("const REAL_MAX: Real = {};\n", lit(max)));
+        src.push_str(&format!("const D: u32 = {dim}u;\n"));
+        src.push_str(&format!("const START_IN_BEST: bool = {start_in_best};\n"));
+        src.push_str(&format!(
+            "const START_TRIES: u32 = {}u;\n",
+            hrla::START_TRIES
+        ));
+        src.push_str("alias Point = array<Real, D>;\n");
+        src.push_str(&format!("const WORKGROUP: u32 = {WORKGROUP}u;\n"));
+        src.push_str(&format!("const U_STAR_AT: u32 = {}u;\n", layout.u_star));
+        src.push_str(&format!("const FLOOR: Real = {};\n", lit(-max.sqrt())));
+        src.push_str(&format!(
+            "const RASTRIGIN_TAU: Real = {};\n",
+            lit(core::f64::consts::TAU)
+        ));
+        src.push_str(&format!(
+            "const RASTRIGIN_PI: Real = {};\n",
+            lit(core::f64::consts::PI)
+        ));
+        let terms = match precision {
+            Precision::F32 => 4,
+            Precision::F64 => 6,
+        };
+        for (i, (&s, &c)) in SIN.iter().zip(&COS).take(terms).enumerate() {
+            let (s, c) = (f64::from_bits(s), f64::from_bits(c));
+            src.push_str(&format!("const RASTRIGIN_S{i}: Real = {};\n", lit(s)));
+            src.push_str(&format!("const RASTRIGIN_C{i}: Real = {};\n", lit(c)));
+        }
+        src.push_str(include_str!("wgsl/random.wgsl"));
+        match precision {
+            Precision::F32 => {
+                // The polynomial path's limit, 2^20 in f32 (the kernel's `fast_limit`).
                 src.push_str(&format!(
-                    "const QUADRATIC_CENTRE = array<Real, {dim}>({});\n",
-                    items.join(", ")
+                    "const RASTRIGIN_FAST_LIMIT: Real = {};\n",
+                    lit(1048576.0)
                 ));
+                src.push_str(&format!("const ZIG_R: Real = {};\n", lit(f64::from(z.r))));
+                for (name, value) in FDLIBM {
+                    src.push_str(&format!("const {name}: f32 = {};\n", f32_literal(value)));
+                }
+                src.push_str(&compiler.normals(include_str!("wgsl/normal32.wgsl")));
             }
-        }
-        PotentialSource::Wgsl(text) => src.push_str(text),
-    }
-    src.push_str("\n// ---- hrla-gpu ----\n");
-    let (real, max) = match precision {
-        Precision::F32 => ("f32", f64::from(f32::MAX)),
-        Precision::F64 => ("f64", f64::MAX),
-    };
-    src.push_str(&format!("alias Real = {real};\n"));
-    // The fences of `Arithmetic::Ieee`: in f32, an integer exclusive-or
-    // with an unseen 0. In f64, whose bits WGSL does not expose: a product
-    // plus an unseen -0.0 (which leaves every value, -0.0 included, as it
-    // is; at most it fuses into a multiply-add that rounds the product
-    // alone), and a sum times an unseen 1.0 (an addition would join the
-    // sums that a compiler reorders; factoring `(a + b) * 1 + (c + d) * 1`
-    // into `(a + b + c + d) * 1` rounds as written).
-    src.push_str(match (arithmetic, precision) {
-        (Arithmetic::Ieee, Precision::F32) => {
-            "fn rounded(s: Real) -> Real {\n    return bitcast<f32>(bitcast<u32>(s) ^ params.zero);\n}\n\
-             fn mul(a: Real, b: Real) -> Real {\n    return rounded(a * b);\n}\n"
-        }
-        (Arithmetic::Ieee, Precision::F64) => {
-            "fn rounded(s: Real) -> Real {\n    return s * Real(params.one);\n}\n\
-             fn mul(a: Real, b: Real) -> Real {\n    return a * b + Real(params.negative_zero);\n}\n"
-        }
-        (Arithmetic::Fused, _) => {
-            "fn rounded(s: Real) -> Real {\n    return s;\n}\n\
-             fn mul(a: Real, b: Real) -> Real {\n    return a * b;\n}\n"
-        }
-    });
-    src.push_str(match precision {
-        Precision::F32 => {
-            "fn finite(v: Real) -> bool {\n    return (bitcast<u32>(v) & 0x7f800000u) != 0x7f800000u;\n}\n"
-        }
-        Precision::F64 => "fn finite(v: Real) -> bool {\n    return abs(v) <= REAL_MAX;\n}\n",
-    });
-    // +inf, out of the compiler's sight (WGSL refuses it as a constant).
-    src.push_str(
-        "fn none() -> Real {\n    return Real(bitcast<f32>(0x7f800000u | params.zero));\n}\n",
-    );
-    src.push_str(&format!("const REAL_MAX: Real = {};\n", lit(max)));
-    src.push_str(&format!("const D: u32 = {dim}u;\n"));
-    src.push_str(&format!("const START_IN_BEST: bool = {start_in_best};\n"));
-    src.push_str(&format!(
-        "const START_TRIES: u32 = {}u;\n",
-        hrla::START_TRIES
-    ));
-    src.push_str("alias Point = array<Real, D>;\n");
-    src.push_str(&format!("const WORKGROUP: u32 = {WORKGROUP}u;\n"));
-    src.push_str(&format!("const U_STAR_AT: u32 = {}u;\n", layout.u_star));
-    src.push_str(&format!("const FLOOR: Real = {};\n", lit(-max.sqrt())));
-    src.push_str(&format!(
-        "const RASTRIGIN_TAU: Real = {};\n",
-        lit(core::f64::consts::TAU)
-    ));
-    src.push_str(&format!(
-        "const RASTRIGIN_PI: Real = {};\n",
-        lit(core::f64::consts::PI)
-    ));
-    let terms = match precision {
-        Precision::F32 => 4,
-        Precision::F64 => 6,
-    };
-    for (i, (&s, &c)) in SIN.iter().zip(&COS).take(terms).enumerate() {
-        let (s, c) = (f64::from_bits(s), f64::from_bits(c));
-        src.push_str(&format!("const RASTRIGIN_S{i}: Real = {};\n", lit(s)));
-        src.push_str(&format!("const RASTRIGIN_C{i}: Real = {};\n", lit(c)));
-    }
-    src.push_str(include_str!("wgsl/random.wgsl"));
-    match precision {
-        Precision::F32 => {
-            // The polynomial path's limit, 2^20 in f32 (the kernel's `fast_limit`).
-            src.push_str(&format!(
-                "const RASTRIGIN_FAST_LIMIT: Real = {};\n",
-                lit(1048576.0)
-            ));
-            src.push_str(&format!("const ZIG_R: Real = {};\n", lit(f64::from(z.r))));
-            for (name, value) in FDLIBM {
-                src.push_str(&format!("const {name}: f32 = {};\n", f32_literal(value)));
-            }
-            src.push_str(include_str!("wgsl/normal32.wgsl"));
-        }
-        Precision::F64 => {
-            src.push_str(&format!(
-                "const RASTRIGIN_FAST_LIMIT: Real = {};\n",
-                lit((1u64 << 49) as f64)
-            ));
-            src.push_str(&format!("const ZIG_R: Real = {};\n", lit(z.r64)));
-            for (name, bits) in FDLIBM64 {
+            Precision::F64 => {
                 src.push_str(&format!(
-                    "const {name}: Real = {};\n",
-                    lit(f64::from_bits(bits))
+                    "const RASTRIGIN_FAST_LIMIT: Real = {};\n",
+                    lit((1u64 << 49) as f64)
                 ));
+                src.push_str(&format!("const ZIG_R: Real = {};\n", lit(z.r64)));
+                for (name, bits) in FDLIBM64 {
+                    src.push_str(&format!(
+                        "const {name}: Real = {};\n",
+                        lit(f64::from_bits(bits))
+                    ));
+                }
+                src.push_str(&compiler.normals(include_str!("wgsl/normal64.wgsl")));
             }
-            src.push_str(include_str!("wgsl/normal64.wgsl"));
         }
+        let start_coordinate = match start {
+            Start::Gaussian { .. } => format!(
+                "x[i] = tables[{m}u + i] + mul(tables[{s}u], normal());",
+                m = layout.start_mean(),
+                s = layout.start_mean() as usize + dim
+            ),
+            Start::Point(_) => format!("x[i] = tables[{}u + i];", layout.start_mean()),
+        };
+        let step_chain = match step {
+            StepKind::Ou => OU_STEP,
+            StepKind::Ola => OLA_STEP,
+        };
+        src.push_str(
+            &include_str!("wgsl/chains.wgsl")
+                .replace("START_COORDINATE", &start_coordinate)
+                .replace("STEP_CHAIN", step_chain),
+        );
+        src
     }
-    let start_coordinate = match start {
-        Start::Gaussian { .. } => format!(
-            "x[i] = tables[{m}u + i] + mul(tables[{s}u], normal());",
-            m = layout.start_mean(),
-            s = layout.start_mean() as usize + dim
-        ),
-        Start::Point(_) => format!("x[i] = tables[{}u + i];", layout.start_mean()),
-    };
-    let step_chain = match step {
-        StepKind::Ou => OU_STEP,
-        StepKind::Ola => OLA_STEP,
-    };
-    src.push_str(
-        &include_str!("wgsl/chains.wgsl")
-            .replace("START_COORDINATE", &start_coordinate)
-            .replace("STEP_CHAIN", step_chain),
-    );
-    src
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn literals_are_exact() {
-        for v in [
-            1.0f32,
-            -2.5,
-            0.1,
-            core::f32::consts::PI,
-            3.654_153,
-            1e-30,
-            6e37,
-        ] {
-            let s = f32_literal(v);
-            let body = s.trim_end_matches('f');
-            let (neg, body) = match body.strip_prefix('-') {
-                Some(b) => (true, b),
-                None => (false, body),
-            };
-            let (m, e) = body.trim_start_matches("0x1.").split_once('p').unwrap();
-            let m = u32::from_str_radix(m, 16).unwrap() >> 1;
-            let e: i32 = e.parse().unwrap();
-            let bits = (u32::from(neg) << 31) | (((e + 127) as u32) << 23) | m;
-            assert_eq!(f32::from_bits(bits), v, "{s}");
-        }
-    }
 
     #[test]
     fn fdlibm_constants_have_fdlibms_bits() {
@@ -502,14 +553,6 @@ mod tests {
     }
 
     #[test]
-    fn f64_literals_read_back() {
-        for v in [0.1, core::f64::consts::PI, -1.3e-300, 6.02e23, f64::MAX] {
-            let s = Precision::F64.literal(v);
-            assert_eq!(s.parse::<f64>().unwrap(), v, "{s}");
-        }
-    }
-
-    #[test]
     fn kernel_tables_parse() {
         let z = Ziggurat::from_kernel();
         assert_eq!((z.x.len(), z.f.len()), (257, 257));
@@ -518,5 +561,40 @@ mod tests {
         assert!(z.f.windows(2).all(|w| w[0] < w[1]));
         assert_eq!((z.x[256], z.f[256]), (0.0, 1.0));
         assert_eq!(z.r, z.x[1]);
+    }
+
+    /// The programs for naga and for Tint differ by the `return` after the
+    /// Ziggurat's slow path, in each precision, and nothing else.
+    #[test]
+    fn tint_programs_lack_only_the_unreachable_return() {
+        let start = Start::paper(3);
+        for precision in [Precision::F32, Precision::F64] {
+            let program = Program::new(&DevicePotential::Rastrigin, &start)
+                .unwrap()
+                .precision(precision);
+            let naga = program.clone().compiler(Compiler::Naga).wgsl();
+            let tint = program.compiler(Compiler::Tint).wgsl();
+            assert_eq!(naga.matches(SLOW_PATH_END).count(), 1, "{precision:?}");
+            assert_eq!(tint.matches(SLOW_PATH_END).count(), 0, "{precision:?}");
+            assert_eq!(naga.replacen(SLOW_PATH_END, "    }\n}\n", 1), tint);
+        }
+    }
+
+    #[test]
+    fn programs_of_mismatched_pieces_are_refused() {
+        let quadratic = DevicePotential::quadratic(1.0, vec![0.0; 2]).unwrap();
+        assert!(matches!(
+            Program::new(&quadratic, &Start::paper(3)),
+            Err(GpuError::Dimension {
+                expected: 3,
+                got: 2,
+                ..
+            })
+        ));
+        assert!(matches!(
+            Program::new(&DevicePotential::Rastrigin, &Start::paper(0)),
+            Err(GpuError::Kernel(hrla::Error::Zero { .. }))
+        ));
+        assert!(Program::new(&quadratic, &Start::paper(2)).is_ok());
     }
 }

@@ -56,6 +56,7 @@ impl Start {
 
     /// The mean (or point) and the standard deviation (0 for a point), in
     /// the order of the constants buffer.
+    #[cfg_attr(not(feature = "device"), allow(dead_code))]
     pub(crate) fn constants(&self) -> Vec<f64> {
         let (m, s) = match self {
             Self::Gaussian { mean, std_dev } => (mean, *std_dev),

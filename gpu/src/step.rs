@@ -4,7 +4,15 @@
 
 use hrla::{AnyKernel, Float, Kernel, OlaKernel, OuKernel};
 
-use crate::shader::StepKind;
+/// Which kind of step a sampler takes, and so which the program runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum StepKind {
+    /// The exact Ornstein–Uhlenbeck step of HRLA and ULA.
+    Ou,
+    /// OLA's Euler–Maruyama step.
+    Ola,
+}
 
 /// The coefficients of one step at one inverse temperature, as computed by
 /// the kernel (exactly its bits, widened to f64).
@@ -48,15 +56,18 @@ pub enum StepCoefficients {
 }
 
 impl StepCoefficients {
-    pub(crate) fn kind(&self) -> StepKind {
+    /// The kind of step these are the coefficients of.
+    pub fn kind(&self) -> StepKind {
         match self {
             Self::Ou { .. } => StepKind::Ou,
             Self::Ola { .. } => StepKind::Ola,
         }
     }
 
-    /// The eight floats of one step in the constants buffer.
-    pub(crate) fn to_device(self) -> [f64; 8] {
+    /// The eight floats of one step in the constants buffer: HRLA's and
+    /// ULA's `[c_xy, e, c_xg, c_yg, l_xy, l_xx, l_yy, 0]`, OLA's `[drift,
+    /// noise, 0, 0, 0, 0, 0, 0]`.
+    pub fn to_device(self) -> [f64; 8] {
         match self {
             Self::Ou {
                 c_xy,

@@ -333,6 +333,26 @@ fn a_user_potential_runs_like_a_builtin() {
     assert_eq!(states[0], states[1]);
 }
 
+/// A run past the device's last iterate is refused, on a fresh ensemble
+/// and after steps alike, even where the count of iterates would pass
+/// `u64::MAX`, and refusing it leaves the chains where they were.
+#[test]
+fn a_run_past_the_last_iterate_is_refused_fresh_or_not() {
+    let mut ensemble = device_run(64, 0, 1);
+    let refused = Err(GpuError::Kernel(hrla::Error::Count {
+        name: "iterations",
+        value: usize::MAX,
+        max: u32::MAX as usize - 1,
+    }));
+    assert_eq!(ensemble.run(u64::MAX), refused);
+    ensemble.run(10).unwrap();
+    let before = ensemble.best().unwrap();
+    assert_eq!(ensemble.run(u64::MAX), refused);
+    assert_eq!(ensemble.run(u64::MAX - 5), refused);
+    assert_eq!(ensemble.iteration(), 10);
+    assert_eq!(ensemble.best().unwrap(), before);
+}
+
 #[test]
 fn bad_input_is_a_typed_error() {
     let gpu = common::gpu();

@@ -7,7 +7,8 @@ use core::fmt;
 use wasm_bindgen::JsValue;
 
 use crate::formula::FormulaError;
-use crate::landscape::{GridError, UnknownLandscape};
+use crate::landscape::{CustomError, GridError, UnknownLandscape};
+use crate::num::Num;
 
 /// Why the wrapper refused a settings object or an argument, or why the
 /// kernel did ([`Error::Kernel`]).
@@ -45,8 +46,8 @@ pub enum Error {
     NotACount {
         /// The argument.
         name: &'static str,
-        /// The value given (NaN when it was not a number at all).
-        value: f64,
+        /// What was given.
+        given: Given,
         /// The smallest count allowed.
         min: u64,
         /// The largest count allowed.
@@ -113,13 +114,12 @@ impl fmt::Display for Error {
             Self::NotAnInteger(name) => write!(f, "`{name}` must be a whole number >= 0"),
             Self::NotACount {
                 name,
-                value,
+                given,
                 min,
                 max,
             } => write!(
                 f,
-                "`{name}` must be a whole number between {min} and {max}, got {}",
-                Num(*value)
+                "`{name}` must be a whole number between {min} and {max}, got {given}"
             ),
             Self::UnknownSampler => f.write_str("`sampler` must be \"hrla\", \"ula\" or \"ola\""),
             Self::BadAnnealing => f.write_str(
@@ -248,28 +248,47 @@ impl From<hrla_dyn::Error> for Error {
     }
 }
 
+impl From<CustomError> for Error {
+    fn from(e: CustomError) -> Self {
+        match e {
+            CustomError::Formula(e) => Self::Formula(e),
+            CustomError::Grid(e) => Self::Grid(e),
+        }
+    }
+}
+
 impl From<GridError> for Error {
     fn from(e: GridError) -> Self {
         Self::Grid(e)
     }
 }
 
-/// A number as a person reads it: whole numbers in full up to `2^53`,
-/// others in exponent form when very large or small (so that `1e308` is
-/// not 309 digits).
-pub(crate) struct Num(pub(crate) f64);
+/// What JavaScript handed in where a number was asked for, as a message
+/// names it: a number by its value, anything else by its type, so that
+/// `5n` is not reported as NaN.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Given {
+    /// A JS number (NaN and the infinities included).
+    Number(f64),
+    /// A BigInt, by its decimal digits (a sign and at most 20 digits;
+    /// longer ones by their count, [`Given::LongBigInt`]).
+    BigInt(String),
+    /// A BigInt of this many characters, too long to repeat.
+    LongBigInt(usize),
+    /// Anything else, by its type as a message says it (`"a string"`,
+    /// `"undefined"`, `"null"`, `"a boolean"`, `"a symbol"`,
+    /// `"a function"`, `"an object"`).
+    Other(&'static str),
+}
 
-impl fmt::Display for Num {
+impl fmt::Display for Given {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let (v, a) = (self.0, self.0.abs());
-        let plain = a == 0.0
-            || !a.is_finite()
-            || (v.fract() == 0.0 && a < 9_007_199_254_740_992.0)
-            || (1e-4..1e6).contains(&a);
-        if plain {
-            write!(f, "{v}")
-        } else {
-            write!(f, "{v:e}")
+        match self {
+            Self::Number(v) => Num(*v).fmt(f),
+            Self::BigInt(digits) => write!(f, "a BigInt {digits}n; pass a Number"),
+            Self::LongBigInt(len) => write!(f, "a BigInt of {len} characters; pass a Number"),
+            Self::Other(kind) => write!(f, "{kind}; pass a Number"),
         }
     }
 }

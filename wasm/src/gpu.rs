@@ -1,9 +1,10 @@
 //! What the page's WebGPU path takes from the kernel: the WGSL program of
-//! the `hrla-gpu` crate for the page's 2-D landscapes (the same `.wgsl`
-//! sources, embedded), the step's coefficients as the kernel computes them
-//! in f64 (rounded once to the device's f32), the kernel's Ziggurat tables,
-//! and each chain's xoshiro128++ generator seeded from `chain_seed`, as
-//! `hrla-gpu` seeds it. The page drives the device itself (web/js/gpu.js).
+//! the `hrla-gpu` crate for the page's 2-D landscapes (its [`Program`],
+//! written for Chromium's compiler), the step's coefficients as the kernel
+//! computes them in f64 (rounded once to the device's f32), the kernel's
+//! Ziggurat tables, and each chain's xoshiro128++ generator seeded from
+//! `chain_seed`, as `hrla-gpu` seeds it. The page drives the device itself
+//! (web/js/gpu.js).
 //!
 //! The constants buffer (`gpu_tables`) has the layout of `hrla-gpu`'s
 //! `Layout` for `D = 2`: the Ziggurat's `X` at `[0, 257)` and `F` at
@@ -11,11 +12,15 @@
 //! 516, `U*` at 517, then from [`GPU_COEF_OFFSET`] the eight coefficients
 //! of each step of a dispatch.
 
-use hrla::{AnyKernel, AnySampler, Float, Kernel, OlaKernel, OuKernel, SamplerKind};
+use hrla::{AnySampler, SamplerKind};
 use hrla::{Sampler as _, StandardNormal, chain_seed};
+use hrla_gpu::{Compiler, DeviceKernel as _, DevicePotential, Program, Start, StepKind};
 use rand_xoshiro::Xoshiro128PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use wasm_bindgen::prelude::*;
+
+use crate::error::Error;
+use crate::read;
 
 // The kernel's own tables, from its source file (no copy to drift).
 #[allow(dead_code)]
@@ -28,8 +33,6 @@ pub const GPU_MAX_CHAINS: u32 = 1_000_000;
 pub const GPU_MAX_STEPS: u32 = 64;
 /// Where the step coefficients start in the constants buffer.
 pub const GPU_COEF_OFFSET: u32 = 520;
-/// Invocations per workgroup (`hrla-gpu`'s).
-const WORKGROUP: u32 = 64;
 /// The page's landscapes are planar.
 const D: usize = 2;
 
@@ -44,54 +47,11 @@ fn sampler_kind(name: &str) -> Result<SamplerKind, JsError> {
 }
 
 /// The kernel's step at `h` and `a`: its coefficients in f64, in the order
-/// of `hrla-gpu`'s constants buffer.
-///
-/// HRLA and ULA (the exact OU step): `[c_xy, e, c_xg, c_yg, l_xy, l_xx,
-/// l_yy, 0]`, with `y' = e y - c_yg g + l_yy z1` and `x' = x + c_xy y -
-/// c_xg g + l_xy z1 + l_xx z2`. OLA: `[drift, noise, 0, ...]`, with `x' = x
-/// - drift g + noise z`. The sampler's other parameters are the paper's.
+/// of `hrla-gpu`'s constants buffer ([`hrla_gpu::StepCoefficients`]). The
+/// sampler's other parameters are the paper's.
 fn step_coefficients(sampler: SamplerKind, h: f64, a: f64) -> Result<[f64; 8], hrla::Error> {
     let kernel = AnySampler::<f64>::paper(sampler, h)?.at(a)?;
-    Ok(match kernel {
-        AnyKernel::Hrla(k) | AnyKernel::Ula(k) => ou(&k),
-        AnyKernel::Ola(k) => ola(&k),
-    })
-}
-
-/// `hrla-gpu`'s reading of an OU kernel: its means are affine in
-/// `(x, y, g)` with exact zeros and ones, so these evaluations return the
-/// coefficients themselves, bit for bit.
-fn ou<F: Float>(k: &OuKernel<F>) -> [f64; 8] {
-    let (zero, one) = (F::ZERO, F::ONE);
-    let velocity = k.moments(zero, one, zero);
-    let gradient = k.moments(zero, zero, one);
-    let noise = k.noise_factor();
-    [
-        velocity.mean_x.to_f64(),
-        velocity.mean_y.to_f64(),
-        -gradient.mean_x.to_f64(),
-        -gradient.mean_y.to_f64(),
-        noise.xy.to_f64(),
-        noise.xx.to_f64(),
-        noise.yy.to_f64(),
-        0.0,
-    ]
-}
-
-/// OLA's drift and noise scale (the square root of the kernel's rounded
-/// variance gives its scale back: see `hrla-gpu`'s `step.rs`).
-fn ola<F: Float>(k: &OlaKernel<F>) -> [f64; 8] {
-    let m = k.moments(F::ZERO, F::ZERO, F::ONE);
-    [
-        -m.mean_x.to_f64(),
-        m.var_x.sqrt().to_f64(),
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-    ]
+    Ok(kernel.coefficients().to_device())
 }
 
 /// The kernel's step coefficients of `sampler` (`"hrla"`, `"ula"`,
@@ -154,18 +114,30 @@ pub fn gpu_tables(
     Ok(t)
 }
 
-/// The generators of chains `first .. first + count` of a run of `seed`:
-/// four 32-bit words each, chain `c`'s
-/// `Xoshiro128PlusPlus::seed_from_u64(chain_seed(seed, c))` as `hrla-gpu`
-/// seeds it (its state's bytes read as little-endian words).
-#[wasm_bindgen]
-pub fn gpu_generators(seed: u64, first: u32, count: u32) -> Result<Vec<u32>, JsError> {
-    let end = first
-        .checked_add(count)
-        .filter(|&e| e <= GPU_MAX_CHAINS)
-        .ok_or_else(|| refuse(format!("chains beyond {GPU_MAX_CHAINS}")))?;
+/// The chains `first .. first + count` of a run of `seed`, read as `new
+/// Optimizer` reads them: the seed a whole JS number up to `2^53 - 1` or a
+/// BigInt below `2^64`, the counts whole JS numbers; chains beyond
+/// [`GPU_MAX_CHAINS`] refused.
+fn chains(seed: &JsValue, first: &JsValue, count: &JsValue) -> Result<(u64, u32, u32), JsValue> {
+    let max = GPU_MAX_CHAINS;
+    let read = || -> Result<_, Error> {
+        Ok((
+            read::seed(seed)?,
+            read::count(first, "first", 0, max.into())?,
+            read::count(count, "count", 0, max.into())?,
+        ))
+    };
+    let (seed, first, count) = read().map_err(|e| e.to_js())?;
+    match (u32::try_from(first), u32::try_from(count)) {
+        (Ok(first), Ok(count)) if first + count <= max => Ok((seed, first, count)),
+        _ => Err(refuse(format!("chains beyond {max}")).into()),
+    }
+}
+
+/// The words of [`gpu_generators`], from what it has read.
+fn generators(seed: u64, first: u32, count: u32) -> Vec<u32> {
     let mut words = Vec::with_capacity(4 * count as usize);
-    for c in first..end {
+    for c in first..first + count {
         let state = Xoshiro128PlusPlus::seed_from_u64(chain_seed(seed, u64::from(c))).state();
         words.extend(
             state
@@ -173,28 +145,30 @@ pub fn gpu_generators(seed: u64, first: u32, count: u32) -> Result<Vec<u32>, JsE
                 .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
         );
     }
-    Ok(words)
+    words
 }
 
-/// The start of chains `first .. first + count` of a run of `seed` from
-/// `N(centre, spread^2 I)`, as the kernel draws it in f32 on the CPU from
-/// the generators of [`gpu_generators`]: `centre_i + spread * z` with the
-/// kernel's `f32::standard_normal`, coordinate-major (`x1` of the `k`-th
-/// chain at `k`, `x2` at `count + k`). The device's `init` draws the same
-/// numbers; the browser tests compare the two bit for bit.
+/// The generators of chains `first .. first + count` of a run of `seed`
+/// (a whole number or a BigInt, as `new Optimizer` takes it; `first` and
+/// `count` whole numbers, the chains within [`GPU_MAX_CHAINS`]): four
+/// 32-bit words each, chain `c`'s
+/// `Xoshiro128PlusPlus::seed_from_u64(chain_seed(seed, c))` as `hrla-gpu`
+/// seeds it (its state's bytes read as little-endian words).
 #[wasm_bindgen]
-pub fn gpu_kernel_starts(
-    seed: u64,
-    first: u32,
-    count: u32,
-    centre_x: f64,
-    centre_y: f64,
-    spread: f64,
-) -> Result<Vec<f32>, JsError> {
-    check_start(centre_x, centre_y, spread)?;
-    let words = gpu_generators(seed, first, count)?;
-    let (m, s) = ([centre_x as f32, centre_y as f32], spread as f32);
-    let n = count as usize;
+pub fn gpu_generators(
+    seed: &JsValue,
+    first: &JsValue,
+    count: &JsValue,
+) -> Result<Vec<u32>, JsValue> {
+    let (seed, first, count) = chains(seed, first, count)?;
+    Ok(generators(seed, first, count))
+}
+
+/// The start of `count` chains from `N(centre, spread^2 I)`, drawn from
+/// the generators `words` (four words each) as the kernel draws it in f32
+/// on the CPU, coordinate-major.
+fn kernel_starts(words: &[u32], centre: [f32; 2], spread: f32) -> Vec<f32> {
+    let n = words.len() / 4;
     let mut out = vec![0.0f32; 2 * n];
     for (k, w) in words.chunks_exact(4).enumerate() {
         let mut state = [0u8; 16];
@@ -202,11 +176,37 @@ pub fn gpu_kernel_starts(
             bytes.copy_from_slice(&word.to_le_bytes());
         }
         let mut rng = Xoshiro128PlusPlus::from_seed(state);
-        for (i, mi) in m.iter().enumerate() {
-            out[i * n + k] = mi + s * f32::standard_normal(&mut rng);
+        for (i, mi) in centre.iter().enumerate() {
+            out[i * n + k] = mi + spread * f32::standard_normal(&mut rng);
         }
     }
-    Ok(out)
+    out
+}
+
+/// The start of chains `first .. first + count` of a run of `seed` (read
+/// as [`gpu_generators`] reads them) from `N(centre, spread^2 I)`, as the
+/// kernel draws it in f32 on the CPU from the generators of
+/// [`gpu_generators`]: `centre_i + spread * z` with the kernel's
+/// `f32::standard_normal`, coordinate-major (`x1` of the `k`-th chain at
+/// `k`, `x2` at `count + k`). The device's `init` draws the same numbers;
+/// the browser tests compare the two bit for bit.
+#[wasm_bindgen]
+pub fn gpu_kernel_starts(
+    seed: &JsValue,
+    first: &JsValue,
+    count: &JsValue,
+    centre_x: f64,
+    centre_y: f64,
+    spread: f64,
+) -> Result<Vec<f32>, JsValue> {
+    check_start(centre_x, centre_y, spread)?;
+    let (seed, first, count) = chains(seed, first, count)?;
+    let words = generators(seed, first, count);
+    Ok(kernel_starts(
+        &words,
+        [centre_x as f32, centre_y as f32],
+        spread as f32,
+    ))
 }
 
 /// The most chains the page's device path runs.
@@ -244,221 +244,49 @@ pub fn gpu_supports(name: &str) -> bool {
     POTENTIALS.contains(&name)
 }
 
-/// `hrla-gpu`'s potential source for `name` and its constants.
-fn potential_source(name: &str) -> Option<(&'static str, Vec<(&'static str, f64)>)> {
-    use core::f64::consts::{E, PI};
+/// The device's potential for landscape `name`.
+fn device_potential(name: &str) -> Option<DevicePotential> {
     Some(match name {
-        "rastrigin" => (
-            include_str!("../../gpu/src/wgsl/potential/rastrigin.wgsl"),
-            vec![],
-        ),
-        "ackley" => (
-            include_str!("../../gpu/src/wgsl/potential/ackley.wgsl"),
-            vec![("ACKLEY_PI", PI), ("ACKLEY_E", E)],
-        ),
-        "levy" => (
-            include_str!("../../gpu/src/wgsl/potential/levy.wgsl"),
-            vec![("LEVY_PI", PI)],
-        ),
-        "styblinski-tang" => (
-            include_str!("../../gpu/src/wgsl/potential/styblinski_tang.wgsl"),
-            vec![],
-        ),
-        "double-well" => (
-            include_str!("../../gpu/src/wgsl/potential/double_well.wgsl"),
-            vec![],
-        ),
+        "rastrigin" => DevicePotential::Rastrigin,
+        "ackley" => DevicePotential::Ackley,
+        "levy" => DevicePotential::Levy,
+        "styblinski-tang" => DevicePotential::StyblinskiTang,
+        "double-well" => DevicePotential::DoubleWell,
         // The page's bowl: `|x|^2 / 2`, stiffness 1 about the origin.
-        "quadratic" => (
-            include_str!("../../gpu/src/wgsl/potential/quadratic.wgsl"),
-            vec![("QUADRATIC_STIFFNESS", 1.0)],
-        ),
+        "quadratic" => DevicePotential::Quadratic {
+            stiffness: 1.0,
+            centre: vec![0.0; D],
+        },
         _ => return None,
     })
 }
 
-/// `v` as a WGSL f32 literal with the same bits (hexadecimal, so that no
-/// decimal rounding intervenes), as `hrla-gpu` writes them.
-fn lit(v: f64) -> String {
-    let v = v as f32;
-    if v == 0.0 {
-        return if v.is_sign_negative() {
-            "-0.0f"
-        } else {
-            "0.0f"
-        }
-        .to_string();
-    }
-    if !v.is_normal() {
-        return format!("bitcast<f32>({:#010x}u)", v.to_bits());
-    }
-    let bits = v.to_bits();
-    let sign = if bits >> 31 == 1 { "-" } else { "" };
-    let exponent = ((bits >> 23) & 0xff) as i32 - 127;
-    let mantissa = (bits & 0x7f_ffff) << 1;
-    format!("{sign}0x1.{mantissa:06x}p{exponent}f")
-}
-
-/// fdlibm's `expf` and `logf` constants (`hrla-gpu`'s `FDLIBM`).
-#[allow(clippy::excessive_precision)]
-const FDLIBM: [(&str, f32); 11] = [
-    ("EXPF_LN2_HI", 6.9314575195e-01),
-    ("EXPF_LN2_LO", 1.4286067653e-06),
-    ("EXPF_INV_LN2", 1.4426950216e+00),
-    ("EXPF_P1", 1.6666625440e-1),
-    ("EXPF_P2", -2.7667332906e-3),
-    ("LOGF_LN2_HI", 6.9313812256e-01),
-    ("LOGF_LN2_LO", 9.0580006145e-06),
-    ("LOGF_LG1", 0.66666662693),
-    ("LOGF_LG2", 0.40000972152),
-    ("LOGF_LG3", 0.28498786688),
-    ("LOGF_LG4", 0.24279078841),
-];
-
-/// fdlibm's `__kernel_sin` and `__kernel_cos` coefficients, the four that
-/// the f32 Rastrigin uses (`hrla-gpu`'s `SIN`, `COS`).
-const SIN: [u64; 4] = [
-    0xBFC5_5555_5555_5549,
-    0x3F81_1111_1110_F8A6,
-    0xBF2A_01A0_19C1_61D5,
-    0x3EC7_1DE3_57B1_FE7D,
-];
-const COS: [u64; 4] = [
-    0x3FA5_5555_5555_554C,
-    0xBF56_C16C_16C1_5177,
-    0x3EFA_01A0_19CB_1590,
-    0xBE92_7E4F_809C_52AD,
-];
-
-/// The end of `normal_slow` in `normal32.wgsl`.
-const UNREACHABLE: &str = "    }\n    return 0.0;\n}\n";
-
-/// The OU step of HRLA and ULA (`hrla-gpu`'s `OU_STEP`).
-const OU_STEP: &str = "
-        let c_xy = coef(s, 0u);
-        let e = coef(s, 1u);
-        let c_xg = coef(s, 2u);
-        let c_yg = coef(s, 3u);
-        let l_xy = coef(s, 4u);
-        let l_xx = coef(s, 5u);
-        let l_yy = coef(s, 6u);
-        for (var i = 0u; i < D; i++) {
-            let z = normal_pair();
-            let mx = x[i] + mul(c_xy, y[i]) - mul(c_xg, g[i]);
-            let my = mul(e, y[i]) - mul(c_yg, g[i]);
-            x[i] = mx + mul(l_xy, z.x) + mul(l_xx, z.y);
-            y[i] = my + mul(l_yy, z.x);
-        }";
-
-/// OLA's Euler–Maruyama step (`hrla-gpu`'s `OLA_STEP`).
-const OLA_STEP: &str = "
-        let drift = coef(s, 0u);
-        let noise = coef(s, 1u);
-        for (var i = 0u; i < D; i++) {
-            x[i] = x[i] - mul(drift, g[i]) + mul(noise, normal());
-        }";
-
 /// The WGSL program of `hrla-gpu` (f32, IEEE products, a Gaussian start)
 /// for landscape `name` in 2-D and `sampler`'s step: entry points `init`
 /// and `step` of `hrla-gpu`'s `chains.wgsl`, over its bindings 0 to 6.
+/// It is written for Chromium's compiler, which would warn on the
+/// visitor's console about the `return` that naga asks for.
 #[wasm_bindgen]
 pub fn gpu_program(name: &str, sampler: &str) -> Result<String, JsError> {
-    let kind = sampler_kind(sampler)?;
-    let (potential, constants) = potential_source(name)
-        .ok_or_else(|| refuse(format!("{name} does not run on the device")))?;
-    let mut src = String::from(potential);
-    for (n, v) in constants {
-        src.push_str(&format!("const {n}: Real = {};\n", lit(v)));
-    }
-    if name == "quadratic" {
-        src.push_str("const QUADRATIC_CENTRE = array<Real, 2>(0.0f, 0.0f);\n");
-    }
-    src.push_str("\n// ---- hrla-gpu ----\nalias Real = f32;\n");
-    src.push_str(
-        "fn rounded(s: Real) -> Real {\n    return bitcast<f32>(bitcast<u32>(s) ^ params.zero);\n}\n\
-         fn mul(a: Real, b: Real) -> Real {\n    return rounded(a * b);\n}\n\
-         fn finite(v: Real) -> bool {\n    return (bitcast<u32>(v) & 0x7f800000u) != 0x7f800000u;\n}\n\
-         fn none() -> Real {\n    return Real(bitcast<f32>(0x7f800000u | params.zero));\n}\n",
-    );
-    let max = f64::from(f32::MAX);
-    src.push_str(&format!("const REAL_MAX: Real = {};\n", lit(max)));
-    src.push_str(&format!("const D: u32 = {D}u;\n"));
-    src.push_str("const START_IN_BEST: bool = true;\n");
-    src.push_str(&format!(
-        "const START_TRIES: u32 = {}u;\n",
-        hrla::START_TRIES
-    ));
-    src.push_str("alias Point = array<Real, D>;\n");
-    src.push_str(&format!("const WORKGROUP: u32 = {WORKGROUP}u;\n"));
-    src.push_str("const U_STAR_AT: u32 = 517u;\n");
-    src.push_str(&format!("const FLOOR: Real = {};\n", lit(-max.sqrt())));
-    src.push_str(&format!(
-        "const RASTRIGIN_TAU: Real = {};\nconst RASTRIGIN_PI: Real = {};\n",
-        lit(core::f64::consts::TAU),
-        lit(core::f64::consts::PI)
-    ));
-    for (i, (&s, &c)) in SIN.iter().zip(&COS).enumerate() {
-        src.push_str(&format!(
-            "const RASTRIGIN_S{i}: Real = {};\nconst RASTRIGIN_C{i}: Real = {};\n",
-            lit(f64::from_bits(s)),
-            lit(f64::from_bits(c))
-        ));
-    }
-    src.push_str(include_str!("../../gpu/src/wgsl/random.wgsl"));
-    src.push_str(&format!(
-        "const RASTRIGIN_FAST_LIMIT: Real = {};\n",
-        lit(1_048_576.0)
-    ));
-    src.push_str(&format!(
-        "const ZIG_R: Real = {};\n",
-        lit(ziggurat_tables::R)
-    ));
-    for (n, v) in FDLIBM {
-        src.push_str(&format!("const {n}: f32 = {};\n", lit(f64::from(v))));
-    }
-    // `normal_slow` ends in a loop that only returns, after which
-    // hrla-gpu's source has a `return` that naga asks for and Chromium's
-    // compiler warns about as unreachable (on the visitor's console).
-    src.push_str(&include_str!("../../gpu/src/wgsl/normal32.wgsl").replacen(
-        UNREACHABLE,
-        "    }\n}\n",
-        1,
-    ));
-    let step = match kind {
-        SamplerKind::Ola => OLA_STEP,
-        _ => OU_STEP,
+    let step = match sampler_kind(sampler)? {
+        SamplerKind::Ola => StepKind::Ola,
+        _ => StepKind::Ou,
     };
-    src.push_str(
-        &include_str!("../../gpu/src/wgsl/chains.wgsl")
-            .replace(
-                "START_COORDINATE",
-                "x[i] = tables[514u + i] + mul(tables[516u], normal());",
-            )
-            .replace("STEP_CHAIN", step),
-    );
-    Ok(src)
+    let potential = device_potential(name)
+        .ok_or_else(|| refuse(format!("{name} does not run on the device")))?;
+    // Only the start's kind and dimension are in the program; its mean and
+    // spread are in the constants buffer (`gpu_tables`).
+    let start = Start::paper(D);
+    Ok(Program::new(&potential, &start)
+        .map_err(refuse)?
+        .step(step)
+        .compiler(Compiler::Tint)
+        .wgsl())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn literals_read_back() {
-        for v in [1.0f32, -2.5, 0.1, core::f32::consts::PI, 1e-30, 6e37] {
-            let s = lit(f64::from(v));
-            let body = s.trim_end_matches('f');
-            let (neg, body) = match body.strip_prefix('-') {
-                Some(b) => (true, b),
-                None => (false, body),
-            };
-            let (m, e) = body.trim_start_matches("0x1.").split_once('p').unwrap();
-            let m = u32::from_str_radix(m, 16).unwrap() >> 1;
-            let e: i32 = e.parse().unwrap();
-            let bits = (u32::from(neg) << 31) | (((e + 127) as u32) << 23) | m;
-            assert_eq!(f32::from_bits(bits), v, "{s}");
-        }
-    }
 
     #[test]
     fn coefficients_are_the_kernels_moments() {
@@ -487,7 +315,7 @@ mod tests {
 
     #[test]
     fn generators_are_chain_seeds() {
-        let w = gpu_generators(7, 3, 2).unwrap();
+        let w = generators(7, 3, 2);
         let s = Xoshiro128PlusPlus::seed_from_u64(chain_seed(7, 4)).state();
         assert_eq!(w[4], u32::from_le_bytes([s[0], s[1], s[2], s[3]]));
         assert_eq!(w.len(), 8);
@@ -495,45 +323,11 @@ mod tests {
 
     #[test]
     fn kernel_starts_are_the_kernels_gaussian_draws() {
-        let x = gpu_kernel_starts(5, 10, 3, 3.0, -1.0, 0.5).unwrap();
+        let x = kernel_starts(&generators(5, 10, 3), [3.0, -1.0], 0.5);
         let mut rng = Xoshiro128PlusPlus::seed_from_u64(chain_seed(5, 11));
         let x1 = 3.0f32 + 0.5 * f32::standard_normal(&mut rng);
         let x2 = -1.0f32 + 0.5 * f32::standard_normal(&mut rng);
         assert_eq!((x[1], x[3 + 1]), (x1, x2));
-    }
-
-    /// The pieces of `hrla-gpu`'s `shader.rs` that this module repeats
-    /// (that crate runs on wgpu, which the page's wasm does not link): its
-    /// steps word for word, its fdlibm constants and sine and cosine
-    /// coefficients, checked against its source so that the two cannot
-    /// drift apart.
-    #[test]
-    fn the_repeated_pieces_are_hrla_gpus() {
-        let shader = include_str!("../../gpu/src/shader.rs");
-        assert!(shader.contains(OU_STEP), "OU_STEP");
-        assert!(shader.contains(OLA_STEP), "OLA_STEP");
-        assert!(shader.contains("pub(crate) const WORKGROUP: u32 = 64;"));
-        for bits in SIN.iter().chain(&COS) {
-            let hex = format!("{bits:016X}");
-            let written = format!(
-                "0x{}_{}_{}_{},",
-                &hex[0..4],
-                &hex[4..8],
-                &hex[8..12],
-                &hex[12..16]
-            );
-            assert!(shader.contains(&written), "{written}");
-        }
-        for (name, value) in FDLIBM {
-            let head = format!("(\"{name}\", ");
-            let at = shader.find(&head).expect(name) + head.len();
-            let end = at + shader[at..].find(')').unwrap();
-            let theirs: f32 = shader[at..end].parse().unwrap();
-            assert_eq!(theirs.to_bits(), value.to_bits(), "{name}");
-        }
-        // The Gaussian start and the layout of the constants buffer.
-        assert!(shader.contains("u_star: (514 + dim + 1) as u32"));
-        assert!(shader.contains("\"x[i] = tables[{m}u + i] + mul(tables[{s}u], normal());\""));
     }
 
     #[test]
@@ -542,7 +336,8 @@ mod tests {
             for sampler in ["hrla", "ula", "ola"] {
                 let p = gpu_program(name, sampler).unwrap();
                 assert!(p.contains("fn step(") && !p.contains("STEP_CHAIN"));
-                assert!(!p.contains(UNREACHABLE), "normal_slow's unreachable return");
+                let unreachable = "    }\n    return 0.0;\n}\n";
+                assert!(!p.contains(unreachable), "normal_slow's unreachable return");
             }
         }
     }

@@ -7,8 +7,8 @@ use core::fmt;
 use core::str::FromStr;
 use std::sync::Arc;
 
-use crate::error::{Error, Num};
-use crate::formula::Formula;
+use crate::formula::{Formula, FormulaError};
+use crate::num::Num;
 
 use hrla::{KnownMinimum, Potential};
 use hrla_dyn::{Builtin, BuiltinKind, BuiltinSpec, PointFunction, PotentialSpec};
@@ -65,12 +65,12 @@ impl Landscape {
     /// known: it is estimated as the lowest value on a 201 x 201 grid of the
     /// box, refined by gradient descent with backtracking within the box (a
     /// chain may find lower values, outside the box or between grid points
-    /// in a narrow well). Errors: the formula's ([`Error::Formula`]), a box
+    /// in a narrow well). Errors: the formula's ([`CustomError::Formula`]), a box
     /// that is not finite and increasing ([`GridError`]), or a point of the
     /// grid where `U` or its gradient is not finite: the page could not draw
     /// it, and chains there would diverge.
-    pub fn formula(text: &str, bounds: [f64; 4]) -> Result<Self, Error> {
-        let formula = Formula::parse(text).map_err(Error::Formula)?;
+    pub fn formula(text: &str, bounds: [f64; 4]) -> Result<Self, CustomError> {
+        let formula = Formula::parse(text).map_err(CustomError::Formula)?;
         let [x0, x1, y0, y1] = bounds;
         if !(bounds.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
             return Err(GridError::Box(bounds).into());
@@ -215,6 +215,33 @@ impl Landscape {
 /// The most grid points [`Landscape::grid`] computes at once (a 2048 x 2048
 /// picture).
 pub const MAX_GRID: usize = 1 << 22;
+
+/// Why [`Landscape::formula`] made no landscape of a visitor's formula.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum CustomError {
+    /// The formula cannot be read.
+    Formula(FormulaError),
+    /// Its box is not a box, or the formula is not finite on its grid.
+    Grid(GridError),
+}
+
+impl fmt::Display for CustomError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Formula(e) => e.fmt(f),
+            Self::Grid(e) => e.fmt(f),
+        }
+    }
+}
+
+impl core::error::Error for CustomError {}
+
+impl From<GridError> for CustomError {
+    fn from(e: GridError) -> Self {
+        Self::Grid(e)
+    }
+}
 
 /// Why [`Landscape::grid`] refused a grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -394,16 +421,16 @@ mod tests {
     fn a_formula_that_cannot_be_drawn_on_its_box_is_refused() {
         assert!(matches!(
             Landscape::formula("log(x)", [-1.0, 1.0, -1.0, 1.0]),
-            Err(Error::Grid(GridError::NotFinite { .. }))
+            Err(CustomError::Grid(GridError::NotFinite { .. }))
         ));
         assert!(Landscape::formula("log(x)", [0.5, 1.0, -1.0, 1.0]).is_ok());
         assert!(matches!(
             Landscape::formula("x", [1.0, -1.0, -1.0, 1.0]),
-            Err(Error::Grid(GridError::Box(_)))
+            Err(CustomError::Grid(GridError::Box(_)))
         ));
         assert!(matches!(
             Landscape::formula("x +", [-1.0, 1.0, -1.0, 1.0]),
-            Err(Error::Formula(_))
+            Err(CustomError::Formula(_))
         ));
         // Unbounded below: the estimate is the box's lowest, at its edge.
         let slope = Landscape::formula("x", [-1.0, 1.0, -1.0, 1.0]).unwrap();

@@ -58,6 +58,7 @@ mod error;
 mod formula;
 mod gpu;
 mod landscape;
+mod num;
 mod read;
 mod settings;
 
@@ -67,9 +68,9 @@ use hrla_dyn::{Engine, StartSpec};
 use wasm_bindgen::prelude::*;
 
 pub use descent::Descent;
-pub use error::Error;
+pub use error::{Error, Given};
 pub use formula::{Formula, FormulaError, FormulaErrorKind, MAX_FORMULA_DEPTH, MAX_FORMULA_LEN};
-pub use landscape::{Custom, GridError, Landscape, MAX_GRID, UnknownLandscape};
+pub use landscape::{Custom, CustomError, GridError, Landscape, MAX_GRID, UnknownLandscape};
 pub use settings::{KEYS, Settings, Temperature, parse_sampler, potential};
 
 /// The most chains a run may have (the page offers up to 1024): more is
@@ -254,7 +255,7 @@ impl Optimizer {
         if chain >= n {
             return Err(Error::NotACount {
                 name: "chain",
-                value: chain as f64,
+                given: Given::Number(chain as f64),
                 min: 0,
                 max: n as u64 - 1,
             });

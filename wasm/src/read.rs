@@ -1,12 +1,13 @@
 //! Reading values handed in from JavaScript strictly: a number must be a
 //! JS number (no coercion of strings, BigInts or objects), a count a whole
-//! number in its range, and an exception thrown while reading (a getter, a
-//! `Proxy` trap) comes back as [`Error::Threw`] instead of being taken for
-//! a missing value.
+//! number in its range, a seed a u64 held exactly, and an exception thrown
+//! while reading (a getter, a `Proxy` trap) comes back as [`Error::Threw`]
+//! instead of being taken for a missing value. Every export reads its
+//! numbers, counts and seeds through here.
 
 use wasm_bindgen::prelude::*;
 
-use crate::error::Error;
+use crate::error::{Error, Given};
 
 /// `object[key]`; a throw while reading it is [`Error::Threw`] naming `key`.
 pub(crate) fn get(object: &JsValue, key: &'static str) -> Result<JsValue, Error> {
@@ -75,17 +76,65 @@ pub(crate) fn number(value: &JsValue, name: &'static str) -> Result<f64, Error> 
 /// `value` when it is a JS number holding a whole number in `min..=max`
 /// (`max` at most `2^53 - 1`, so the number is exact). `-0` is 0.
 pub(crate) fn count(value: &JsValue, name: &'static str, min: u64, max: u64) -> Result<u64, Error> {
-    let v = value.as_f64().unwrap_or(f64::NAN);
-    if v.fract() == 0.0 && v >= min as f64 && v <= max as f64 {
-        Ok(v as u64)
-    } else {
-        Err(Error::NotACount {
+    match value.as_f64() {
+        Some(v) if v.fract() == 0.0 && v >= min as f64 && v <= max as f64 => Ok(v as u64),
+        _ => Err(Error::NotACount {
             name,
-            value: v,
+            given: given(value),
             min,
             max,
-        })
+        }),
     }
+}
+
+/// Largest integer a JS number holds exactly, `2^53 - 1`.
+const MAX_SAFE_INTEGER: f64 = 9_007_199_254_740_991.0;
+
+/// `v` as a u64 when it is a whole number in `0..=2^53 - 1`, where the
+/// conversion is exact.
+pub(crate) fn safe_whole(v: f64) -> Option<u64> {
+    ((0.0..=MAX_SAFE_INTEGER).contains(&v) && v.fract() == 0.0).then_some(v as u64)
+}
+
+/// A seed, a u64: a JS number when it is a whole number up to `2^53 - 1`
+/// (so it is exact), a BigInt for the full range; anything else is
+/// [`Error::BadSeed`].
+pub(crate) fn seed(value: &JsValue) -> Result<u64, Error> {
+    if value.is_bigint() {
+        return u64::try_from(value.clone()).map_err(|_| Error::BadSeed);
+    }
+    value.as_f64().and_then(safe_whole).ok_or(Error::BadSeed)
+}
+
+/// What `value` is, for a message that refuses it where a number was
+/// asked for. Reads nothing of an object (no getter runs).
+fn given(value: &JsValue) -> Given {
+    if let Some(v) = value.as_f64() {
+        return Given::Number(v);
+    }
+    if let Some(big) = value.dyn_ref::<js_sys::BigInt>() {
+        // A sign and 20 digits hold every 64-bit integer.
+        return match big.to_string(10).ok().map(String::from) {
+            Some(digits) if digits.len() <= 21 => Given::BigInt(digits),
+            Some(digits) => Given::LongBigInt(digits.len()),
+            None => Given::Other("a BigInt"),
+        };
+    }
+    Given::Other(if value.is_string() {
+        "a string"
+    } else if value.is_undefined() {
+        "undefined"
+    } else if value.is_null() {
+        "null"
+    } else if value.as_bool().is_some() {
+        "a boolean"
+    } else if value.is_symbol() {
+        "a symbol"
+    } else if value.is_function() {
+        "a function"
+    } else {
+        "an object"
+    })
 }
 
 /// An array of exactly four JS numbers (a box `[x0, x1, y0, y1]`); else

@@ -8,7 +8,7 @@ use wasm_bindgen::JsValue;
 
 use crate::error::Error;
 use crate::landscape::{Landscape, UnknownLandscape};
-use crate::read::{get, get_as, get_index, is_array, number, only_keys};
+use crate::read::{get, get_as, get_index, is_array, number, only_keys, safe_whole, seed};
 
 /// The keys a settings object may have.
 pub const KEYS: [&str; 12] = [
@@ -115,11 +115,8 @@ pub fn potential(value: &JsValue) -> Result<Landscape, Error> {
             .as_f64()
             .ok_or(Error::BadFormulaPotential)?;
     }
-    Landscape::formula(&text, b)
+    Ok(Landscape::formula(&text, b)?)
 }
-
-/// Largest integer a JS number holds exactly, `2^53 - 1`.
-const MAX_SAFE_INTEGER: f64 = 9_007_199_254_740_991.0;
 
 impl Settings {
     /// Reads settings from a JS object:
@@ -234,12 +231,6 @@ impl Settings {
     }
 }
 
-/// `v` as a u64 when it is a whole number in `0..=2^53 - 1`, where the
-/// conversion is exact.
-fn safe_whole(v: f64) -> Option<u64> {
-    ((0.0..=MAX_SAFE_INTEGER).contains(&v) && v.fract() == 0.0).then_some(v as u64)
-}
-
 fn whole(value: &JsValue, key: &'static str) -> Result<u64, Error> {
     safe_whole(number(value, key)?).ok_or(Error::NotAnInteger(key))
 }
@@ -255,11 +246,4 @@ fn centre(value: &JsValue) -> Result<[f64; 2], Error> {
             .ok_or(Error::BadCentre)
     };
     Ok([coordinate(0)?, coordinate(1)?])
-}
-
-fn seed(value: &JsValue) -> Result<u64, Error> {
-    if value.is_bigint() {
-        return u64::try_from(value.clone()).map_err(|_| Error::BadSeed);
-    }
-    value.as_f64().and_then(safe_whole).ok_or(Error::BadSeed)
 }

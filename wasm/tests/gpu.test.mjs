@@ -3,7 +3,7 @@
 // trap, a NaN or an infinity; and a seeded campaign of mixed settings.
 import assert from "node:assert/strict";
 import { test } from "node:test";
-import { isTypedError, wasm } from "./load.mjs";
+import { OK, isTypedError, wasm } from "./load.mjs";
 
 const BAD_NUMBERS = [NaN, Infinity, -Infinity, 0, -1, 1e300];
 
@@ -67,6 +67,38 @@ test("gpu_generators and gpu_kernel_starts: chains beyond 10^6 refused; seeds of
   assert.ok(allFinite(x));
   assert.equal(outcome(() => wasm.gpu_kernel_starts(5n, 0, 100, 1, 2, NaN)), "refused");
   assert.equal(outcome(() => wasm.gpu_kernel_starts(5n, max, 1, 1, 2, 0.5)), "refused");
+});
+
+/** The message of what `f` throws, which must be a typed Error naming `field`. */
+function refusal(f, field) {
+  try {
+    f();
+  } catch (e) {
+    assert.ok(isTypedError(e), `not a typed error: ${e}`);
+    assert.equal(e.field, field, e.message);
+    return e.message;
+  }
+  assert.fail(`not refused (${field})`);
+}
+
+test("gpu_generators and gpu_kernel_starts read counts and seeds as new Optimizer does, not modulo 2^32 or 2^64", () => {
+  const starts = (seed, first, count) => wasm.gpu_kernel_starts(seed, first, count, 1, 2, 0.5);
+  for (const f of [wasm.gpu_generators, starts]) {
+    for (const bad of [2 ** 32 + 2, NaN, -1, 2.5, Infinity, "2", 2n, null, undefined, {}, [2], new Number(2)]) {
+      assert.match(refusal(() => f(1n, 0, bad), "count"), /^`count` must be a whole number between 0 and 1000000, got /);
+      assert.match(refusal(() => f(1n, bad, 2), "first"), /^`first` must be a whole number between 0 and 1000000, got /);
+    }
+    assert.match(refusal(() => f(1n, 0, 2n), "count"), /got a BigInt 2n; pass a Number$/);
+    for (const seed of [-1n, 2n ** 64n, 2n ** 64n + 1n, -1, 2 ** 53, 1.5, NaN, "1", null, undefined]) {
+      const message = refusal(() => f(seed, 0, 2), "seed");
+      // The same refusal as the optimiser's.
+      assert.throws(() => new wasm.Optimizer({ ...OK, seed }), (e) => isTypedError(e) && e.field === "seed" && e.message === message);
+    }
+  }
+  // A seed is the same seed as a number or a BigInt; -0 counts as 0.
+  assert.deepEqual(Array.from(wasm.gpu_generators(7, -0, 3)), Array.from(wasm.gpu_generators(7n, 0, 3)));
+  assert.deepEqual(Array.from(starts(2 ** 53 - 1, 4, 2)), Array.from(starts(2n ** 53n - 1n, 4, 2)));
+  assert.equal(wasm.gpu_generators(1n, 5, 0).length, 0);
 });
 
 test("gpu_program: every built-in landscape and sampler; a formula or an unknown name refused", () => {

@@ -169,6 +169,35 @@ test("advance takes a whole number of steps from 0 to 2^32 - 1, nothing else", (
   opt.free();
 });
 
+test("a refused count names what was given: a BigInt by its digits, a non-number by its type", () => {
+  const opt = new wasm.Optimizer(OK);
+  const got = (steps) => {
+    try {
+      opt.advance(steps);
+    } catch (e) {
+      assert.ok(isTypedError(e));
+      return e.message.slice(e.message.indexOf(", got ") + 6);
+    }
+    assert.fail(`advance(${String(steps)}) not refused`);
+  };
+  assert.equal(got(5n), "a BigInt 5n; pass a Number");
+  assert.equal(got(-3n), "a BigInt -3n; pass a Number");
+  assert.equal(got(2n ** 64n - 1n), "a BigInt 18446744073709551615n; pass a Number");
+  assert.equal(got(10n ** 30n), "a BigInt of 31 characters; pass a Number");
+  assert.equal(got("5"), "a string; pass a Number");
+  assert.equal(got(undefined), "undefined; pass a Number");
+  assert.equal(got(null), "null; pass a Number");
+  assert.equal(got(true), "a boolean; pass a Number");
+  assert.equal(got(Symbol("s")), "a symbol; pass a Number");
+  assert.equal(got(() => 5), "a function; pass a Number");
+  assert.equal(got(new Number(5)), "an object; pass a Number");
+  assert.equal(got(NaN), "NaN");
+  assert.equal(got(2.5), "2.5");
+  assert.equal(got(-1), "-1");
+  assert.equal(summary(opt)[S.Iteration], 0);
+  opt.free();
+});
+
 test("advance on a run that has stopped does nothing and says so, whatever the count", () => {
   const opt = new wasm.Optimizer({ ...OK, stopSteps: 5 });
   assert.equal(opt.advance(10), 5);
