@@ -8,10 +8,6 @@ use crate::error::ReproError;
 use crate::peers::{AnyPeer, DEFAULT_WALK, PeerKind, RandomWalk, Scope};
 use crate::stats::grid_points;
 
-/// The dimensions compiled into the tool (the kernel's dimension is a const
-/// generic, so each is its own instantiation in the engine).
-pub const DIMENSIONS: [usize; 7] = [1, 2, 5, 10, 20, 50, 100];
-
 /// The name of a sampler in tables and legends: `HRLA`, `ULA`, `OLA`.
 pub fn sampler_label(kind: SamplerKind) -> String {
     kind.name().to_ascii_uppercase()
@@ -140,7 +136,7 @@ impl StartSpec {
 pub struct RunSpec {
     /// The sampler or peer.
     pub method: Method,
-    /// The dimension `d` (one of [`DIMENSIONS`]).
+    /// The dimension `d`, any `d >= 1`.
     pub d: usize,
     /// The step size `h` (kernel samplers only).
     pub h: f64,
@@ -198,8 +194,11 @@ impl RunSpec {
     /// Checks every parameter once, before any run starts, so that workers
     /// never meet an error the user could have been told about up front.
     pub fn validate(&self) -> Result<(), ReproError> {
-        if !DIMENSIONS.contains(&self.d) {
-            return Err(ReproError::Dimension(self.d));
+        if self.d == 0 {
+            return Err(ReproError::Flag {
+                flag: "--d",
+                reason: "d = 0: a run needs at least one coordinate".to_string(),
+            });
         }
         let bad = |what: &str| Err(ReproError::Usage(what.to_string()));
         if self.chains == 0 {

@@ -10,9 +10,6 @@ pub enum ReproError {
     /// The kernel refused a parameter (step size, temperature, start, ...).
     #[error("the hrla kernel refused the parameters: {0}")]
     Kernel(#[from] hrla::Error),
-    /// The dimension is not one of those compiled in.
-    #[error("dimension {0} is not compiled in; supported: {dims:?}", dims = crate::config::DIMENSIONS)]
-    Dimension(usize),
     /// A command-line combination that does not make sense for the protocol.
     #[error("{0}")]
     Usage(String),

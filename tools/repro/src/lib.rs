@@ -9,8 +9,11 @@
 //!   [`Plan`](protocol::Plan) of configurations.
 //! - [`config`]: one configuration of a protocol ([`RunSpec`](config::RunSpec))
 //!   and its validation.
-//! - [`engine`]: the run loop: one run of one configuration, one kernel
-//!   optimiser over all its chains (in a `Vec`) driven step by step.
+//! - [`kernel`]: the one place the tool meets the kernel's optimiser: a
+//!   run of a kernel sampler at its run-time dimension (any `d >= 1`),
+//!   its start and the bytes of its chains.
+//! - [`engine`]: the run loop: one run of one configuration, the kernel's
+//!   chains or a peer's population driven one iteration at a time.
 //! - [`stats`]: the paper's running best (over the stride, without iterate
 //!   0) and empirical probability (not running), streamed; the summary
 //!   statistics and their conventions.
@@ -37,6 +40,7 @@ pub mod engine;
 pub mod error;
 pub mod exec;
 pub mod gpu;
+pub mod kernel;
 pub mod limits;
 pub mod output;
 pub mod peers;

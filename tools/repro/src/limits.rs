@@ -90,7 +90,8 @@ pub fn check_counts(plan: &Plan) -> Result<(), ReproError> {
 /// fit in a `u64`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Footprint {
-    /// One run's chains (the kernel's `Chain`s; a peer's members are
+    /// One run's chains (the kernel's, see
+    /// [`chain_bytes`](crate::kernel::chain_bytes); a peer's members are
     /// smaller), for the largest `N` and `d` of the plan.
     pub chains: Option<u64>,
     /// The probability counters of every configuration, one set per
@@ -113,7 +114,7 @@ impl Footprint {
     pub fn of(plan: &Plan) -> Self {
         let size = |bytes: usize| u64::try_from(bytes).ok();
         let chains = plan.configs.iter().try_fold(0u64, |most, s| {
-            let one = size(crate::engine::chain_bytes(s.d)?)?;
+            let one = size(crate::kernel::chain_bytes(s.d)?)?;
             Some(most.max(u64::try_from(s.chains).ok()?.checked_mul(one)?))
         });
         let counts = plan.configs.iter().try_fold(0u64, |sum, s| {
@@ -186,7 +187,7 @@ pub fn check_memory(plan: &Plan, workers: Option<usize>, memory: u64) -> Result<
                 .max()
                 .unwrap_or((0, 0));
             return Err(flag(
-                "--n",
+                "--n/--d",
                 format!(
                     "runs of up to N = {n} chains (d = {d}) on {w} threads take {} bytes, \
                      more than this machine's {memory}",
@@ -274,14 +275,14 @@ mod tests {
     fn memory_is_checked_against_the_machine() {
         let p = t1(Overrides::default()).unwrap();
         let f = Footprint::of(&p);
-        let chain = crate::engine::chain_bytes(10).unwrap() as u64;
+        let chain = crate::kernel::chain_bytes(10).unwrap() as u64;
         assert_eq!(f.chains, Some(10 * chain));
         assert_eq!(f.counts, Some(0));
         let need = f.total(Some(2)).unwrap();
         assert_eq!(need, 2 * 10 * chain + f.runs.unwrap());
         assert!(check_memory(&p, Some(2), need).is_ok());
         assert_eq!(named(check_memory(&p, Some(2), need - 1)), "--m/--n/--k");
-        assert_eq!(named(check_memory(&p, Some(2), 10 * chain)), "--n");
+        assert_eq!(named(check_memory(&p, Some(2), 10 * chain)), "--n/--d");
         assert_eq!(named(check_memory(&p, None, 1)), "--m");
         // More workers than runs hold no more chains.
         assert_eq!(

@@ -109,7 +109,7 @@ pub struct Overrides {
     /// Samplers: hrla, ula, ola.
     #[arg(long, value_delimiter = ',')]
     pub sampler: Option<Vec<SamplerKind>>,
-    /// Dimensions (compiled in: 1, 2, 5, 10, 20, 50, 100).
+    /// Dimensions d, any d >= 1.
     #[arg(long, value_delimiter = ',')]
     pub d: Option<Vec<usize>>,
     /// Step sizes h.
@@ -670,13 +670,14 @@ mod tests {
             plan(ProtocolId::E5, &o, false),
             Err(ReproError::Usage(_))
         ));
-        let bad_d = Overrides {
-            d: Some(vec![3]),
+        let d = |d| Overrides {
+            d: Some(vec![d]),
             ..Overrides::default()
         };
+        assert_eq!(plan(ProtocolId::E1, &d(3), false).unwrap().configs[0].d, 3);
         assert!(matches!(
-            plan(ProtocolId::E1, &bad_d, false),
-            Err(ReproError::Dimension(3))
+            plan(ProtocolId::E1, &d(0), false),
+            Err(ReproError::Flag { flag: "--d", .. })
         ));
     }
 
