@@ -174,6 +174,46 @@ impl RunSpec {
         self.chains as u64 * self.steps
     }
 
+    /// The short name of the configuration in tables and legends:
+    /// `HRLA a_high=4 (1,...,1)`, `SA (1,...,1)`, `CSA coordinate sd=1
+    /// N(3·1, 10 I)`.
+    pub fn label(&self) -> String {
+        let start = match self.start {
+            StartSpec::Point(v) => format!("({v},...,{v})"),
+            g @ StartSpec::Gaussian { .. } => g.label(),
+        };
+        let t = self.temperature;
+        match self.method {
+            Method::Peer { .. } => format!("{} {start}", self.method.label()),
+            Method::Kernel(_) => format!(
+                "{} {}={} {start}",
+                self.method.label(),
+                t.label_name(),
+                t.label_value()
+            ),
+        }
+    }
+
+    /// The configuration as an error message names it: its
+    /// [`label`](RunSpec::label) with its dimension, chains and steps.
+    pub fn name(&self) -> String {
+        format!(
+            "{} (d = {}, N = {}, K = {})",
+            self.label(),
+            self.d,
+            self.chains,
+            self.steps
+        )
+    }
+
+    /// Evaluations one run makes up to iterate `k`: `N` at the start and
+    /// `N` per iteration, for the kernel (each of `U` and `∇U`) and the
+    /// peers (of `U`) alike; a test checks it against the counts the runs
+    /// report.
+    pub fn evaluations_to(&self, k: u64) -> u64 {
+        self.chains as u64 * (k + 1)
+    }
+
     /// The kernel's schedule over the run and its sampler (a peer's run has
     /// neither).
     pub fn kernel_setup(&self) -> Result<(AnySchedule<f64>, AnySampler<f64>), hrla::Error> {

@@ -29,9 +29,10 @@ use indicatif::ProgressBar;
 use crate::config::{Method, RunSpec, StartSpec};
 use crate::engine::U_STAR;
 use crate::error::ReproError;
-use crate::exec::{Part, ProtocolResult, Shard, config_name, finish};
+use crate::exec::{Part, ProtocolResult, finish};
 use crate::protocol::Plan;
 use crate::seed::run_seed;
+use crate::split::Shard;
 use crate::stats::{check_running_best, grid_points};
 
 /// Where the chains of a plan run.
@@ -158,7 +159,7 @@ impl GpuBackend {
         }
         let started = Instant::now();
         let mut part = Part::empty(plan);
-        let tasks = shard.tasks(plan);
+        let tasks = plan.tasks(shard);
         for (c, spec) in plan.configs.iter().enumerate() {
             let runs: Vec<usize> = tasks
                 .iter()
@@ -172,7 +173,7 @@ impl GpuBackend {
                 for (&i, out) in batch.iter().zip(outcomes) {
                     check_running_best(&out.running_best, &spec.checkpoints, U_STAR).map_err(
                         |problem| ReproError::FailedRun {
-                            config: config_name(spec),
+                            config: spec.name(),
                             run: i,
                             problem,
                         },

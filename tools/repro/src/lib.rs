@@ -26,8 +26,9 @@
 //! - [`exec`]: every run of a plan (or of one shard of it) in parallel
 //!   (rayon).
 //! - [`gpu`]: the same runs and statistics on a GPU (`--backend gpu`).
-//! - [`shard`]: a shard's runs on disk, and the merge of all shards into
-//!   the result of one process.
+//! - [`split`] and [`shard`]: which runs a process does (`--shard i/n`),
+//!   a shard's runs on disk, and the merge of all shards into the result
+//!   of one process.
 //! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures;
 //!   [`compare`]: T3's table of HRLA beside its peers and their costs.
 //! - [`error`]: the error type they all return.
@@ -48,6 +49,7 @@ pub mod plot;
 pub mod protocol;
 pub mod seed;
 pub mod shard;
+pub mod split;
 pub mod stats;
 
 pub use error::ReproError;

@@ -13,10 +13,11 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use hrla_repro::compare::{comparison_markdown, cost_markdown, has_peers};
-use hrla_repro::exec::{Part, ProtocolResult, Shard, execute, finish, run_shard};
+use hrla_repro::exec::{Part, ProtocolResult, execute, finish, run_shard};
 use hrla_repro::gpu::{Backend, GpuBackend};
 use hrla_repro::output::{summary_markdown, write_all};
 use hrla_repro::protocol::{Overrides, Plan, ProtocolId, plan};
+use hrla_repro::split::Shard;
 use hrla_repro::{limits, shard};
 
 /// Reproduce the experiments of "Global Optimization Algorithm through
@@ -148,7 +149,7 @@ fn main() -> Result<()> {
         None => (!cli.merge).then(rayon::current_num_threads),
     };
     for p in &plans {
-        limits::check_memory(p, workers, memory)
+        limits::check_memory(&p.configs, p.runs, workers, memory)
             .with_context(|| format!("protocol {}", p.id.name()))?;
     }
     // The program's own name, not the build directory it ran from.
@@ -209,8 +210,8 @@ fn run_one_shard(
     p: &Plan,
     part: Shard,
 ) -> Result<Duration> {
-    let steps = part
-        .tasks(p)
+    let steps = p
+        .tasks(part)
         .iter()
         .map(|&(c, _)| p.configs[c].chain_steps())
         .sum();
@@ -229,7 +230,7 @@ fn run_one_shard(
         println!(
             "{} shard {part}: {} runs, {} chain-steps in {:.2} s; wrote {}",
             p.id.name(),
-            part.tasks(p).len(),
+            p.tasks(part).len(),
             result.chain_steps,
             result.wall.as_secs_f64(),
             file.display()
