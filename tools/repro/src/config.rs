@@ -277,10 +277,27 @@ impl RunSpec {
         if self.eps.iter().any(|e| !e.is_finite()) {
             return bad("tolerances must be finite");
         }
-        if let StartSpec::Gaussian { variance, .. } = self.start
-            && !(variance.is_finite() && variance >= 0.0)
-        {
-            return bad("the start variance must be finite and >= 0");
+        let start = |flag, reason: String| Err(ReproError::Flag { flag, reason });
+        match self.start {
+            StartSpec::Gaussian { variance, .. } if !(variance.is_finite() && variance >= 0.0) => {
+                return start(
+                    "--start-var",
+                    format!("the start's variance must be finite and >= 0, got {variance}"),
+                );
+            }
+            StartSpec::Gaussian { centre, .. } if !centre.is_finite() => {
+                return start(
+                    "--start-centre",
+                    format!("the start's centre must be finite, got {centre}"),
+                );
+            }
+            StartSpec::Point(v) if !v.is_finite() => {
+                return start(
+                    "--start-point",
+                    format!("the start point's coordinates must be finite, got {v}"),
+                );
+            }
+            _ => {}
         }
         if let Method::Peer { walk, .. } = self.method {
             if !(walk.sd.is_finite() && walk.sd > 0.0) {

@@ -168,6 +168,22 @@ impl Part {
     }
 }
 
+/// Starts the worker threads of the runs on the CPU (rayon's global pool):
+/// `threads`, or one per core for 0, once the count is checked
+/// ([`check_threads`](crate::limits::check_threads)), so that a refused
+/// count starts none. Returns how many run.
+pub fn start_workers(threads: usize) -> Result<usize, ReproError> {
+    crate::limits::check_threads(threads, crate::limits::cores())?;
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build_global()
+        .map_err(|e| ReproError::Flag {
+            flag: "--threads",
+            reason: format!("cannot start {threads} worker threads: {e}"),
+        })?;
+    Ok(rayon::current_num_threads())
+}
+
 /// Runs every configuration `plan.runs` times on the current rayon pool.
 /// Run `i` of every configuration is seeded with [`run_seed`]`(seed, i)`
 /// (each of its chains then has its own stream); counts are integers and

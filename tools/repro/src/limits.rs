@@ -11,6 +11,7 @@
 //!   schedule (`k / K`) and chain-steps in the rates of the metadata, both
 //!   exact only up to 2^53; below it every counter of the tool (chain-steps,
 //!   evaluations `M N (K + 1)`, diverged chains `<= M N`) fits its type.
+//! - [`max_threads`]: `--threads`, at most [`THREADS_PER_CORE`] per core.
 //! - [`Footprint`]: the bytes of a plan's largest buffers (one run's chains
 //!   per worker thread, the probability counters, the running bests),
 //!   against the machine's memory ([`machine_memory`]).
@@ -24,6 +25,38 @@ pub const MAX_RUNS: usize = u32::MAX as usize;
 /// The most chain-steps of a plan, and so of one run and its `K`: 2^53,
 /// up to which every integer is an `f64`.
 pub const MAX_CHAIN_STEPS: u64 = 1 << 53;
+
+/// The most worker threads per core that `--threads` may ask for. A run
+/// never waits, so threads beyond one per core only take turns; and each
+/// worker holds one run's chains at a time.
+pub const THREADS_PER_CORE: usize = 8;
+
+/// The cores this process may use (`available_parallelism`: the machine's,
+/// within its affinity mask and control group), 1 where it is unknown.
+pub fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, usize::from)
+}
+
+/// The most worker threads on `cores` cores: [`THREADS_PER_CORE`] each.
+pub fn max_threads(cores: usize) -> usize {
+    cores.saturating_mul(THREADS_PER_CORE)
+}
+
+/// Checks `--threads` (0: one per core) against [`max_threads`] of
+/// `cores`, before any thread is started.
+pub fn check_threads(threads: usize, cores: usize) -> Result<(), ReproError> {
+    let most = max_threads(cores);
+    if threads > most {
+        return Err(flag(
+            "--threads",
+            format!(
+                "{threads} worker threads is more than {most}, {THREADS_PER_CORE} per core \
+                 of the {cores} this process may use"
+            ),
+        ));
+    }
+    Ok(())
+}
 
 fn flag(flag: &'static str, reason: String) -> ReproError {
     ReproError::Flag { flag, reason }
