@@ -32,6 +32,11 @@
 //! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures;
 //!   [`compare`]: T3's table of HRLA beside its peers and their costs.
 //! - [`error`]: the error type they all return.
+//!
+//! Modules import one way, from the bottom up: [`stats`], [`seed`],
+//! [`peers`], [`split`]; [`error`]; [`config`]; [`kernel`]; [`engine`],
+//! [`limits`]; [`protocol`]; [`exec`]; [`gpu`]; [`shard`]; [`compare`],
+//! [`plot`], [`output`] (`tests/modules.rs` finds no cycle).
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
