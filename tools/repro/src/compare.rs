@@ -16,32 +16,6 @@ pub fn has_peers(r: &ProtocolResult) -> bool {
         .any(|c| matches!(c.spec.method, Method::Peer { .. }))
 }
 
-/// The short name of a configuration: `HRLA a_high=4 (1,...,1)`,
-/// `SA (1,...,1)`, `CSA coordinate sd=1 N(3·1, 10 I)`.
-pub fn config_label(s: &RunSpec) -> String {
-    let start = match s.start {
-        StartSpec::Point(v) => format!("({v},...,{v})"),
-        g @ StartSpec::Gaussian { .. } => g.label(),
-    };
-    let t = s.temperature;
-    match s.method {
-        Method::Peer { .. } => format!("{} {start}", s.method.label()),
-        Method::Kernel(_) => format!(
-            "{} {}={} {start}",
-            s.method.label(),
-            t.label_name(),
-            t.label_value()
-        ),
-    }
-}
-
-/// Evaluations one run makes up to iterate `k`: `N` at the start and `N`
-/// per iteration, for the kernel (each of `U` and `∇U`) and the peers (of
-/// `U`) alike; a test checks it against the counts the runs report.
-pub fn evaluations_to(s: &RunSpec, k: u64) -> u64 {
-    s.chains as u64 * (k + 1)
-}
-
 /// The copied figure for a configuration at `k`: a peer's, whatever its
 /// proposal, from `(1, ..., 1)`, where Guilmeau et al. ran them.
 pub fn paper_mean(s: &RunSpec, k: u64) -> Option<f64> {
@@ -88,7 +62,7 @@ pub fn comparison_markdown(r: &ProtocolResult) -> String {
             Some(v) => (format!("{v:.2}"), format!("{:+.1}", (m.mean - v) / m.se)),
             None => ("-".to_string(), "-".to_string()),
         };
-        let evals = evaluations_to(s, p.k).to_string();
+        let evals = s.evaluations_to(p.k).to_string();
         let (u, ug) = if s.method.uses_gradient() {
             ("-".to_string(), evals)
         } else {
@@ -97,7 +71,7 @@ pub fn comparison_markdown(r: &ProtocolResult) -> String {
         let _ = writeln!(
             out,
             "| {} | {} | {:.4} | {:.4} | {:.4} | {paper} | {z} | {u} | {ug} |",
-            config_label(s),
+            s.label(),
             p.k,
             m.mean,
             m.sd,
@@ -133,7 +107,7 @@ pub fn cost_markdown(r: &ProtocolResult) -> String {
         let _ = writeln!(
             out,
             "| {} | {} | {what} | {:.2} |",
-            config_label(&c.spec),
+            c.spec.label(),
             c.evaluations as f64 / runs,
             wall.as_secs_f64() * 1e3 / runs
         );

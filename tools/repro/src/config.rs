@@ -8,10 +8,6 @@ use crate::error::ReproError;
 use crate::peers::{AnyPeer, DEFAULT_WALK, PeerKind, RandomWalk, Scope};
 use crate::stats::grid_points;
 
-/// The dimensions compiled into the tool (the kernel's dimension is a const
-/// generic, so each is its own instantiation in the engine).
-pub const DIMENSIONS: [usize; 7] = [1, 2, 5, 10, 20, 50, 100];
-
 /// The name of a sampler in tables and legends: `HRLA`, `ULA`, `OLA`.
 pub fn sampler_label(kind: SamplerKind) -> String {
     kind.name().to_ascii_uppercase()
@@ -140,7 +136,7 @@ impl StartSpec {
 pub struct RunSpec {
     /// The sampler or peer.
     pub method: Method,
-    /// The dimension `d` (one of [`DIMENSIONS`]).
+    /// The dimension `d`, any `d >= 1`.
     pub d: usize,
     /// The step size `h` (kernel samplers only).
     pub h: f64,
@@ -178,6 +174,46 @@ impl RunSpec {
         self.chains as u64 * self.steps
     }
 
+    /// The short name of the configuration in tables and legends:
+    /// `HRLA a_high=4 (1,...,1)`, `SA (1,...,1)`, `CSA coordinate sd=1
+    /// N(3·1, 10 I)`.
+    pub fn label(&self) -> String {
+        let start = match self.start {
+            StartSpec::Point(v) => format!("({v},...,{v})"),
+            g @ StartSpec::Gaussian { .. } => g.label(),
+        };
+        let t = self.temperature;
+        match self.method {
+            Method::Peer { .. } => format!("{} {start}", self.method.label()),
+            Method::Kernel(_) => format!(
+                "{} {}={} {start}",
+                self.method.label(),
+                t.label_name(),
+                t.label_value()
+            ),
+        }
+    }
+
+    /// The configuration as an error message names it: its
+    /// [`label`](RunSpec::label) with its dimension, chains and steps.
+    pub fn name(&self) -> String {
+        format!(
+            "{} (d = {}, N = {}, K = {})",
+            self.label(),
+            self.d,
+            self.chains,
+            self.steps
+        )
+    }
+
+    /// Evaluations one run makes up to iterate `k`: `N` at the start and
+    /// `N` per iteration, for the kernel (each of `U` and `∇U`) and the
+    /// peers (of `U`) alike; a test checks it against the counts the runs
+    /// report.
+    pub fn evaluations_to(&self, k: u64) -> u64 {
+        self.chains as u64 * (k + 1)
+    }
+
     /// The kernel's schedule over the run and its sampler (a peer's run has
     /// neither).
     pub fn kernel_setup(&self) -> Result<(AnySchedule<f64>, AnySampler<f64>), hrla::Error> {
@@ -198,8 +234,11 @@ impl RunSpec {
     /// Checks every parameter once, before any run starts, so that workers
     /// never meet an error the user could have been told about up front.
     pub fn validate(&self) -> Result<(), ReproError> {
-        if !DIMENSIONS.contains(&self.d) {
-            return Err(ReproError::Dimension(self.d));
+        if self.d == 0 {
+            return Err(ReproError::Flag {
+                flag: "--d",
+                reason: "d = 0: a run needs at least one coordinate".to_string(),
+            });
         }
         let bad = |what: &str| Err(ReproError::Usage(what.to_string()));
         if self.chains == 0 {
@@ -238,10 +277,27 @@ impl RunSpec {
         if self.eps.iter().any(|e| !e.is_finite()) {
             return bad("tolerances must be finite");
         }
-        if let StartSpec::Gaussian { variance, .. } = self.start
-            && !(variance.is_finite() && variance >= 0.0)
-        {
-            return bad("the start variance must be finite and >= 0");
+        let start = |flag, reason: String| Err(ReproError::Flag { flag, reason });
+        match self.start {
+            StartSpec::Gaussian { variance, .. } if !(variance.is_finite() && variance >= 0.0) => {
+                return start(
+                    "--start-var",
+                    format!("the start's variance must be finite and >= 0, got {variance}"),
+                );
+            }
+            StartSpec::Gaussian { centre, .. } if !centre.is_finite() => {
+                return start(
+                    "--start-centre",
+                    format!("the start's centre must be finite, got {centre}"),
+                );
+            }
+            StartSpec::Point(v) if !v.is_finite() => {
+                return start(
+                    "--start-point",
+                    format!("the start point's coordinates must be finite, got {v}"),
+                );
+            }
+            _ => {}
         }
         if let Method::Peer { walk, .. } = self.method {
             if !(walk.sd.is_finite() && walk.sd > 0.0) {

@@ -1,81 +1,21 @@
-//! The run loop: one run of one configuration, one kernel optimiser over
-//! all its chains driven step by step, with the best chain value handed to
-//! a [`Tracker`].
+//! The run loop: one run of one configuration, the kernel's chains
+//! ([`KernelRun`]) or a peer's population driven one iteration at a time,
+//! with the best sample now handed to a [`Tracker`].
 //!
-//! The loop calls [`Optimizer::step`] itself rather than
-//! [`Optimizer::run_with`]: the tracker needs `min_c U(x_k^c)` (the best
-//! chain *now*, not the running best) at every iterate on the stride or the
-//! curve grid, which the observer's [`Progress`](hrla::Progress) does not
-//! carry and which it would only see every `every` steps; stepping by hand
-//! reads [`Optimizer::current_best`] at exactly the iterates wanted, and
-//! the progress bar is a counter in the same loop.
+//! The loop steps the run itself rather than letting the kernel's `run`
+//! drive it: the tracker needs `min_c U(x_k^c)` (the best chain *now*, not
+//! the running best) at every iterate on the stride or the curve grid,
+//! which the kernel's observer does not carry and would only see every
+//! `every` steps; stepping by hand reads the best chain at exactly the
+//! iterates wanted, and the progress bar is a counter in the same loop.
 
-use hrla::{
-    AnySampler, AnySchedule, Builder, Chain, Chains, Gaussian, Optimizer, Point, Rastrigin, Stop,
-};
-use hrla_dyn::AnyStart;
+use hrla::Rastrigin;
 
-use crate::config::{RunSpec, StartSpec};
+use crate::config::RunSpec;
 use crate::error::ReproError;
+use crate::kernel::{KernelRun, RunStart};
 use crate::peers::{AnyPeer, Peer, Population};
 use crate::stats::Tracker;
-
-/// The start of a run in dimension `D`, as the layer's one type of
-/// start (the peers start from it too, so member `c` starts where the
-/// kernel's chain `c` does).
-fn start<const D: usize>(spec: StartSpec) -> Result<AnyStart<D>, hrla::Error> {
-    Ok(match spec {
-        StartSpec::Gaussian { centre, variance } => {
-            AnyStart::Gaussian(Gaussian::new([centre; D], variance.sqrt())?)
-        }
-        StartSpec::Point(v) => AnyStart::Point(Point::new([v; D])?),
-    })
-}
-
-/// The kernel optimiser of one run: its `N` chains in one `Vec` it owns
-/// (on the heap, so T2's 10 000 chains never touch a worker's stack).
-pub type RunOptimizer<const D: usize> = Optimizer<
-    f64,
-    Rastrigin,
-    AnySampler<f64>,
-    AnySchedule<f64>,
-    Chains<f64, Vec<Chain<f64, D>>, D>,
->;
-
-/// Builds the optimiser of one run of `spec` seeded with `seed` (see
-/// [`run_seed`](crate::seed::run_seed)): `spec.chains` chains, chain `c`
-/// drawing its start and its steps from its own generator
-/// (`hrla::chain_seed(seed, c)`), a step budget of `K = spec.steps` (which
-/// a linear schedule's length equals; the builder checks) and the
-/// kernel's running best on the tool's stride.
-pub fn optimizer<const D: usize>(
-    spec: &RunSpec,
-    seed: u64,
-) -> Result<RunOptimizer<D>, hrla::Error> {
-    let (schedule, sampler) = spec.kernel_setup()?;
-    let chains = (0..spec.chains).map(|_| Chain::new()).collect::<Vec<_>>();
-    Builder::new(Rastrigin, sampler, schedule, start::<D>(spec.start)?)
-        .seed(seed)
-        .stride(spec.stride)
-        .stop(Stop::new().steps(spec.steps))
-        .build(chains)
-}
-
-/// `min_c U(x_k^c)` over the live chains at the current iterate (`+inf`
-/// when every chain has diverged).
-pub fn best_now<const D: usize>(opt: &RunOptimizer<D>) -> f64 {
-    opt.current_best().map_or(f64::INFINITY, |(_, v)| v)
-}
-
-/// One step of every live chain. A run whose chains have all diverged is
-/// not an error for the tool: its remaining iterates have no best chain
-/// (`+inf`, within no tolerance), as before the kernel made it one.
-fn step<const D: usize>(opt: &mut RunOptimizer<D>) -> Result<(), hrla::Error> {
-    match opt.step() {
-        Ok(_) | Err(hrla::Error::AllDiverged { .. }) => Ok(()),
-        Err(e) => Err(e),
-    }
-}
 
 /// What one run leaves besides its probability counts.
 #[derive(Clone, Debug, PartialEq)]
@@ -101,45 +41,17 @@ const PROGRESS_EVERY: u64 = 1024;
 /// Runs one configuration once with the run seed `seed`, adding its
 /// probability counts into `counts` (length [`RunSpec::count_len`]) and
 /// calling `progress` with chain-steps done every 1024 iterates and at the
-/// end.
+/// end. Any dimension `spec.d >= 1`.
 pub fn run_once(
     spec: &RunSpec,
     seed: u64,
     counts: &mut [u32],
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RunOutcome, ReproError> {
-    match spec.d {
-        1 => run_d::<1>(spec, seed, counts, progress),
-        2 => run_d::<2>(spec, seed, counts, progress),
-        5 => run_d::<5>(spec, seed, counts, progress),
-        10 => run_d::<10>(spec, seed, counts, progress),
-        20 => run_d::<20>(spec, seed, counts, progress),
-        50 => run_d::<50>(spec, seed, counts, progress),
-        100 => run_d::<100>(spec, seed, counts, progress),
-        d => Err(ReproError::Dimension(d)),
-    }
-}
-
-fn run_d<const D: usize>(
-    spec: &RunSpec,
-    seed: u64,
-    counts: &mut [u32],
-    progress: &(dyn Fn(u64) + Sync),
-) -> Result<RunOutcome, ReproError> {
     match spec.method.peer() {
-        Some(peer) => run_peer::<D>(spec, peer, seed, counts, progress),
-        None => run_kernel::<D>(spec, seed, counts, progress),
+        Some(peer) => run_peer(spec, peer, seed, counts, progress),
+        None => run_kernel(spec, seed, counts, progress),
     }
-}
-
-/// The bytes of one kernel chain in dimension `d` (`None` for a dimension
-/// not compiled in): a run of `N` chains holds `N` of them. A peer's member
-/// (a point, its value and its generator) is smaller.
-pub fn chain_bytes(d: usize) -> Option<usize> {
-    if !crate::config::DIMENSIONS.contains(&d) {
-        return None;
-    }
-    hrla_dyn::storage_bytes(d).ok()
 }
 
 /// A run being driven: one iteration at a time, and its best sample now.
@@ -150,22 +62,22 @@ trait Iterate {
     fn best_now(&self) -> f64;
 }
 
-impl<const D: usize> Iterate for RunOptimizer<D> {
+impl Iterate for KernelRun {
     fn iterate(&mut self, _k: u64) -> Result<(), ReproError> {
-        Ok(step(self)?)
+        Ok(self.step()?)
     }
     fn best_now(&self) -> f64 {
-        best_now(self)
+        KernelRun::best_now(self)
     }
 }
 
 /// A peer's population and its method.
-struct PeerRun<const D: usize> {
-    pop: Population<D>,
+struct PeerRun {
+    pop: Population,
     peer: AnyPeer,
 }
 
-impl<const D: usize> Iterate for PeerRun<D> {
+impl Iterate for PeerRun {
     fn iterate(&mut self, k: u64) -> Result<(), ReproError> {
         self.peer.iterate(&mut self.pop, &Rastrigin, k);
         Ok(())
@@ -210,32 +122,32 @@ fn drive(
     Ok(tracker.at_checkpoints().to_vec())
 }
 
-fn run_kernel<const D: usize>(
+fn run_kernel(
     spec: &RunSpec,
     seed: u64,
     counts: &mut [u32],
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RunOutcome, ReproError> {
-    let mut opt = optimizer::<D>(spec, seed)?;
-    let running_best = drive(spec, counts, progress, &mut opt)?;
+    let mut run = KernelRun::new(spec, seed)?;
+    let running_best = drive(spec, counts, progress, &mut run)?;
     Ok(RunOutcome {
         running_best,
-        diverged: opt.diverged_chains(),
-        evaluations: opt.evaluations(),
+        diverged: run.diverged_chains(),
+        evaluations: run.evaluations(),
     })
 }
 
 /// A peer's run: `spec.chains` members from `spec.start`, member `c` on
 /// the stream `chain_seed(seed, c)` as the kernel's chain `c`.
-fn run_peer<const D: usize>(
+fn run_peer(
     spec: &RunSpec,
     peer: AnyPeer,
     seed: u64,
     counts: &mut [u32],
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RunOutcome, ReproError> {
-    let mut start = start::<D>(spec.start)?;
-    let pop = Population::new(&Rastrigin, &mut start, spec.chains, seed);
+    let mut start = RunStart::of(spec.start);
+    let pop = Population::new(&Rastrigin, &mut start, spec.chains, spec.d, seed);
     let mut run = PeerRun { pop, peer };
     let running_best = drive(spec, counts, progress, &mut run)?;
     Ok(RunOutcome {
@@ -248,7 +160,7 @@ fn run_peer<const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::{Method, Temperature};
+    use crate::config::{Method, StartSpec, Temperature};
     use crate::seed::run_seed;
     use hrla::SamplerKind;
 
@@ -269,60 +181,6 @@ mod tests {
             eps: vec![],
             curve_every: None,
         }
-    }
-
-    fn positions<const D: usize>(opt: &RunOptimizer<D>) -> Vec<[f64; D]> {
-        opt.chains().iter().map(|c| *c.x()).collect()
-    }
-
-    /// Chain `c` of a run draws from a stream of `(run seed, c)` alone: the
-    /// first chains of a run of 5 follow exactly the trajectories of the
-    /// first 5 of a run of 69 with the same seed, at constant `a` and
-    /// annealing. So the chain count neither shifts any chain's stream
-    /// (nor could the order in which the kernel steps them).
-    #[test]
-    fn a_chain_does_not_depend_on_how_many_run_beside_it() {
-        for temperature in [
-            Temperature::Constant(3.0),
-            Temperature::Linear {
-                low: 0.1,
-                high: 4.0,
-            },
-        ] {
-            let seed = run_seed(11, 0);
-            let mut many = optimizer::<10>(&spec(69, temperature), seed).unwrap();
-            let mut few = optimizer::<10>(&spec(5, temperature), seed).unwrap();
-            assert_eq!(positions(&many)[..5], positions(&few)[..]);
-            for _ in 0..50 {
-                many.step().unwrap();
-                few.step().unwrap();
-            }
-            assert_eq!(positions(&many)[..5], positions(&few)[..]);
-            let other = optimizer::<10>(&spec(5, temperature), run_seed(11, 1)).unwrap();
-            assert_ne!(positions(&other), positions(&few)[..5]);
-        }
-    }
-
-    /// Cross-check of the tool's running best with the kernel's: from
-    /// N(3·1, 10 I) the initial points are far worse than anything after a
-    /// few hundred steps, so the kernel's best (which includes iterate 0)
-    /// must equal the tool's (which does not), at stride 1.
-    #[test]
-    fn running_best_agrees_with_the_kernel_when_iterate_0_is_not_the_best() {
-        let mut s = spec(40, Temperature::Constant(3.0));
-        s.steps = 300;
-        s.checkpoints = vec![300];
-        let mut opt = optimizer::<10>(&s, run_seed(3, 0)).unwrap();
-        let start_best = best_now(&opt);
-        let mut none = [];
-        let mut tracker = Tracker::new(s.steps, 1, None, &s.checkpoints, &[], 0.0, &mut none);
-        for k in 1..=s.steps {
-            opt.step().unwrap();
-            tracker.observe(k, best_now(&opt));
-        }
-        let ours = tracker.at_checkpoints()[0];
-        assert!(ours < start_best);
-        assert_eq!(ours, opt.best().value);
     }
 
     #[test]
@@ -375,29 +233,23 @@ mod tests {
         assert_eq!(done.into_inner(), 3 * 2500);
     }
 
-    /// `DIMENSIONS` (what plans accept) and the dispatches of `run_once`
-    /// and `chain_bytes` are three lists; a dimension in the first only
-    /// would fail mid-run.
+    /// Any dimension runs, the kernel's and the peers' alike.
     #[test]
-    fn every_listed_dimension_is_compiled_in() {
-        for d in crate::config::DIMENSIONS {
-            assert!(chain_bytes(d).is_some_and(|b| b >= 3 * 8 * d), "{d}");
-            let mut s = spec(1, Temperature::Constant(1.0));
+    fn every_dimension_runs() {
+        for d in [1, 3, 7, 10, 101] {
+            let mut s = spec(4, Temperature::Constant(1.0));
             s.d = d;
-            s.steps = 2;
-            s.checkpoints = vec![2];
-            assert!(run_once(&s, run_seed(0, 0), &mut [], &|_| {}).is_ok());
+            s.steps = 20;
+            s.checkpoints = vec![20];
+            assert!(s.validate().is_ok());
+            let kernel = run_once(&s, run_seed(0, 0), &mut [], &|_| {}).unwrap();
+            assert!(kernel.running_best[0].is_finite(), "{d}");
+            s.method = crate::config::Method::Peer {
+                kind: crate::peers::PeerKind::Csa,
+                walk: crate::peers::DEFAULT_WALK,
+            };
+            let peer = run_once(&s, run_seed(0, 0), &mut [], &|_| {}).unwrap();
+            assert_eq!(peer.evaluations, 4 * 21, "{d}");
         }
-    }
-
-    #[test]
-    fn unsupported_dimension_is_an_error() {
-        let mut s = spec(1, Temperature::Constant(1.0));
-        s.d = 3;
-        assert!(matches!(s.validate(), Err(ReproError::Dimension(3))));
-        assert!(matches!(
-            run_once(&s, run_seed(0, 0), &mut [], &|_| {}),
-            Err(ReproError::Dimension(3))
-        ));
     }
 }

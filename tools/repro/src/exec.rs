@@ -13,6 +13,7 @@ use crate::engine::{U_STAR, run_once};
 use crate::error::ReproError;
 use crate::protocol::Plan;
 use crate::seed::run_seed;
+use crate::split::Shard;
 use crate::stats::{Summary, check_running_best, grid_points};
 
 /// The running best of every run at one checkpoint.
@@ -167,66 +168,20 @@ impl Part {
     }
 }
 
-/// A configuration as an error message names it: its table label with
-/// its dimension, chains and steps.
-pub fn config_name(spec: &RunSpec) -> String {
-    format!(
-        "{} (d = {}, N = {}, K = {})",
-        crate::compare::config_label(spec),
-        spec.d,
-        spec.chains,
-        spec.steps
-    )
-}
-
-/// Which of a plan's runs a process does: the `(configuration, run)` pairs
-/// whose index in plan order is `index` modulo `count` (`0/1` is all of
-/// them). Shards of one plan are disjoint and cover it, whatever `count`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Shard {
-    /// This shard, `0..count`.
-    pub index: usize,
-    /// Shards in all, at least 1.
-    pub count: usize,
-}
-
-impl Shard {
-    /// The whole plan.
-    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
-
-    /// The `(configuration, run)` pairs of this shard, in plan order.
-    pub fn tasks(&self, plan: &Plan) -> Vec<(usize, usize)> {
-        (0..plan.configs.len())
-            .flat_map(|c| (0..plan.runs).map(move |i| (c, i)))
-            .enumerate()
-            .filter(|(t, _)| t % self.count == self.index)
-            .map(|(_, task)| task)
-            .collect()
-    }
-}
-
-impl std::str::FromStr for Shard {
-    type Err = ReproError;
-
-    /// `i/n`, with `n >= 1` and `i < n`.
-    fn from_str(s: &str) -> Result<Self, ReproError> {
-        let bad = || ReproError::Usage(format!("--shard `{s}`: expected i/n with 0 <= i < n"));
-        let (i, n) = s.split_once('/').ok_or_else(bad)?;
-        let (index, count) = (
-            i.trim().parse().map_err(|_| bad())?,
-            n.trim().parse().map_err(|_| bad())?,
-        );
-        if count == 0 || index >= count {
-            return Err(bad());
-        }
-        Ok(Shard { index, count })
-    }
-}
-
-impl std::fmt::Display for Shard {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}/{}", self.index, self.count)
-    }
+/// Starts the worker threads of the runs on the CPU (rayon's global pool):
+/// `threads`, or one per core for 0, once the count is checked
+/// ([`check_threads`](crate::limits::check_threads)), so that a refused
+/// count starts none. Returns how many run.
+pub fn start_workers(threads: usize) -> Result<usize, ReproError> {
+    crate::limits::check_threads(threads, crate::limits::cores())?;
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build_global()
+        .map_err(|e| ReproError::Flag {
+            flag: "--threads",
+            reason: format!("cannot start {threads} worker threads: {e}"),
+        })?;
+    Ok(rayon::current_num_threads())
 }
 
 /// Runs every configuration `plan.runs` times on the current rayon pool.
@@ -253,12 +208,13 @@ pub fn run_shard(
     bar: &ProgressBar,
 ) -> Result<Part, ReproError> {
     crate::limits::check_memory(
-        plan,
+        &plan.configs,
+        plan.runs,
         Some(rayon::current_num_threads()),
         crate::limits::machine_memory(),
     )?;
     let started = Instant::now();
-    let tasks = shard.tasks(plan);
+    let tasks = plan.tasks(shard);
     let progress = |n: u64| bar.inc(n);
     let mut part = tasks
         .par_iter()
@@ -279,7 +235,7 @@ pub fn run_shard(
                 )?;
                 check_running_best(&out.running_best, &spec.checkpoints, U_STAR).map_err(
                     |problem| ReproError::FailedRun {
-                        config: config_name(spec),
+                        config: spec.name(),
                         run: i,
                         problem,
                     },
@@ -399,10 +355,10 @@ mod tests {
             .map(|index| run_shard(&p, 7, Shard { index, count: 3 }, &bar).unwrap())
             .collect();
         let mut all: Vec<(usize, usize)> = (0..3)
-            .flat_map(|index| Shard { index, count: 3 }.tasks(&p))
+            .flat_map(|index| p.tasks(Shard { index, count: 3 }))
             .collect();
         all.sort();
-        assert_eq!(all, Shard::WHOLE.tasks(&p));
+        assert_eq!(all, p.tasks(Shard::WHOLE));
         for order in [[0, 1, 2], [2, 0, 1]] {
             let merged = order
                 .iter()
@@ -412,17 +368,6 @@ mod tests {
             let merged = finish(&p, 7, merged, 1);
             assert_eq!(merged.configs, whole.configs);
             assert_eq!(merged.chain_steps, whole.chain_steps);
-        }
-    }
-
-    #[test]
-    fn shard_syntax() {
-        assert_eq!(
-            "2/5".parse::<Shard>().unwrap(),
-            Shard { index: 2, count: 5 }
-        );
-        for bad in ["5/5", "1/0", "x/2", "3", "-1/2", ""] {
-            assert!(bad.parse::<Shard>().is_err(), "{bad}");
         }
     }
 
@@ -448,7 +393,7 @@ mod tests {
         assert_eq!(one.configs, run(3).configs);
         assert_eq!(one.configs.len(), 2 + 4 * 2);
         for c in &one.configs {
-            let per_run = crate::compare::evaluations_to(&c.spec, c.spec.steps);
+            let per_run = c.spec.evaluations_to(c.spec.steps);
             assert_eq!(c.evaluations, 3 * per_run, "{:?}", c.spec.method);
         }
     }

@@ -29,9 +29,10 @@ use indicatif::ProgressBar;
 use crate::config::{Method, RunSpec, StartSpec};
 use crate::engine::U_STAR;
 use crate::error::ReproError;
-use crate::exec::{Part, ProtocolResult, Shard, config_name, finish};
+use crate::exec::{Part, ProtocolResult, finish};
 use crate::protocol::Plan;
 use crate::seed::run_seed;
+use crate::split::Shard;
 use crate::stats::{check_running_best, grid_points};
 
 /// Where the chains of a plan run.
@@ -43,6 +44,22 @@ pub enum Backend {
     /// A GPU through wgpu (Vulkan, Metal, DX12), or a software Vulkan
     /// such as lavapipe.
     Gpu,
+}
+
+impl Backend {
+    /// Starts the worker threads that a command on this backend uses,
+    /// once `threads` (`--threads`, 0: one per core) is checked against
+    /// [`max_threads`](crate::limits::max_threads) whatever the backend:
+    /// runs on the CPU start them ([`exec::start_workers`](crate::exec::start_workers))
+    /// and return how many run; runs on the GPU and a merge (`merge`)
+    /// start none (`None`).
+    pub fn start_workers(self, threads: usize, merge: bool) -> Result<Option<usize>, ReproError> {
+        crate::limits::check_threads(threads, crate::limits::cores())?;
+        if self == Backend::Gpu || merge {
+            return Ok(None);
+        }
+        crate::exec::start_workers(threads).map(Some)
+    }
 }
 
 /// The device's generator, as shard files name it.
@@ -94,40 +111,13 @@ impl GpuBackend {
         Ok(Self { gpu })
     }
 
-    /// The adapter, the float type and the generator, for the run's
-    /// metadata.
-    pub fn describe(&self) -> String {
-        format!("gpu: {}, f64, {GENERATOR}", self.gpu.describe())
-    }
-
-    /// Every run of `plan`, as [`exec::execute`](crate::exec::execute)
-    /// does them on the CPU.
-    pub fn execute(
-        &self,
-        plan: &Plan,
-        seed: u64,
-        bar: &ProgressBar,
-    ) -> Result<ProtocolResult, ReproError> {
-        let part = self.run_shard(plan, seed, Shard::WHOLE, bar)?;
-        Ok(finish(plan, seed, part, 1))
-    }
-
-    /// The runs of one shard of `plan`, as
-    /// [`exec::run_shard`](crate::exec::run_shard) does them on the CPU:
-    /// the same [`Part`], a run without a finite running best at a
-    /// checkpoint failing the shard ([`ReproError::FailedRun`]). `bar`
-    /// advances by chain-steps.
-    ///
-    /// Errors besides the device's: [`ReproError::Flag`] for a plan with
-    /// T3's peers (they run on the CPU only) or a `K` of 2^32 - 1 or more
-    /// (the device's iterates are 32-bit), before anything runs.
-    pub fn run_shard(
-        &self,
-        plan: &Plan,
-        seed: u64,
-        shard: Shard,
-        bar: &ProgressBar,
-    ) -> Result<Part, ReproError> {
+    /// Checks that `plan` is one the device runs, before anything opens
+    /// or runs: [`ReproError::Flag`] for T3's peers (they run on the CPU
+    /// only), a `K` of 2^32 - 1 or more (the device's iterates are
+    /// 32-bit), or a start beyond `f32` (the device draws the starts in
+    /// `f32`: the centre or point, and the standard deviation, the square
+    /// root of `--start-var`), naming the option and its value.
+    pub fn check(plan: &Plan) -> Result<(), ReproError> {
         if let Some(spec) = plan
             .configs
             .iter()
@@ -156,9 +146,70 @@ impl GpuBackend {
                 ),
             });
         }
+        // The device draws the starts in f32.
+        let beyond = |v: f64| !(v as f32).is_finite();
+        for spec in &plan.configs {
+            let (flag, value, what) = match spec.start {
+                StartSpec::Gaussian { variance, .. } if beyond(variance.sqrt()) => (
+                    "--start-var",
+                    variance,
+                    "its square root, the standard deviation, is",
+                ),
+                StartSpec::Gaussian { centre, .. } if beyond(centre) => {
+                    ("--start-centre", centre, "it is")
+                }
+                StartSpec::Point(v) if beyond(v) => ("--start-point", v, "it is"),
+                _ => continue,
+            };
+            return Err(ReproError::Flag {
+                flag,
+                reason: format!(
+                    "got {value:e}: the GPU backend draws the start in f32, and {what} \
+                     beyond f32's range (+-{:e})",
+                    f32::MAX
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The adapter, the float type and the generator, for the run's
+    /// metadata.
+    pub fn describe(&self) -> String {
+        format!("gpu: {}, f64, {GENERATOR}", self.gpu.describe())
+    }
+
+    /// Every run of `plan`, as [`exec::execute`](crate::exec::execute)
+    /// does them on the CPU.
+    pub fn execute(
+        &self,
+        plan: &Plan,
+        seed: u64,
+        bar: &ProgressBar,
+    ) -> Result<ProtocolResult, ReproError> {
+        let part = self.run_shard(plan, seed, Shard::WHOLE, bar)?;
+        Ok(finish(plan, seed, part, 1))
+    }
+
+    /// The runs of one shard of `plan`, as
+    /// [`exec::run_shard`](crate::exec::run_shard) does them on the CPU:
+    /// the same [`Part`], a run without a finite running best at a
+    /// checkpoint failing the shard ([`ReproError::FailedRun`]). `bar`
+    /// advances by chain-steps.
+    ///
+    /// Errors besides the device's: those of [`check`](GpuBackend::check),
+    /// before anything runs.
+    pub fn run_shard(
+        &self,
+        plan: &Plan,
+        seed: u64,
+        shard: Shard,
+        bar: &ProgressBar,
+    ) -> Result<Part, ReproError> {
+        Self::check(plan)?;
         let started = Instant::now();
         let mut part = Part::empty(plan);
-        let tasks = shard.tasks(plan);
+        let tasks = plan.tasks(shard);
         for (c, spec) in plan.configs.iter().enumerate() {
             let runs: Vec<usize> = tasks
                 .iter()
@@ -172,7 +223,7 @@ impl GpuBackend {
                 for (&i, out) in batch.iter().zip(outcomes) {
                     check_running_best(&out.running_best, &spec.checkpoints, U_STAR).map_err(
                         |problem| ReproError::FailedRun {
-                            config: config_name(spec),
+                            config: spec.name(),
                             run: i,
                             problem,
                         },

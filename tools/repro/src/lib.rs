@@ -9,8 +9,11 @@
 //!   [`Plan`](protocol::Plan) of configurations.
 //! - [`config`]: one configuration of a protocol ([`RunSpec`](config::RunSpec))
 //!   and its validation.
-//! - [`engine`]: the run loop: one run of one configuration, one kernel
-//!   optimiser over all its chains (in a `Vec`) driven step by step.
+//! - [`kernel`]: the one place the tool meets the kernel's optimiser: a
+//!   run of a kernel sampler at its run-time dimension (any `d >= 1`),
+//!   its start and the bytes of its chains.
+//! - [`engine`]: the run loop: one run of one configuration, the kernel's
+//!   chains or a peer's population driven one iteration at a time.
 //! - [`stats`]: the paper's running best (over the stride, without iterate
 //!   0) and empirical probability (not running), streamed; the summary
 //!   statistics and their conventions.
@@ -23,11 +26,17 @@
 //! - [`exec`]: every run of a plan (or of one shard of it) in parallel
 //!   (rayon).
 //! - [`gpu`]: the same runs and statistics on a GPU (`--backend gpu`).
-//! - [`shard`]: a shard's runs on disk, and the merge of all shards into
-//!   the result of one process.
+//! - [`split`] and [`shard`]: which runs a process does (`--shard i/n`),
+//!   a shard's runs on disk, and the merge of all shards into the result
+//!   of one process.
 //! - [`output`] and [`plot`]: CSV, Markdown, metadata and SVG figures;
 //!   [`compare`]: T3's table of HRLA beside its peers and their costs.
 //! - [`error`]: the error type they all return.
+//!
+//! Modules import one way, from the bottom up: [`stats`], [`seed`],
+//! [`peers`], [`split`]; [`error`]; [`config`]; [`kernel`]; [`engine`],
+//! [`limits`]; [`protocol`]; [`exec`]; [`gpu`]; [`shard`]; [`compare`],
+//! [`plot`], [`output`] (`tests/modules.rs` finds no cycle).
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
@@ -37,6 +46,7 @@ pub mod engine;
 pub mod error;
 pub mod exec;
 pub mod gpu;
+pub mod kernel;
 pub mod limits;
 pub mod output;
 pub mod peers;
@@ -44,6 +54,7 @@ pub mod plot;
 pub mod protocol;
 pub mod seed;
 pub mod shard;
+pub mod split;
 pub mod stats;
 
 pub use error::ReproError;

@@ -11,13 +11,13 @@
 //!   schedule (`k / K`) and chain-steps in the rates of the metadata, both
 //!   exact only up to 2^53; below it every counter of the tool (chain-steps,
 //!   evaluations `M N (K + 1)`, diverged chains `<= M N`) fits its type.
+//! - [`max_threads`]: `--threads`, at most [`THREADS_PER_CORE`] per core.
 //! - [`Footprint`]: the bytes of a plan's largest buffers (one run's chains
 //!   per worker thread, the probability counters, the running bests),
 //!   against the machine's memory ([`machine_memory`]).
 
 use crate::config::RunSpec;
 use crate::error::ReproError;
-use crate::protocol::Plan;
 
 /// The most runs M of a plan: `u32::MAX`, the hit counters' type.
 pub const MAX_RUNS: usize = u32::MAX as usize;
@@ -26,25 +26,57 @@ pub const MAX_RUNS: usize = u32::MAX as usize;
 /// up to which every integer is an `f64`.
 pub const MAX_CHAIN_STEPS: u64 = 1 << 53;
 
+/// The most worker threads per core that `--threads` may ask for. A run
+/// never waits, so threads beyond one per core only take turns; and each
+/// worker holds one run's chains at a time.
+pub const THREADS_PER_CORE: usize = 8;
+
+/// The cores this process may use (`available_parallelism`: the machine's,
+/// within its affinity mask and control group), 1 where it is unknown.
+pub fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, usize::from)
+}
+
+/// The most worker threads on `cores` cores: [`THREADS_PER_CORE`] each.
+pub fn max_threads(cores: usize) -> usize {
+    cores.saturating_mul(THREADS_PER_CORE)
+}
+
+/// Checks `--threads` (0: one per core) against [`max_threads`] of
+/// `cores`, before any thread is started.
+pub fn check_threads(threads: usize, cores: usize) -> Result<(), ReproError> {
+    let most = max_threads(cores);
+    if threads > most {
+        return Err(flag(
+            "--threads",
+            format!(
+                "{threads} worker threads is more than {most}, {THREADS_PER_CORE} per core \
+                 of the {cores} this process may use"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 fn flag(flag: &'static str, reason: String) -> ReproError {
     ReproError::Flag { flag, reason }
 }
 
-/// Checks a plan's sizes against [`MAX_RUNS`] and [`MAX_CHAIN_STEPS`]
-/// (in checked arithmetic: nothing here can overflow).
-pub fn check_counts(plan: &Plan) -> Result<(), ReproError> {
-    if plan.runs > MAX_RUNS {
+/// Checks the sizes of a plan of `runs` runs of each of `configs` against
+/// [`MAX_RUNS`] and [`MAX_CHAIN_STEPS`] (in checked arithmetic: nothing
+/// here can overflow).
+pub fn check_counts(configs: &[RunSpec], runs: usize) -> Result<(), ReproError> {
+    if runs > MAX_RUNS {
         return Err(flag(
             "--m",
             format!(
-                "M = {} runs is more than {MAX_RUNS}, the most a hit counter (u32) can count",
-                plan.runs
+                "M = {runs} runs is more than {MAX_RUNS}, the most a hit counter (u32) can count"
             ),
         ));
     }
     let most = MAX_CHAIN_STEPS;
     let mut per_run: u64 = 0;
-    for s in &plan.configs {
+    for s in configs {
         if s.steps > most {
             return Err(flag(
                 "--k",
@@ -71,15 +103,14 @@ pub fn check_counts(plan: &Plan) -> Result<(), ReproError> {
             }
         }
     }
-    let m = u64::try_from(plan.runs).unwrap_or(u64::MAX);
+    let m = u64::try_from(runs).unwrap_or(u64::MAX);
     if m.checked_mul(per_run).is_none_or(|total| total > most) {
         return Err(flag(
             "--m",
             format!(
-                "M = {} runs of {per_run} chain-steps (N K summed over the {} configurations) \
+                "M = {runs} runs of {per_run} chain-steps (N K summed over the {} configurations) \
                  is more than 2^53 = {most} chain-steps",
-                plan.runs,
-                plan.configs.len()
+                configs.len()
             ),
         ));
     }
@@ -90,7 +121,8 @@ pub fn check_counts(plan: &Plan) -> Result<(), ReproError> {
 /// fit in a `u64`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Footprint {
-    /// One run's chains (the kernel's `Chain`s; a peer's members are
+    /// One run's chains (the kernel's, see
+    /// [`chain_bytes`](crate::kernel::chain_bytes); a peer's members are
     /// smaller), for the largest `N` and `d` of the plan.
     pub chains: Option<u64>,
     /// The probability counters of every configuration, one set per
@@ -109,24 +141,24 @@ fn counters(s: &RunSpec) -> Option<u64> {
 }
 
 impl Footprint {
-    /// The footprint of `plan`.
-    pub fn of(plan: &Plan) -> Self {
+    /// The footprint of a plan of `runs` runs of each of `configs`.
+    pub fn of(configs: &[RunSpec], runs: usize) -> Self {
         let size = |bytes: usize| u64::try_from(bytes).ok();
-        let chains = plan.configs.iter().try_fold(0u64, |most, s| {
-            let one = size(crate::engine::chain_bytes(s.d)?)?;
+        let chains = configs.iter().try_fold(0u64, |most, s| {
+            let one = size(crate::kernel::chain_bytes(s.d)?)?;
             Some(most.max(u64::try_from(s.chains).ok()?.checked_mul(one)?))
         });
-        let counts = plan.configs.iter().try_fold(0u64, |sum, s| {
+        let counts = configs.iter().try_fold(0u64, |sum, s| {
             sum.checked_add(counters(s)?.checked_mul(size(size_of::<u32>())?)?)
         });
         // Per run and configuration: its index and a vector of checkpoints
         // in the part, and its place in the task list.
-        let per_run = plan.configs.iter().try_fold(0u64, |sum, s| {
+        let per_run = configs.iter().try_fold(0u64, |sum, s| {
             let values = size(s.checkpoints.len())?.checked_mul(size(size_of::<f64>())?)?;
             let entry = size(size_of::<(usize, Vec<f64>)>() + size_of::<(usize, usize)>())?;
             sum.checked_add(values.checked_add(entry)?)
         });
-        let runs = per_run.and_then(|r| r.checked_mul(u64::try_from(plan.runs).ok()?));
+        let runs = per_run.and_then(|r| r.checked_mul(u64::try_from(runs).ok()?));
         Self {
             chains,
             counts,
@@ -167,26 +199,31 @@ pub fn machine_memory() -> u64 {
         .unwrap_or(isize::MAX as u64)
 }
 
-/// Checks that `plan` fits in `memory` bytes when run by `workers`
-/// threads at once (`None`: merged, no chains). The error names the
-/// option behind the largest part that does not fit.
-pub fn check_memory(plan: &Plan, workers: Option<usize>, memory: u64) -> Result<(), ReproError> {
-    let f = Footprint::of(plan);
-    let tasks = plan.configs.len().saturating_mul(plan.runs);
+/// Checks that a plan of `runs` runs of each of `configs` fits in
+/// `memory` bytes when run by `workers` threads at once (`None`: merged,
+/// no chains). The error names the option behind the largest part that
+/// does not fit.
+pub fn check_memory(
+    configs: &[RunSpec],
+    runs: usize,
+    workers: Option<usize>,
+    memory: u64,
+) -> Result<(), ReproError> {
+    let f = Footprint::of(configs, runs);
+    let tasks = configs.len().saturating_mul(runs);
     let workers = workers.map(|w| u64::try_from(w.clamp(1, tasks.max(1))).unwrap_or(u64::MAX));
     let shown = |b: Option<u64>| b.map_or("more than 2^64".to_string(), |b| format!("{b}"));
     let over = |b: Option<u64>| b.is_none_or(|b| b > memory);
     if let Some(w) = workers {
         let at_once = f.chains.and_then(|c| c.checked_mul(w));
         if over(at_once) {
-            let (n, d) = plan
-                .configs
+            let (n, d) = configs
                 .iter()
                 .map(|s| (s.chains, s.d))
                 .max()
                 .unwrap_or((0, 0));
             return Err(flag(
-                "--n",
+                "--n/--d",
                 format!(
                     "runs of up to N = {n} chains (d = {d}) on {w} threads take {} bytes, \
                      more than this machine's {memory}",
@@ -212,8 +249,7 @@ pub fn check_memory(plan: &Plan, workers: Option<usize>, memory: u64) -> Result<
         return Err(flag(
             "--m",
             format!(
-                "the running bests of M = {} runs take {} bytes, more than this machine's {memory}",
-                plan.runs,
+                "the running bests of M = {runs} runs take {} bytes, more than this machine's {memory}",
                 shown(f.runs)
             ),
         ));
@@ -230,74 +266,4 @@ pub fn check_memory(plan: &Plan, workers: Option<usize>, memory: u64) -> Result<
         ));
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::protocol::{Overrides, ProtocolId, plan};
-
-    fn t1(o: Overrides) -> Result<Plan, ReproError> {
-        plan(ProtocolId::T1, &o, true)
-    }
-
-    fn named(r: Result<impl std::fmt::Debug, ReproError>) -> &'static str {
-        match r {
-            Err(ReproError::Flag { flag, .. }) => flag,
-            other => panic!("not refused by an option: {other:?}"),
-        }
-    }
-
-    #[test]
-    fn counts_at_the_limits() {
-        let at = |m, n, k| Overrides {
-            m: Some(m),
-            n: Some(vec![n]),
-            k: Some(vec![k]),
-            a: Some(vec![1.0]),
-            h: Some(vec![0.01]),
-            ..Overrides::default()
-        };
-        // One configuration: M N K = 2^53 exactly is allowed, one more is not.
-        assert!(t1(at(1, 1, MAX_CHAIN_STEPS)).is_ok());
-        assert!(t1(at(2, 1 << 26, 1 << 26)).is_ok());
-        assert_eq!(named(t1(at(1, 1, MAX_CHAIN_STEPS + 1))), "--k");
-        assert_eq!(named(t1(at(1, 1 << 53, 2))), "--n");
-        assert_eq!(named(t1(at(3, 1 << 26, 1 << 26))), "--m");
-        assert_eq!(named(t1(at(MAX_RUNS + 1, 1, 1))), "--m");
-        assert_eq!(named(t1(at(usize::MAX, 1, 1))), "--m");
-        assert_eq!(named(t1(at(1, usize::MAX, 1))), "--n");
-        assert_eq!(named(t1(at(1, 1, u64::MAX))), "--k");
-    }
-
-    #[test]
-    fn memory_is_checked_against_the_machine() {
-        let p = t1(Overrides::default()).unwrap();
-        let f = Footprint::of(&p);
-        let chain = crate::engine::chain_bytes(10).unwrap() as u64;
-        assert_eq!(f.chains, Some(10 * chain));
-        assert_eq!(f.counts, Some(0));
-        let need = f.total(Some(2)).unwrap();
-        assert_eq!(need, 2 * 10 * chain + f.runs.unwrap());
-        assert!(check_memory(&p, Some(2), need).is_ok());
-        assert_eq!(named(check_memory(&p, Some(2), need - 1)), "--m/--n/--k");
-        assert_eq!(named(check_memory(&p, Some(2), 10 * chain)), "--n");
-        assert_eq!(named(check_memory(&p, None, 1)), "--m");
-        // More workers than runs hold no more chains.
-        assert_eq!(
-            check_memory(&p, Some(10_000), need).is_ok(),
-            check_memory(&p, Some(p.runs * p.configs.len()), need).is_ok()
-        );
-        let e1 = plan(
-            ProtocolId::E1,
-            &Overrides {
-                curve_every: Some(1),
-                ..Overrides::default()
-            },
-            true,
-        )
-        .unwrap();
-        assert_eq!(named(check_memory(&e1, None, 1000)), "--curve-every");
-        assert!(machine_memory() > 1 << 20);
-    }
 }

@@ -13,10 +13,11 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use hrla_repro::compare::{comparison_markdown, cost_markdown, has_peers};
-use hrla_repro::exec::{Part, ProtocolResult, Shard, execute, finish, run_shard};
+use hrla_repro::exec::{Part, ProtocolResult, execute, finish, run_shard};
 use hrla_repro::gpu::{Backend, GpuBackend};
 use hrla_repro::output::{summary_markdown, write_all};
 use hrla_repro::protocol::{Overrides, Plan, ProtocolId, plan};
+use hrla_repro::split::Shard;
 use hrla_repro::{limits, shard};
 
 /// Reproduce the experiments of "Global Optimization Algorithm through
@@ -47,7 +48,8 @@ struct Cli {
     /// No progress bar and no tables on stdout; errors still go to stderr.
     #[arg(long, global = true)]
     quiet: bool,
-    /// Worker threads (0: one per core).
+    /// Worker threads of runs on the CPU (0: one per core), at most 8 per
+    /// core; runs on the GPU and a merge start none.
     #[arg(long, global = true, default_value_t = 0)]
     threads: usize,
     /// Run only shard i of n (runs i, i + n, ... of every protocol, in plan
@@ -105,10 +107,9 @@ struct AllArgs {
 
 fn main() -> Result<()> {
     let cli = Cli::parse();
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(cli.threads)
-        .build_global()
-        .context("cannot start the worker threads")?;
+    // The worker threads, once their count is checked: runs on the CPU
+    // start them, runs on the GPU and a merge none.
+    let threads = cli.backend.start_workers(cli.threads, cli.merge)?;
     let jobs: Vec<(ProtocolId, Overrides)> = match &cli.command {
         Command::E1(o) => vec![(ProtocolId::E1, o.clone())],
         Command::T1(o) => vec![(ProtocolId::T1, o.clone())],
@@ -135,9 +136,15 @@ fn main() -> Result<()> {
         .iter()
         .map(|(id, o)| plan(*id, o, cli.quick).with_context(|| format!("protocol {}", id.name())))
         .collect::<Result<Vec<_>>>()?;
-    // The device, once, before anything runs: no adapter is an error here.
+    // The device, once, before anything runs, for plans it runs: no
+    // adapter is an error here.
     let device = match cli.backend {
-        Backend::Gpu if !cli.merge => Some(GpuBackend::open()?),
+        Backend::Gpu if !cli.merge => {
+            for p in &plans {
+                GpuBackend::check(p).with_context(|| format!("protocol {}", p.id.name()))?;
+            }
+            Some(GpuBackend::open()?)
+        }
         _ => None,
     };
     // And every plan within the machine's memory, before any of them runs
@@ -145,10 +152,10 @@ fn main() -> Result<()> {
     let memory = limits::machine_memory();
     let workers = match &device {
         Some(_) => Some(1),
-        None => (!cli.merge).then(rayon::current_num_threads),
+        None => threads,
     };
     for p in &plans {
-        limits::check_memory(p, workers, memory)
+        limits::check_memory(&p.configs, p.runs, workers, memory)
             .with_context(|| format!("protocol {}", p.id.name()))?;
     }
     // The program's own name, not the build directory it ran from.
@@ -160,7 +167,8 @@ fn main() -> Result<()> {
     for p in &plans {
         let context = || format!("protocol {}", p.id.name());
         if let Some(part) = cli.shard {
-            total += run_one_shard(&cli, device.as_ref(), p, part).with_context(context)?;
+            total +=
+                run_one_shard(&cli, device.as_ref(), threads, p, part).with_context(context)?;
             continue;
         }
         let load_before = load_average();
@@ -206,11 +214,12 @@ fn main() -> Result<()> {
 fn run_one_shard(
     cli: &Cli,
     device: Option<&GpuBackend>,
+    threads: Option<usize>,
     p: &Plan,
     part: Shard,
 ) -> Result<Duration> {
-    let steps = part
-        .tasks(p)
+    let steps = p
+        .tasks(part)
         .iter()
         .map(|&(c, _)| p.configs[c].chain_steps())
         .sum();
@@ -220,16 +229,14 @@ fn run_one_shard(
         None => run_shard(p, cli.seed, part, &bar)?,
     };
     bar.finish_and_clear();
-    let threads = match device {
-        Some(_) => 1,
-        None => rayon::current_num_threads(),
-    };
+    // A shard runs on the device or on the CPU's workers.
+    let threads = threads.unwrap_or(1);
     let file = shard::write(&cli.out, p, cli.seed, cli.backend, part, &result, threads)?;
     if !cli.quiet {
         println!(
             "{} shard {part}: {} runs, {} chain-steps in {:.2} s; wrote {}",
             p.id.name(),
-            part.tasks(p).len(),
+            p.tasks(part).len(),
             result.chain_steps,
             result.wall.as_secs_f64(),
             file.display()

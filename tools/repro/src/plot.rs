@@ -13,7 +13,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use crate::compare::{config_label, paper_mean};
+use crate::compare::paper_mean;
 use crate::config::{Method, RunSpec};
 use crate::error::ReproError;
 use crate::exec::ProtocolResult;
@@ -127,7 +127,7 @@ pub fn comparison_figure(r: &ProtocolResult, path: &Path) -> Result<(), ReproErr
 
 fn draw_comparison(r: &ProtocolResult, path: &Path) -> Result<(), Box<dyn std::error::Error>> {
     let checkpoints: Vec<u64> = r.configs[0].spec.checkpoints.clone();
-    let labels: Vec<String> = r.configs.iter().map(|c| config_label(&c.spec)).collect();
+    let labels: Vec<String> = r.configs.iter().map(|c| c.spec.label()).collect();
     let n = labels.len() as i32;
     // Every mean and copied figure, and the bars' right ends, fit; the
     // bars' left ends are cut at the axis (a log scale has no 0).

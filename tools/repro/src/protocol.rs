@@ -6,6 +6,7 @@ use hrla::SamplerKind;
 use crate::config::{Method, RunSpec, StartSpec, Temperature};
 use crate::error::ReproError;
 use crate::peers::{DEFAULT_WALK, PeerKind, RandomWalk, Scope};
+use crate::split::Shard;
 
 /// The experimental protocols of the paper (spec section 7).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
@@ -109,7 +110,7 @@ pub struct Overrides {
     /// Samplers: hrla, ula, ola.
     #[arg(long, value_delimiter = ',')]
     pub sampler: Option<Vec<SamplerKind>>,
-    /// Dimensions (compiled in: 1, 2, 5, 10, 20, 50, 100).
+    /// Dimensions d, any d >= 1.
     #[arg(long, value_delimiter = ',')]
     pub d: Option<Vec<usize>>,
     /// Step sizes h.
@@ -568,6 +569,20 @@ fn grid(id: ProtocolId, p: &Params) -> Vec<RunSpec> {
     specs
 }
 
+impl Plan {
+    /// The `(configuration, run)` pairs of `shard`, in plan order: those
+    /// whose index in the list of every configuration's runs `0..M` is
+    /// the shard's.
+    pub fn tasks(&self, shard: Shard) -> Vec<(usize, usize)> {
+        (0..self.configs.len())
+            .flat_map(|c| (0..self.runs).map(move |i| (c, i)))
+            .enumerate()
+            .filter(|&(t, _)| shard.has(t))
+            .map(|(_, task)| task)
+            .collect()
+    }
+}
+
 /// The plan of protocol `id`: its defaults (scaled down by `quick`), then
 /// the overrides; its sizes within [`limits`](crate::limits) and every
 /// configuration validated.
@@ -602,7 +617,7 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
         series,
     };
     // Sizes first: a huge K is named as such, not as a stride beyond it.
-    crate::limits::check_counts(&plan)?;
+    crate::limits::check_counts(&plan.configs, plan.runs)?;
     for spec in &plan.configs {
         spec.validate()?;
     }
@@ -612,6 +627,7 @@ pub fn plan(id: ProtocolId, o: &Overrides, quick: bool) -> Result<Plan, ReproErr
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::limits::{Footprint, MAX_CHAIN_STEPS, MAX_RUNS, check_memory, machine_memory};
 
     #[test]
     fn defaults_follow_the_spec_table() {
@@ -670,13 +686,14 @@ mod tests {
             plan(ProtocolId::E5, &o, false),
             Err(ReproError::Usage(_))
         ));
-        let bad_d = Overrides {
-            d: Some(vec![3]),
+        let d = |d| Overrides {
+            d: Some(vec![d]),
             ..Overrides::default()
         };
+        assert_eq!(plan(ProtocolId::E1, &d(3), false).unwrap().configs[0].d, 3);
         assert!(matches!(
-            plan(ProtocolId::E1, &bad_d, false),
-            Err(ReproError::Dimension(3))
+            plan(ProtocolId::E1, &d(0), false),
+            Err(ReproError::Flag { flag: "--d", .. })
         ));
     }
 
@@ -700,5 +717,78 @@ mod tests {
         assert_eq!(order[4], (Method::Kernel(SamplerKind::Ola), 5, 40, 2.0));
         assert_eq!(order[8], (Method::Kernel(SamplerKind::Ola), 7, 20, 2.0));
         assert_eq!(order[16], (Method::Kernel(SamplerKind::Ula), 5, 20, 2.0));
+    }
+
+    fn t1(o: Overrides) -> Result<Plan, ReproError> {
+        plan(ProtocolId::T1, &o, true)
+    }
+
+    fn named(r: Result<impl std::fmt::Debug, ReproError>) -> &'static str {
+        match r {
+            Err(ReproError::Flag { flag, .. }) => flag,
+            other => panic!("not refused by an option: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn counts_at_the_limits() {
+        let at = |m, n, k| Overrides {
+            m: Some(m),
+            n: Some(vec![n]),
+            k: Some(vec![k]),
+            a: Some(vec![1.0]),
+            h: Some(vec![0.01]),
+            ..Overrides::default()
+        };
+        // One configuration: M N K = 2^53 exactly is allowed, one more is not.
+        assert!(t1(at(1, 1, MAX_CHAIN_STEPS)).is_ok());
+        assert!(t1(at(2, 1 << 26, 1 << 26)).is_ok());
+        assert_eq!(named(t1(at(1, 1, MAX_CHAIN_STEPS + 1))), "--k");
+        assert_eq!(named(t1(at(1, 1 << 53, 2))), "--n");
+        assert_eq!(named(t1(at(3, 1 << 26, 1 << 26))), "--m");
+        assert_eq!(named(t1(at(MAX_RUNS + 1, 1, 1))), "--m");
+        assert_eq!(named(t1(at(usize::MAX, 1, 1))), "--m");
+        assert_eq!(named(t1(at(1, usize::MAX, 1))), "--n");
+        assert_eq!(named(t1(at(1, 1, u64::MAX))), "--k");
+    }
+
+    #[test]
+    fn memory_is_checked_against_the_machine() {
+        let p = t1(Overrides::default()).unwrap();
+        let f = Footprint::of(&p.configs, p.runs);
+        let chain = crate::kernel::chain_bytes(10).unwrap() as u64;
+        assert_eq!(f.chains, Some(10 * chain));
+        assert_eq!(f.counts, Some(0));
+        let need = f.total(Some(2)).unwrap();
+        assert_eq!(need, 2 * 10 * chain + f.runs.unwrap());
+        assert!(check_memory(&p.configs, p.runs, Some(2), need).is_ok());
+        assert_eq!(
+            named(check_memory(&p.configs, p.runs, Some(2), need - 1)),
+            "--m/--n/--k"
+        );
+        assert_eq!(
+            named(check_memory(&p.configs, p.runs, Some(2), 10 * chain)),
+            "--n/--d"
+        );
+        assert_eq!(named(check_memory(&p.configs, p.runs, None, 1)), "--m");
+        // More workers than runs hold no more chains.
+        assert_eq!(
+            check_memory(&p.configs, p.runs, Some(10_000), need).is_ok(),
+            check_memory(&p.configs, p.runs, Some(p.runs * p.configs.len()), need).is_ok()
+        );
+        let e1 = plan(
+            ProtocolId::E1,
+            &Overrides {
+                curve_every: Some(1),
+                ..Overrides::default()
+            },
+            true,
+        )
+        .unwrap();
+        assert_eq!(
+            named(check_memory(&e1.configs, e1.runs, None, 1000)),
+            "--curve-every"
+        );
+        assert!(machine_memory() > 1 << 20);
     }
 }

@@ -52,11 +52,12 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use crate::engine::U_STAR;
-use crate::error::ReproError;
-use crate::exec::{Part, Shard};
+use crate::error::{ReproError, ShardProblem};
+use crate::exec::Part;
 use crate::gpu::Backend;
 use crate::protocol::Plan;
-use crate::stats::{BadRunningBest, check_running_best};
+use crate::split::Shard;
+use crate::stats::check_running_best;
 
 /// The first line of a shard file of this format.
 pub const MAGIC: &str = "hrla-repro shard 2";
@@ -191,121 +192,6 @@ pub fn write(
         }
     })?;
     Ok(file)
-}
-
-/// Why `--merge` refuses a shard file, or the set of them.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum ShardProblem {
-    /// Larger than any shard of the plan can be.
-    #[error("{bytes} bytes, more than any shard of this plan can be ({most})")]
-    TooLarge {
-        /// The file's size.
-        bytes: u64,
-        /// The most a shard of the plan can take.
-        most: u64,
-    },
-    /// The first line is not [`MAGIC`].
-    #[error("not a shard file of this format (its first line is `{first}`, not `{MAGIC}`)")]
-    NotAShard {
-        /// The first line, or its first 80 characters.
-        first: String,
-    },
-    /// The file does not end with its checksum line.
-    #[error("truncated: the file does not end with its checksum line")]
-    Truncated,
-    /// The checksum line does not match the content.
-    #[error(
-        "checksum mismatch: the file says {stored}, its content gives {computed:016x}; \
-         it was changed or damaged after it was written"
-    )]
-    Checksum {
-        /// What the checksum line says.
-        stored: String,
-        /// The checksum of the content.
-        computed: u64,
-    },
-    /// Not UTF-8 text.
-    #[error("not text (invalid UTF-8)")]
-    NotText,
-    /// A plan line is missing.
-    #[error("the plan line `{expected}` is missing: a shard of an unknown plan")]
-    PlanMissing {
-        /// The first line that is missing.
-        expected: String,
-    },
-    /// A plan line differs from the merge's.
-    #[error(
-        "a shard of other options or another seed (or another version of the tool) than \
-         this merge's: it has `{shard}` where this merge has `{merge}`"
-    )]
-    PlanDiffers {
-        /// The shard's line.
-        shard: String,
-        /// The merge's line.
-        merge: String,
-    },
-    /// A line that is not the one expected there, or not well formed.
-    #[error("line {line}: `{text}`: expected {expected}")]
-    Malformed {
-        /// The line number, from 1.
-        line: usize,
-        /// The line, or its first 80 characters.
-        text: String,
-        /// What the format has there.
-        expected: String,
-    },
-    /// The file's name and its `shard` line disagree.
-    #[error("its name says shard {named}, its content shard {inside}")]
-    Misnamed {
-        /// The shard the name says.
-        named: Shard,
-        /// The shard the content says.
-        inside: Shard,
-    },
-    /// A run's running bests that no run makes.
-    #[error("line {line}, run {run}: {problem}")]
-    Value {
-        /// The line number, from 1.
-        line: usize,
-        /// The run index.
-        run: usize,
-        /// What is wrong.
-        problem: BadRunningBest,
-    },
-    /// A number out of its range.
-    #[error("line {line}: {what}")]
-    OutOfRange {
-        /// The line number, from 1.
-        line: usize,
-        /// The number and its range.
-        what: String,
-    },
-    /// Counters that overflow when the shards are added.
-    #[error("the shards' {0} overflow when added")]
-    Overflow(&'static str),
-    /// A file named `shard-*.txt` whose name is not `shard-i-of-n.txt`.
-    #[error("named like a shard file, but not shard-i-of-n.txt with 0 <= i < n")]
-    BadName,
-    /// No shard file in the directory.
-    #[error("no shard files to merge")]
-    NoShards,
-    /// Shards of different counts.
-    #[error("shards of different counts: {first} and {other}")]
-    OtherCount {
-        /// The first shard.
-        first: Shard,
-        /// A shard of another count.
-        other: Shard,
-    },
-    /// A shard is missing.
-    #[error("shard {index}/{count} is missing")]
-    Missing {
-        /// The missing shard's index.
-        index: usize,
-        /// The count.
-        count: usize,
-    },
 }
 
 fn shard_error(path: &Path, problem: ShardProblem) -> ReproError {
@@ -446,7 +332,8 @@ fn content(file: &Path, plan: &Plan, seed: u64, backend: Backend) -> Result<Stri
     let first = bytes.split(|&b| b == b'\n').next().unwrap_or(&[]);
     if first != MAGIC.as_bytes() {
         let first = clip(&String::from_utf8_lossy(first));
-        return Err(shard_error(file, ShardProblem::NotAShard { first }));
+        let magic = MAGIC;
+        return Err(shard_error(file, ShardProblem::NotAShard { first, magic }));
     }
     let body = bytes
         .strip_suffix(b"\n")
@@ -518,7 +405,7 @@ fn parse(
     let mut part = Part::empty(plan);
     part.wall = Duration::from_nanos(lines.one("wall-ns", None)?.1);
     let (line, chain_steps) = lines.one::<u64>("chain-steps", None)?;
-    let tasks = named.tasks(plan);
+    let tasks = plan.tasks(named);
     let expected = tasks.iter().try_fold(0u64, |sum, &(c, _)| {
         sum.checked_add(plan.configs[c].chain_steps())
     });
@@ -646,7 +533,12 @@ pub fn merge(
     seed: u64,
     backend: Backend,
 ) -> Result<(Part, usize), ReproError> {
-    crate::limits::check_memory(plan, None, crate::limits::machine_memory())?;
+    crate::limits::check_memory(
+        &plan.configs,
+        plan.runs,
+        None,
+        crate::limits::machine_memory(),
+    )?;
     let dir = out.join(plan.id.name().to_lowercase());
     let entries = fs::read_dir(&dir).map_err(|source| ReproError::Io {
         path: dir.clone(),

@@ -16,10 +16,11 @@ use std::process::{Command, Output};
 
 use hrla::{Builder, Chain, Gaussian, Rastrigin, Stop};
 use hrla_repro::config::RunSpec;
-use hrla_repro::exec::{Part, Shard, execute, finish};
+use hrla_repro::exec::{Part, execute, finish};
 use hrla_repro::gpu::GpuBackend;
 use hrla_repro::protocol::{Overrides, ProtocolId, plan};
 use hrla_repro::seed::run_seed;
+use hrla_repro::split::Shard;
 use hrla_repro::stats::Tracker;
 use indicatif::ProgressBar;
 use rand_xoshiro::Xoshiro128PlusPlus;

@@ -418,3 +418,47 @@ fn sizes_beyond_the_limits_are_refused_naming_the_option() {
     );
     assert!(!tmp.path().join("e1").exists());
 }
+
+/// `--threads` beyond 8 per core is refused before any thread starts, on
+/// either backend: 100 000 threads are never spawned one by one first.
+#[test]
+fn too_many_threads_are_refused_before_any_starts() {
+    let tmp = tempfile::tempdir().unwrap();
+    for backend in ["cpu", "gpu"] {
+        let args = ["--backend", backend, "--threads", "100000", "t1", "--quick"];
+        let started = std::time::Instant::now();
+        refused(&args, tmp.path(), &["--threads", "100000", "per core"]);
+        // Spawning them one by one took minutes.
+        assert!(started.elapsed() < Duration::from_secs(30), "{backend}");
+    }
+    assert!(!tmp.path().join("t1").exists());
+}
+
+/// A start the tool cannot draw is refused by its option and the value
+/// given, before anything runs: a variance that is negative or not finite
+/// on any backend, and on the GPU (whose starts are drawn in f32) one
+/// whose square root, the standard deviation, is beyond f32.
+#[test]
+fn a_start_is_refused_by_its_option_and_value() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (value, shown) in [("-1", "got -1"), ("inf", "got inf")] {
+        let arg = format!("--start-var={value}");
+        refused(
+            &["t1", "--quick", &arg],
+            tmp.path(),
+            &["--start-var", shown],
+        );
+    }
+    refused(
+        &["t1", "--quick", "--start-point", "nan"],
+        tmp.path(),
+        &["--start-point", "got NaN"],
+    );
+    // Before any adapter is looked for: the same refusal with none.
+    refused(
+        &["--backend", "gpu", "t1", "--quick", "--start-var", "1e300"],
+        tmp.path(),
+        &["--start-var", "1e300", "f32"],
+    );
+    assert!(!tmp.path().join("t1").exists());
+}

@@ -4,10 +4,11 @@
 //! `1 / (1 + beta Δ+)` at the fast schedule's temperature), so that it
 //! inherits FSA's convergence rate while resampling favours low members.
 
-use hrla::Potential;
+use hrla::SlicePotential;
 
 use super::moves::{Acceptance, RandomWalk};
-use super::{Peer, Population, schedule};
+use super::population::{Peer, Population};
+use super::schedule;
 
 /// CSA with its random-walk proposal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -17,12 +18,7 @@ pub struct Csa {
 }
 
 impl Peer for Csa {
-    fn iterate<P: Potential<f64, D>, const D: usize>(
-        &self,
-        pop: &mut Population<D>,
-        potential: &P,
-        k: u64,
-    ) {
+    fn iterate<P: SlicePotential<f64>>(&self, pop: &mut Population, potential: &P, k: u64) {
         pop.resample(schedule::logarithmic(k) - schedule::logarithmic(k - 1));
         pop.move_all(potential, self.walk, schedule::fast(k), Acceptance::Fast);
     }

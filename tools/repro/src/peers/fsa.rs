@@ -3,10 +3,11 @@
 //! schedule `T_k = 1 / ((k + 1) ln(k + 1))`. With a population, `N`
 //! independent FSA chains.
 
-use hrla::Potential;
+use hrla::SlicePotential;
 
 use super::moves::{Acceptance, RandomWalk};
-use super::{Peer, Population, schedule};
+use super::population::{Peer, Population};
+use super::schedule;
 
 /// FSA with its random-walk proposal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -16,12 +17,7 @@ pub struct Fsa {
 }
 
 impl Peer for Fsa {
-    fn iterate<P: Potential<f64, D>, const D: usize>(
-        &self,
-        pop: &mut Population<D>,
-        potential: &P,
-        k: u64,
-    ) {
+    fn iterate<P: SlicePotential<f64>>(&self, pop: &mut Population, potential: &P, k: u64) {
         pop.move_all(potential, self.walk, schedule::fast(k), Acceptance::Fast);
     }
 }
@@ -48,7 +44,7 @@ mod tests {
             pop.move_all(&Rastrigin, full_walk(0.25), fast_beta(k), Acceptance::Fast);
         });
         let mut start = Point::new([1.0; 10]).unwrap();
-        let mut fast = Population::<10>::new(&Rastrigin, &mut start, 30, 8);
+        let mut fast = Population::new(&Rastrigin, &mut start, 30, 10, 8);
         let mut cold_metropolis = fast.clone();
         let mut moved = [0usize; 2];
         for k in 1..=40 {
@@ -59,13 +55,18 @@ mod tests {
             fsa.iterate(&mut fast, &Rastrigin, k);
             let (walk, beta) = (full_walk(0.25), fast_beta(k));
             cold_metropolis.move_all(&Rastrigin, walk, beta, Acceptance::Metropolis);
-            moved[0] += count_moves(&before.0, fast.positions());
-            moved[1] += count_moves(&before.1, cold_metropolis.positions());
+            moved[0] += count_moves(&before.0, fast.positions(), 10);
+            moved[1] += count_moves(&before.1, cold_metropolis.positions(), 10);
         }
         assert!(moved[0] > moved[1], "{moved:?}");
     }
 
-    fn count_moves(before: &[[f64; 10]], after: &[[f64; 10]]) -> usize {
-        before.iter().zip(after).filter(|(x, y)| x != y).count()
+    /// Members (points of `d` coordinates) that moved.
+    fn count_moves(before: &[f64], after: &[f64], d: usize) -> usize {
+        before
+            .chunks_exact(d)
+            .zip(after.chunks_exact(d))
+            .filter(|(x, y)| x != y)
+            .count()
     }
 }

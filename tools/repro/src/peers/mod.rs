@@ -23,6 +23,7 @@
 mod csa;
 mod fsa;
 pub mod moves;
+mod population;
 pub mod resample;
 mod sa;
 pub mod schedule;
@@ -31,12 +32,11 @@ mod smc_sa;
 pub use csa::Csa;
 pub use fsa::Fsa;
 pub use moves::{RandomWalk, Scope};
+pub use population::{Peer, Population};
 pub use sa::Sa;
 pub use smc_sa::SmcSa;
 
-use hrla::rand_core::SeedableRng;
-use hrla::{Potential, Start, chain_seed};
-use rand_xoshiro::Xoshiro256PlusPlus;
+use hrla::SlicePotential;
 
 /// The proposal when none is given: the random walk `y = x + 0.25 z`,
 /// `z ~ N(0, I)`, of every coordinate.
@@ -44,9 +44,6 @@ pub const DEFAULT_WALK: RandomWalk = RandomWalk {
     sd: 0.25,
     scope: Scope::Full,
 };
-
-/// The stream index of the resampling generator (no member has it).
-const RESAMPLER_STREAM: u64 = u64::MAX;
 
 /// The four peers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
@@ -117,18 +114,6 @@ impl PeerKind {
     }
 }
 
-/// One iteration of a peer method.
-pub trait Peer {
-    /// Moves `pop` from iterate `k - 1` to iterate `k >= 1`: every member
-    /// proposes once, one evaluation of `potential` each.
-    fn iterate<P: Potential<f64, D>, const D: usize>(
-        &self,
-        pop: &mut Population<D>,
-        potential: &P,
-        k: u64,
-    );
-}
-
 /// Any of the four methods behind one type.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum AnyPeer {
@@ -143,91 +128,13 @@ pub enum AnyPeer {
 }
 
 impl Peer for AnyPeer {
-    fn iterate<P: Potential<f64, D>, const D: usize>(
-        &self,
-        pop: &mut Population<D>,
-        potential: &P,
-        k: u64,
-    ) {
+    fn iterate<P: SlicePotential<f64>>(&self, pop: &mut Population, potential: &P, k: u64) {
         match self {
             AnyPeer::Sa(p) => p.iterate(pop, potential, k),
             AnyPeer::Fsa(p) => p.iterate(pop, potential, k),
             AnyPeer::SmcSa(p) => p.iterate(pop, potential, k),
             AnyPeer::Csa(p) => p.iterate(pop, potential, k),
         }
-    }
-}
-
-/// The `N` samples of a peer, their values of `U`, one random stream per
-/// member and one for resampling, and the count of evaluations of `U`.
-#[derive(Clone, Debug)]
-pub struct Population<const D: usize> {
-    xs: Vec<[f64; D]>,
-    values: Vec<f64>,
-    rngs: Vec<Xoshiro256PlusPlus>,
-    resampler: Xoshiro256PlusPlus,
-    evaluations: u64,
-}
-
-impl<const D: usize> Population<D> {
-    /// `n` members started by `start` (member `c` from its own stream
-    /// `chain_seed(seed, c)`), each evaluated once.
-    pub fn new<P: Potential<f64, D>, S: Start<f64, D>>(
-        potential: &P,
-        start: &mut S,
-        n: usize,
-        seed: u64,
-    ) -> Self {
-        let mut rngs: Vec<_> = (0..n as u64)
-            .map(|c| Xoshiro256PlusPlus::seed_from_u64(chain_seed(seed, c)))
-            .collect();
-        let xs: Vec<[f64; D]> = rngs
-            .iter_mut()
-            .enumerate()
-            .map(|(c, rng)| {
-                let mut x = [0.0; D];
-                start.initial_point(c, rng, &mut x);
-                x
-            })
-            .collect();
-        let values = xs.iter().map(|x| potential.value(x)).collect();
-        Self {
-            xs,
-            values,
-            rngs,
-            resampler: Xoshiro256PlusPlus::seed_from_u64(chain_seed(seed, RESAMPLER_STREAM)),
-            evaluations: n as u64,
-        }
-    }
-
-    /// The number of members `N`.
-    pub fn len(&self) -> usize {
-        self.xs.len()
-    }
-
-    /// Whether the population has no member.
-    pub fn is_empty(&self) -> bool {
-        self.xs.is_empty()
-    }
-
-    /// The members' positions.
-    pub fn positions(&self) -> &[[f64; D]] {
-        &self.xs
-    }
-
-    /// The members' values of `U`.
-    pub fn values(&self) -> &[f64] {
-        &self.values
-    }
-
-    /// `min_n U(x_k^n)`, the best member now (`+inf` when empty).
-    pub fn best_now(&self) -> f64 {
-        self.values.iter().copied().fold(f64::INFINITY, f64::min)
-    }
-
-    /// Evaluations of `U` so far (`N` at the start, `N` per iteration).
-    pub fn evaluations(&self) -> u64 {
-        self.evaluations
     }
 }
 
@@ -252,10 +159,10 @@ pub(crate) mod testing {
     pub fn assert_iterates_as(
         peer: impl Peer,
         k: u64,
-        mut by_hand: impl FnMut(&mut Population<10>, u64),
+        mut by_hand: impl FnMut(&mut Population, u64),
     ) {
         let mut start = Gaussian::new([0.5; 10], 1.0).unwrap();
-        let mut a = Population::<10>::new(&Rastrigin, &mut start, 30, 12);
+        let mut a = Population::new(&Rastrigin, &mut start, 30, 10, 12);
         let mut b = a.clone();
         for i in 1..=k {
             peer.iterate(&mut a, &Rastrigin, i);
@@ -271,7 +178,7 @@ pub(crate) mod testing {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use hrla::{Point, Rastrigin};
+    use hrla::{Point, Potential, Rastrigin};
 
     /// One coordinate at a time, so that 20 members escape `(1, ..., 1)`
     /// within 60 iterations (a full-dimensional step from that local
@@ -281,9 +188,14 @@ mod tests {
         scope: Scope::Coordinate,
     };
 
-    fn run(kind: PeerKind, seed: u64, k: u64) -> Population<10> {
-        let mut pop =
-            Population::<10>::new(&Rastrigin, &mut Point::new([1.0; 10]).unwrap(), 20, seed);
+    fn run(kind: PeerKind, seed: u64, k: u64) -> Population {
+        let mut pop = Population::new(
+            &Rastrigin,
+            &mut Point::new([1.0; 10]).unwrap(),
+            20,
+            10,
+            seed,
+        );
         let peer = kind.peer(ESCAPING);
         for i in 1..=k {
             peer.iterate(&mut pop, &Rastrigin, i);
@@ -304,8 +216,8 @@ mod tests {
             assert_ne!(a.positions(), c.positions(), "{}", kind.label());
             assert!(a.best_now() < 10.0, "{}", kind.label());
             assert_eq!(a.evaluations(), 20 * 61);
-            for (x, &v) in a.positions().iter().zip(a.values()) {
-                assert_eq!(v, Rastrigin.value(x));
+            for (x, &v) in a.positions().chunks_exact(10).zip(a.values()) {
+                assert_eq!(v, Rastrigin.value(&<[f64; 10]>::try_from(x).unwrap()));
             }
         }
     }

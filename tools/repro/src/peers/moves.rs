@@ -4,9 +4,9 @@
 //! rule. Both accept every move that does not increase `U`.
 
 use hrla::rand_core::Rng;
-use hrla::{Potential, StandardNormal};
+use hrla::{SlicePotential, StandardNormal};
 
-use super::Population;
+use super::population::Population;
 
 /// The probability of accepting a move that changes `U` by `delta` at
 /// inverse temperature `beta`.
@@ -42,9 +42,9 @@ impl Acceptance {
 /// Which coordinates a proposal moves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
 pub enum Scope {
-    /// Every coordinate: `y = x + sd z`, `z ~ N(0, I_D)`.
+    /// Every coordinate: `y = x + sd z`, `z ~ N(0, I_d)`.
     Full,
-    /// One coordinate `j`, uniform in `0..D`: `y_j = x_j + sd z`.
+    /// One coordinate `j`, uniform in `0..d`: `y_j = x_j + sd z`.
     Coordinate,
 }
 
@@ -58,10 +58,10 @@ pub struct RandomWalk {
 }
 
 impl RandomWalk {
-    /// Moves `y` (a copy of the current point) in place: `D` normals for
-    /// [`Scope::Full`], one uniform then one normal for
-    /// [`Scope::Coordinate`].
-    pub fn propose<R: Rng + ?Sized, const D: usize>(&self, rng: &mut R, y: &mut [f64; D]) {
+    /// Moves `y` (a copy of the current point, of `d` coordinates) in
+    /// place: `d` normals for [`Scope::Full`], one uniform then one normal
+    /// for [`Scope::Coordinate`].
+    pub fn propose<R: Rng + ?Sized>(&self, rng: &mut R, y: &mut [f64]) {
         match self.scope {
             Scope::Full => {
                 for yj in y.iter_mut() {
@@ -69,8 +69,8 @@ impl RandomWalk {
                 }
             }
             Scope::Coordinate => {
-                // uniform < 1, so j < D.
-                let j = (uniform(rng) * D as f64) as usize;
+                // uniform < 1, so j < d.
+                let j = (uniform(rng) * y.len() as f64) as usize;
                 y[j] += self.sd * f64::standard_normal(rng);
             }
         }
@@ -82,11 +82,11 @@ pub fn uniform<R: Rng + ?Sized>(rng: &mut R) -> f64 {
     (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
-impl<const D: usize> Population<D> {
+impl Population {
     /// Member `i` proposes a `walk` step from its own stream (then draws
     /// one uniform if the move goes uphill) and moves there with
     /// probability `rule.probability(beta, U(y) - U(x))`. One evaluation.
-    pub fn random_walk<P: Potential<f64, D>>(
+    pub fn random_walk<P: SlicePotential<f64>>(
         &mut self,
         i: usize,
         potential: &P,
@@ -95,19 +95,21 @@ impl<const D: usize> Population<D> {
         rule: Acceptance,
     ) {
         let rng = &mut self.rngs[i];
-        let mut y = self.xs[i];
-        walk.propose(rng, &mut y);
-        let uy = potential.value(&y);
+        let x = &mut self.xs[i * self.d..(i + 1) * self.d];
+        let y = &mut self.proposal;
+        y.copy_from_slice(x);
+        walk.propose(rng, y);
+        let uy = potential.value_and_gradient(y, &mut self.gradient);
         self.evaluations += 1;
         let p = rule.probability(beta, uy - self.values[i]);
         if p >= 1.0 || uniform(rng) < p {
-            self.xs[i] = y;
+            x.copy_from_slice(y);
             self.values[i] = uy;
         }
     }
 
     /// Every member makes one [`random_walk`](Population::random_walk).
-    pub fn move_all<P: Potential<f64, D>>(
+    pub fn move_all<P: SlicePotential<f64>>(
         &mut self,
         potential: &P,
         walk: RandomWalk,
@@ -199,7 +201,7 @@ mod tests {
             }
         }
         let exact = inner / total;
-        let mut pop = Population::<1>::new(&DoubleWell, &mut Point::new([1.0]).unwrap(), 50, 9);
+        let mut pop = Population::new(&DoubleWell, &mut Point::new([1.0]).unwrap(), 50, 1, 9);
         for _ in 0..1000 {
             pop.move_all(&DoubleWell, WALK, beta, Acceptance::Metropolis);
         }
@@ -209,7 +211,7 @@ mod tests {
             let mut hits = 0u32;
             for _ in 0..4000 / 50 {
                 pop.move_all(&DoubleWell, WALK, beta, Acceptance::Metropolis);
-                hits += pop.positions().iter().filter(|x| x[0].abs() < 0.5).count() as u32;
+                hits += pop.positions().iter().filter(|x| x.abs() < 0.5).count() as u32;
             }
             means.push(f64::from(hits) / 4000.0);
         }

@@ -5,8 +5,8 @@
 
 use hrla::rand_core::Rng;
 
-use super::Population;
 use super::moves::uniform;
+use super::population::Population;
 
 /// The normalised weights `exp(-dbeta U_n) / sum_m exp(-dbeta U_m)`, formed
 /// relative to the smallest finite value so that none overflows; members
@@ -63,7 +63,7 @@ pub fn multinomial<R: Rng + ?Sized>(weights: &[f64], rng: &mut R) -> Option<Vec<
     )
 }
 
-impl<const D: usize> Population<D> {
+impl Population {
     /// Reweights from inverse temperature `beta_k - dbeta` to `beta_k` and
     /// resamples (no evaluation of `U`: the values move with the members).
     /// Member slots keep their own streams; only positions and values are
@@ -73,7 +73,12 @@ impl<const D: usize> Population<D> {
         let Some(ancestors) = multinomial(&w, &mut self.resampler) else {
             return;
         };
-        self.xs = ancestors.iter().map(|&a| self.xs[a]).collect();
+        let d = self.d;
+        self.xs = ancestors
+            .iter()
+            .flat_map(|&a| &self.xs[a * d..(a + 1) * d])
+            .copied()
+            .collect();
         self.values = ancestors.iter().map(|&a| self.values[a]).collect();
     }
 }

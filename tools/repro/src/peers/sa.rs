@@ -2,10 +2,11 @@
 //! Metropolis random-walk move per iteration at the logarithmic schedule's
 //! temperature. With a population, `N` independent SA chains.
 
-use hrla::Potential;
+use hrla::SlicePotential;
 
 use super::moves::{Acceptance, RandomWalk};
-use super::{Peer, Population, schedule};
+use super::population::{Peer, Population};
+use super::schedule;
 
 /// SA with its random-walk proposal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -15,12 +16,7 @@ pub struct Sa {
 }
 
 impl Peer for Sa {
-    fn iterate<P: Potential<f64, D>, const D: usize>(
-        &self,
-        pop: &mut Population<D>,
-        potential: &P,
-        k: u64,
-    ) {
+    fn iterate<P: SlicePotential<f64>>(&self, pop: &mut Population, potential: &P, k: u64) {
         pop.move_all(
             potential,
             self.walk,
@@ -49,12 +45,12 @@ mod tests {
             pop.move_all(&Rastrigin, full_walk(0.25), beta, Acceptance::Metropolis);
         });
         let mut start = Gaussian::new([3.0; 10], 1.0).unwrap();
-        let mut many = Population::<10>::new(&Rastrigin, &mut start, 40, 5);
-        let mut few = Population::<10>::new(&Rastrigin, &mut start, 7, 5);
+        let mut many = Population::new(&Rastrigin, &mut start, 40, 10, 5);
+        let mut few = Population::new(&Rastrigin, &mut start, 7, 10, 5);
         for k in 1..=30 {
             sa.iterate(&mut many, &Rastrigin, k);
             sa.iterate(&mut few, &Rastrigin, k);
         }
-        assert_eq!(&many.positions()[..7], few.positions());
+        assert_eq!(&many.positions()[..7 * 10], few.positions());
     }
 }

@@ -3,10 +3,11 @@
 //! logarithmic schedule by reweighting with `pi_k / pi_{k-1}`, resampling,
 //! and one SA move (which leaves `pi_k` invariant) per member.
 
-use hrla::Potential;
+use hrla::SlicePotential;
 
 use super::moves::{Acceptance, RandomWalk};
-use super::{Peer, Population, schedule};
+use super::population::{Peer, Population};
+use super::schedule;
 
 /// SMC-SA with its random-walk proposal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -16,12 +17,7 @@ pub struct SmcSa {
 }
 
 impl Peer for SmcSa {
-    fn iterate<P: Potential<f64, D>, const D: usize>(
-        &self,
-        pop: &mut Population<D>,
-        potential: &P,
-        k: u64,
-    ) {
+    fn iterate<P: SlicePotential<f64>>(&self, pop: &mut Population, potential: &P, k: u64) {
         let beta = schedule::logarithmic(k);
         pop.resample(beta - schedule::logarithmic(k - 1));
         pop.move_all(potential, self.walk, beta, Acceptance::Metropolis);
@@ -43,7 +39,7 @@ mod tests {
     fn smc_sa_is_resampling_then_sa() {
         let walk = full_walk(0.3);
         let mut start = Point::new([1.0; 10]).unwrap();
-        let mut smc = Population::<10>::new(&Rastrigin, &mut start, 25, 4);
+        let mut smc = Population::new(&Rastrigin, &mut start, 25, 10, 4);
         let mut sa = smc.clone();
         SmcSa { walk }.iterate(&mut smc, &Rastrigin, 1);
         Sa { walk }.iterate(&mut sa, &Rastrigin, 1);
