@@ -94,11 +94,11 @@ macro_rules! pairs {
         let (mut a, mut b, mut r) = (Vec::new(), Vec::new(), Vec::new());
         for p in 0..$pairs {
             let (x, y) = if p % 2 == 0 {
-                let x = time(steps, coords, || new.step().unwrap());
-                (x, time(steps, coords, || base.step().unwrap()))
+                let x = time(steps, coords, || _ = new.step().unwrap());
+                (x, time(steps, coords, || _ = base.step().unwrap()))
             } else {
-                let y = time(steps, coords, || base.step().unwrap());
-                (time(steps, coords, || new.step().unwrap()), y)
+                let y = time(steps, coords, || _ = base.step().unwrap());
+                (time(steps, coords, || _ = new.step().unwrap()), y)
             };
             a.push(x);
             b.push(y);

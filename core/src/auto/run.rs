@@ -116,9 +116,9 @@ impl<F: Float, const D: usize, R> Chains<F> for [Chain<F, D, R>] {
     }
     fn started(&mut self, c: usize) {
         let chain = &mut self[c];
-        chain.best_x = chain.x;
-        chain.best_value = chain.value;
-        chain.best_iteration = 0;
+        chain.best.x = chain.x;
+        chain.best.value = chain.value;
+        chain.best.iteration = 0;
     }
 }
 

@@ -4,7 +4,7 @@
 use super::algorithm::Optimizer;
 use super::executor::Serial;
 use super::stop::Stop;
-use super::store::{IntoStore, RunsOn, Starts, Steps, Store};
+use super::store::{IntoStore, Origins, RunsOn, Starts, Steps, Store};
 use crate::domain::Unbounded;
 use crate::error::Error;
 use crate::float::Float;
@@ -70,26 +70,26 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B, E> Builder<F, P, S, C, S
     /// ([`Interval`](crate::Interval)): initial points and steps are
     /// reflected into it, and the polish stays in it.
     pub fn domain<B2>(self, domain: B2) -> Builder<F, P, S, C, St, B2, E> {
-        Builder {
-            potential: self.potential,
-            domain,
-            sampler: self.sampler,
-            schedule: self.schedule,
-            start: self.start,
-            seed: self.seed,
-            stride: self.stride,
-            stop: self.stop,
-            executor: self.executor,
-        }
+        self.with(|_, executor| (domain, executor))
     }
 
     /// Steps the chains of every step on `executor`, in parts, on threads
     /// if it has them (the `hrla-threads` crate's `Threads`), with the
     /// same bits as on the calling thread ([`Serial`], the default).
     pub fn executor<E2>(self, executor: E2) -> Builder<F, P, S, C, St, B, E2> {
+        self.with(|domain, _| (domain, executor))
+    }
+
+    /// These settings with the domain and the executor `change` makes of
+    /// theirs.
+    fn with<B2, E2>(
+        self,
+        change: impl FnOnce(B, E) -> (B2, E2),
+    ) -> Builder<F, P, S, C, St, B2, E2> {
+        let (domain, executor) = change(self.domain, self.executor);
         Builder {
             potential: self.potential,
-            domain: self.domain,
+            domain,
             sampler: self.sampler,
             schedule: self.schedule,
             start: self.start,
@@ -221,7 +221,13 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B, E> Builder<F, P, S, C, S
         let mut chains = chains.into_store();
         let (n, d) = (chains.len(), chains.dim());
         self.check(n, d)?;
-        for (name, dimension) in chains.check(&self.start, &self.potential, &self.domain) {
+        let from = Origins {
+            potential: &self.potential,
+            domain: &self.domain,
+            start: &mut self.start,
+            seed: self.seed,
+        };
+        for (name, dimension) in chains.check(&from) {
             if let Some(got) = dimension
                 && got != d
             {
@@ -235,13 +241,7 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B, E> Builder<F, P, S, C, S
         let kernel = self.sampler.at(self.schedule.inverse_temperature(0))?;
         // Redraws beyond one point per chain, within the evaluation budget.
         let mut spare = self.stop.evaluations.map_or(u64::MAX, |b| b - n as u64);
-        let evaluations = chains.start(
-            self.seed,
-            &mut self.start,
-            &self.potential,
-            &self.domain,
-            &mut spare,
-        )?;
+        let evaluations = chains.start(from, &mut spare)?;
         Ok(Optimizer::assemble(
             self.potential,
             self.domain,

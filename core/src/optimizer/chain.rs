@@ -10,7 +10,7 @@ use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use super::executor::Executor;
-use super::store::{Best, IntoStore, Origin, Searches, Starts, Steps, StepsOn, Store};
+use super::store::{Best, IntoStore, Origin, Origins, Searches, Starts, Steps, StepsOn, Store};
 use super::stream::chain_seed;
 use super::sweep::{Context, LOCKSTEP_F64_FROM, Sweep, Verdict, draw_point, judge};
 use crate::domain::Domain;
@@ -22,6 +22,15 @@ use crate::polish::{Arrays, Lbfgs, PolishSettings, Polished};
 use crate::potential::Potential;
 use crate::sampler::{ChainState, Kernel};
 use crate::start::Start;
+
+/// A chain's best point, kept in the chain: one block, as the step writes
+/// it.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Kept<F, const D: usize> {
+    pub(crate) x: [F; D],
+    pub(crate) value: F,
+    pub(crate) iteration: u64,
+}
 
 /// One chain: its state `(x, y)`, the potential and gradient at `x`, its
 /// own running best, and its own random generator `R`.
@@ -46,9 +55,7 @@ pub struct Chain<F, const D: usize, R = Xoshiro256PlusPlus> {
     pub(crate) y: [F; D],
     pub(crate) value: F,
     pub(crate) grad: [F; D],
-    pub(crate) best_x: [F; D],
-    pub(crate) best_value: F,
-    pub(crate) best_iteration: u64,
+    pub(crate) best: Kept<F, D>,
     pub(crate) diverged: bool,
     pub(crate) rng: R,
 }
@@ -68,9 +75,11 @@ impl<F: Float, const D: usize, R: SeedableRng> Default for Chain<F, D, R> {
             y: [F::ZERO; D],
             value: F::INFINITY,
             grad: [F::ZERO; D],
-            best_x: [F::ZERO; D],
-            best_value: F::INFINITY,
-            best_iteration: 0,
+            best: Kept {
+                x: [F::ZERO; D],
+                value: F::INFINITY,
+                iteration: 0,
+            },
             diverged: false,
             rng: R::seed_from_u64(0),
         }
@@ -98,9 +107,9 @@ impl<F: Float, const D: usize, R> Chain<F, D, R> {
     /// The chain's running best over its recorded iterates.
     pub fn best(&self) -> Best<'_, F> {
         Best {
-            x: &self.best_x,
-            value: self.best_value,
-            iteration: self.best_iteration,
+            x: &self.best.x,
+            value: self.best.value,
+            iteration: self.best.iteration,
         }
     }
     /// `true` once the position, the potential or its gradient went
@@ -199,11 +208,11 @@ where
     fn set_best(&mut self, c: usize, x: Option<&[F]>, value: F, k: u64) {
         let chain = &mut self[c];
         match x {
-            Some(x) => chain.best_x.copy_from_slice(x),
-            None => chain.best_x = chain.x,
+            Some(x) => chain.best.x.copy_from_slice(x),
+            None => chain.best.x = chain.x,
         }
-        chain.best_value = value;
-        chain.best_iteration = k;
+        chain.best.value = value;
+        chain.best.iteration = k;
     }
 }
 
@@ -257,22 +266,21 @@ where
     B: Domain<F, D>,
     Sd: Start<F, D>,
 {
-    fn check(&self, start: &Sd, _potential: &P, domain: &B) -> [(&'static str, Option<usize>); 3] {
+    fn check(&self, from: &Origins<'_, P, B, Sd>) -> [(&'static str, Option<usize>); 3] {
         [
-            ("box sides", domain.dimension()),
-            ("start", start.dimension()),
+            ("box sides", from.domain.dimension()),
+            ("start", from.start.dimension()),
             ("potential", None),
         ]
     }
 
-    fn start(
-        &mut self,
-        seed: u64,
-        start: &mut Sd,
-        potential: &P,
-        domain: &B,
-        spare: &mut u64,
-    ) -> Result<u64, Error> {
+    fn start(&mut self, from: Origins<'_, P, B, Sd>, spare: &mut u64) -> Result<u64, Error> {
+        let Origins {
+            potential,
+            domain,
+            start,
+            seed,
+        } = from;
         let mut evaluations = 0;
         for (c, chain) in self.iter_mut().enumerate() {
             chain.rng = R::seed_from_u64(chain_seed(seed, c as u64));
@@ -281,9 +289,9 @@ where
                 *y = [F::ZERO; D];
                 domain.confine(x, y);
             })?;
-            chain.best_x = chain.x;
-            chain.best_value = chain.value;
-            chain.best_iteration = 0;
+            chain.best.x = chain.x;
+            chain.best.value = chain.value;
+            chain.best.iteration = 0;
             chain.diverged = false;
         }
         Ok(evaluations)
@@ -311,7 +319,7 @@ where
     ) -> Result<Polished<F>, Error> {
         let chain = &self[c];
         let mut x = match from {
-            Origin::Best => chain.best_x,
+            Origin::Best => chain.best.x,
             Origin::Current => chain.x,
         };
         let counted = Counted { potential, calls };
@@ -489,10 +497,10 @@ fn evaluate<F, K, P, B, R, const D: usize>(
             return;
         }
     }
-    if cx.record && value < chain.best_value {
-        chain.best_x = chain.x;
-        chain.best_value = value;
-        chain.best_iteration = cx.k;
+    if cx.record && value < chain.best.value {
+        chain.best.x = chain.x;
+        chain.best.value = value;
+        chain.best.iteration = cx.k;
         if found.best.is_none_or(|(b, _)| value < b) {
             found.best = Some((value, c));
         }

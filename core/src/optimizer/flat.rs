@@ -25,7 +25,7 @@ use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use super::executor::{Executor, Split};
-use super::store::{Best, IntoStore, Origin, Searches, Starts, Steps, StepsOn, Store};
+use super::store::{Best, IntoStore, Origin, Origins, Searches, Starts, Steps, StepsOn, Store};
 use super::stream::chain_seed;
 use super::sweep::{Context, LOCKSTEP_F64_FROM, START_TRIES, Sweep, Verdict, judge};
 use crate::domain::SliceDomain;
@@ -430,22 +430,21 @@ where
     B: SliceDomain<F>,
     Sd: SliceStart<F>,
 {
-    fn check(&self, start: &Sd, potential: &P, domain: &B) -> [(&'static str, Option<usize>); 3] {
+    fn check(&self, from: &Origins<'_, P, B, Sd>) -> [(&'static str, Option<usize>); 3] {
         [
-            ("box sides", domain.dimension()),
-            ("start", start.dimension()),
-            ("potential", potential.batch_dimension()),
+            ("box sides", from.domain.dimension()),
+            ("start", from.start.dimension()),
+            ("potential", from.potential.batch_dimension()),
         ]
     }
 
-    fn start(
-        &mut self,
-        seed: u64,
-        start: &mut Sd,
-        potential: &P,
-        domain: &B,
-        spare: &mut u64,
-    ) -> Result<u64, Error> {
+    fn start(&mut self, from: Origins<'_, P, B, Sd>, spare: &mut u64) -> Result<u64, Error> {
+        let Origins {
+            potential,
+            domain,
+            start,
+            seed,
+        } = from;
         let n = self.len();
         let mut evaluations = n as u64;
         let Parts {

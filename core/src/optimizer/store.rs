@@ -105,23 +105,29 @@ pub trait StepsOn<F: Float, P, B>: Steps<F, P, B> {
     ) -> Sweep<F>;
 }
 
+/// What a run's initial points come from: the potential, the domain, the
+/// start law `Sd` and the seed.
+pub struct Origins<'a, P, B, Sd> {
+    /// The potential.
+    pub potential: &'a P,
+    /// The domain.
+    pub domain: &'a B,
+    /// The start law.
+    pub start: &'a mut Sd,
+    /// The run's seed.
+    pub seed: u64,
+}
+
 /// The initial points, drawn from a start law `Sd`.
 pub trait Starts<F: Float, P, B, Sd>: Store<F> {
     /// The dimensions the box, the start and the potential were made for,
     /// named, where they have one (the builder checks them against the
     /// store's).
-    fn check(&self, start: &Sd, potential: &P, domain: &B) -> [(&'static str, Option<usize>); 3];
-    /// Seeds every chain's generator from `seed`, draws its initial point
-    /// (redrawing an infeasible one within `spare`), evaluates it and
-    /// makes it the chain's best: the evaluations spent.
-    fn start(
-        &mut self,
-        seed: u64,
-        start: &mut Sd,
-        potential: &P,
-        domain: &B,
-        spare: &mut u64,
-    ) -> Result<u64, Error>;
+    fn check(&self, from: &Origins<'_, P, B, Sd>) -> [(&'static str, Option<usize>); 3];
+    /// Seeds every chain's generator from the seed, draws its initial
+    /// point (redrawing an infeasible one within `spare`), evaluates it
+    /// and makes it the chain's best: the evaluations spent.
+    fn start(&mut self, from: Origins<'_, P, B, Sd>, spare: &mut u64) -> Result<u64, Error>;
 }
 
 /// A local search by an L-BFGS `L` over this store's dimension.
