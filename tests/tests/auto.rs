@@ -1091,3 +1091,54 @@ fn the_step_rule_crosses_deep_regular_barriers() {
         "solved {steered} of 20 with the step rule, {fixed} without"
     );
 }
+
+/// A caller's own `Sides` is checked as `Bounds::new` checks its sides: a
+/// side whose ends are reversed, equal or not finite is refused before any
+/// evaluation, never run as a box that is not one.
+#[test]
+fn a_callers_sides_are_checked_as_bounds_are() {
+    /// Sides given by a function of the coordinate.
+    struct Own(fn(usize) -> (f64, f64));
+    impl hrla::SliceDomain<f64> for Own {
+        fn confine(&self, _x: &mut [f64], _y: &mut [f64]) {}
+        fn project(&self, _x: &mut [f64]) {}
+        fn feasible_direction(&self, _x: &[f64], _d: &mut [f64]) {}
+    }
+    impl hrla::Sides<f64> for Own {
+        fn side(&self, i: usize) -> (f64, f64) {
+            (self.0)(i)
+        }
+    }
+    let (n, d, m) = (4, 2, 4);
+    let mut floats = vec![0.0; AutoStorage::<f64, Xoshiro256PlusPlus>::floats(n, d, m)];
+    let mut diverged = vec![false; n];
+    let mut rngs: Vec<_> = (0..n)
+        .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
+        .collect();
+    let mut storage = AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs).unwrap();
+    let calls = Cell::new(0);
+    let p = FnPotential::slices(|x: &[f64], g: &mut [f64]| {
+        calls.set(calls.get() + 1);
+        Rastrigin.value_and_gradient(<&[f64; 2]>::try_from(x).unwrap(), g.try_into().unwrap())
+    });
+    let sides: [fn(usize) -> (f64, f64); 3] = [
+        |i| if i == 1 { (1.0, -1.0) } else { (-1.0, 1.0) },
+        |_| (0.5, 0.5),
+        |i| if i == 0 { (f64::NAN, 1.0) } else { (-1.0, 1.0) },
+    ];
+    for side in sides {
+        let got = Auto::default().minimize_flat(&p, &Own(side), 1_000, 0, &mut storage);
+        let want = Interval::new(side(0).0, side(0).1)
+            .and(Interval::new(side(1).0, side(1).1))
+            .unwrap_err();
+        // As text: the error of a NaN side carries the NaN.
+        assert_eq!(
+            format!("{:?}", got.map(|s| s.value)),
+            format!("{:?}", Err::<f64, _>(want))
+        );
+    }
+    assert_eq!(calls.get(), 0, "a refused box evaluated the potential");
+    // The same sides, in order, run.
+    let fine = Auto::default().minimize_flat(&p, &Own(|_| (-1.0, 1.0)), 1_000, 0, &mut storage);
+    assert!(fine.is_ok());
+}

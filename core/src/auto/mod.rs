@@ -637,6 +637,12 @@ impl<F: Float> Auto<F> {
         if n == 0 {
             return Err(Error::Zero { name: "chains" });
         }
+        // Every side as `Bounds::new` and `Interval::new` check theirs: a
+        // caller's own `Sides` gets no pass.
+        for i in 0..chains.x(0).len() {
+            let (lo, hi) = domain.side(i);
+            Interval::new(lo, hi)?;
+        }
         if budget < 2 * n as u64 {
             return Err(Error::Budget {
                 budget,
