@@ -228,9 +228,25 @@ impl Engine {
         self.failed.map_or(Ok(()), |e| Err(e.into()))
     }
 
-    /// `result`, keeping its error when it ends the run; a user's failure
-    /// in it is the cause, reported in its place.
-    fn keep<T>(&mut self, result: Result<T, hrla::Error>) -> Result<T, Error> {
+    /// The run as it is before a call that evaluates a user's function,
+    /// to go back to if the function fails in it.
+    fn snapshot(&self) -> Option<Opt> {
+        self.user.is_some().then(|| self.opt.clone())
+    }
+
+    /// `result` of a call that started from `before`. A user's failure in
+    /// it is the cause, reported in its place, and the call is undone:
+    /// the run is as it was before, so that going on gives the bits of a
+    /// run never interrupted. Otherwise an error that ends the run is kept.
+    fn keep<T>(&mut self, result: Result<T, hrla::Error>, before: Option<Opt>) -> Result<T, Error> {
+        if let Err(e) = self.finish() {
+            // Into the same storage: a front end's views of the chains
+            // stay where they were.
+            if let Some(before) = before {
+                self.opt.clone_from(&before);
+            }
+            return Err(e);
+        }
         if let Err(
             e @ (hrla::Error::AllDiverged { .. }
             | hrla::Error::UnboundedBelow { .. }
@@ -239,7 +255,6 @@ impl Engine {
         {
             self.failed = Some(Failure::Kernel(e));
         }
-        self.finish()?;
         result.map_err(Error::Kernel)
     }
 
@@ -249,11 +264,12 @@ impl Engine {
     pub fn step(&mut self, steps: u64) -> Result<(), Error> {
         self.check()?;
         for _ in 0..steps {
+            let before = self.snapshot();
             let stepped = self
                 .opt
                 .step()
                 .map(|p| self.escape2.and_then(|r2| ran_away(p.chains, r2)));
-            if let Some(away) = self.keep(stepped)? {
+            if let Some(away) = self.keep(stepped, before)? {
                 self.failed = Some(Failure::RanAway(away));
                 return Err(Error::RanAway(away));
             }
@@ -276,6 +292,7 @@ impl Engine {
             return Ok(self.report_now());
         }
         let end = steps.map(|k| self.opt.iteration().saturating_add(k));
+        let before = self.snapshot();
         let (user, escape2) = (self.user.clone(), self.escape2);
         let (chains, dim) = (self.opt.chains().len(), self.opt.dim());
         let (mut away, mut ran_out) = (None, false);
@@ -309,7 +326,7 @@ impl Engine {
                 ControlFlow::Continue(())
             }
         });
-        let report = self.keep(report)?;
+        let report = self.keep(report, before)?;
         if let Some(away) = away {
             self.failed = Some(Failure::RanAway(away));
             return Err(Error::RanAway(away));
@@ -473,13 +490,14 @@ impl Engine {
         if self.lbfgs.len() != floats {
             self.lbfgs = filled(floats, 0.0, 1, d)?;
         }
+        let before = self.snapshot();
         let mut lbfgs = LbfgsIn::new(d, MEMORY, &mut self.lbfgs)?;
         let done = if quench {
             self.opt.quench(chain, &mut lbfgs, settings)
         } else {
             self.opt.polish(chain, &mut lbfgs, settings)
         };
-        self.keep(done)
+        self.keep(done, before)
     }
 
     /// Moves chain `chain` to `x` (confined) with zero velocity and
@@ -494,8 +512,9 @@ impl Engine {
             });
         }
         self.check()?;
+        let before = self.snapshot();
         let done = self.opt.restart(chain, x);
-        self.keep(done)
+        self.keep(done, before)
     }
 
     /// The dimension.

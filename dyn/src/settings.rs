@@ -58,6 +58,7 @@ impl PotentialSpec {
 /// The potential of a run, as the kernel's batch seam: a built-in and a
 /// Rust function one point at a time (the kernel's grouping), a user's
 /// function once per step on every live chain.
+#[derive(Clone)]
 pub(crate) enum Pot {
     Builtin(DynBuiltin),
     User(UserBatch),

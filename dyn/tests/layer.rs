@@ -226,6 +226,7 @@ impl BatchFunction for Failing {
 fn a_failing_function_is_its_own_error() {
     let f = Arc::new(Failing(AtomicUsize::new(0), 5));
     let mut engine = settings(PotentialSpec::User(f.clone())).build().unwrap();
+    let layout = engine.layout();
     let Err(Error::User(e)) = engine.run(hrla::Observe::EveryAndNewBest(1), &mut |_| {
         ControlFlow::Continue(())
     }) else {
@@ -233,9 +234,16 @@ fn a_failing_function_is_its_own_error() {
     };
     assert!(e.downcast_ref::<Refused>().is_some());
     // One call for the initial points, one per step: the sixth call is the
-    // fifth step's, which moved the chains and then failed.
-    assert_eq!(engine.iteration(), 5);
+    // fifth step's, which moved the chains and then failed. The failed
+    // call is undone: the run is as it was before it, so that going on
+    // gives the bits of a run never interrupted.
     assert_eq!(f.0.load(Ordering::Relaxed), 6);
+    assert_eq!(engine.iteration(), 0);
+    let fresh = settings(rastrigin()).build().unwrap();
+    assert_eq!(engine.positions(), fresh.positions());
+    assert_eq!(engine.evaluations(), fresh.evaluations());
+    // Put back in the same storage: a front end's views stay valid.
+    assert_eq!(engine.layout(), layout);
     let f = Arc::new(Failing(AtomicUsize::new(0), 0));
     assert!(matches!(
         settings(PotentialSpec::User(f)).build().err(),

@@ -53,9 +53,10 @@ Errors form one hierarchy under :class:`HrlaError` (a ``ValueError``):
 that cannot be allocated raises ``MemoryError``. Ctrl-C raises
 ``KeyboardInterrupt`` at the next call of a Python function, or between
 two steps of a built-in's run; a Python function is never called again
-after it raised. An :class:`Optimizer` interrupted between two steps can
-go on with the bits of a run never interrupted; one whose Python
-potential raised in the middle of a step refuses to go on, saying why.
+after it raised. An :class:`Optimizer` interrupted between two steps goes
+on with the bits of a run never interrupted; one whose Python potential
+raised in the middle of a call is put back as it was before that call,
+and goes on with the same bits too.
 
 Entry points: :func:`minimize` (scipy.optimize's conventions, returns an
 :class:`OptimizeResult`), :class:`Optimizer` (step by step, chains as numpy

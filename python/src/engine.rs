@@ -13,7 +13,7 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 
 use crate::config::{self, PyPolishSettings, PyPolished, PyReport, PyStop};
-use crate::errors::{HrlaError, busy, guard, internal, layer};
+use crate::errors::{busy, guard, internal, layer};
 use crate::observer::{observer_of, signal_steps};
 use crate::potential;
 
@@ -22,11 +22,12 @@ use crate::potential;
 /// needs the GIL), a check after each. A call interrupted by a check
 /// leaves the optimiser after a whole step, so that going on gives the
 /// bits of a run never interrupted; an exception of the potential ends it
-/// at once and cuts the run ([`Cut`]).
-fn step(py: Python<'_>, engine: &mut Engine, cut: &Cut, steps: u64) -> PyResult<()> {
+/// at once, and the layer undoes the step it was in, so that going on
+/// does too.
+fn step(py: Python<'_>, engine: &mut Engine, steps: u64) -> PyResult<()> {
     if engine.is_user() {
         for _ in 0..steps {
-            engine.step(1).map_err(|e| cut.error(py, e))?;
+            engine.step(1).map_err(layer)?;
             py.check_signals()?;
         }
         return Ok(());
@@ -51,12 +52,11 @@ fn step(py: Python<'_>, engine: &mut Engine, cut: &Cut, steps: u64) -> PyResult<
 /// is called at the same steps (once a step), after the check:
 /// `observer(iteration, evaluations, best_value[, best_x])`; a true answer ends the
 /// run ([`hrla::Termination::Observer`]), an exception ends it with that
-/// exception. An exception of the potential ends it at once and cuts the
-/// run ([`Cut`]).
+/// exception. An exception of the potential ends it at once, and the
+/// layer undoes the call it was in: the optimiser is as before `run`.
 fn run(
     py: Python<'_>,
     engine: &mut Engine,
-    cut: &Cut,
     user_observer: Option<&Py<PyAny>>,
     with_x: bool,
 ) -> PyResult<PyReport> {
@@ -91,7 +91,7 @@ fn run(
     };
     match interrupted {
         Some(e) => Err(e),
-        None => report.map(Into::into).map_err(|e| cut.error(py, e)),
+        None => report.map(Into::into).map_err(layer),
     }
 }
 
@@ -99,7 +99,6 @@ fn run(
 fn local_search(
     py: Python<'_>,
     engine: &mut Engine,
-    cut: &Cut,
     chain: usize,
     settings: PolishSettings<f64>,
     quench: bool,
@@ -109,7 +108,7 @@ fn local_search(
     } else {
         py.detach(|| engine.local_search(chain, settings, quench))
     };
-    done.map(Into::into).map_err(|e| cut.error(py, e))
+    done.map(Into::into).map_err(layer)
 }
 
 /// Algorithm 1 of the paper, step by step: `N` independent chains of a
@@ -125,8 +124,6 @@ fn local_search(
 #[pyclass(frozen, module = "hrla", name = "Optimizer")]
 pub struct PyOptimizer {
     engine: Mutex<Engine>,
-    /// Set when the potential raised in the middle of a step or search.
-    cut: Cut,
     /// Where the chains are: fixed for the optimiser's life (the kernel
     /// never moves or resizes its chains), so the views need no lock.
     layout: Layout,
@@ -163,56 +160,6 @@ impl PyOptimizer {
             };
             body(&mut engine)
         })
-    }
-
-    /// [`with`](Self::with) for a call that evaluates the potential
-    /// (`step`, `run`, `polish`, `quench`, `restart`): refused with
-    /// `HrlaError` once the potential has raised in the middle of one.
-    fn evaluating<T>(&self, body: impl FnOnce(&mut Engine, &Cut) -> PyResult<T>) -> PyResult<T> {
-        if let Some(why) = self.cut.why() {
-            return Err(HrlaError::new_err(why));
-        }
-        self.with(|e| body(e, &self.cut))
-    }
-}
-
-/// Whether, and how, a run was cut short by its Python potential. An
-/// exception of the potential (Ctrl-C's `KeyboardInterrupt` included)
-/// ends the call at once, with no second call of the potential; the step
-/// or search it interrupted had already moved its points, whose values
-/// never came. That state is not one a run never interrupted passes
-/// through, so every later call that would evaluate refuses, saying why;
-/// the views and the best stay readable. (Ctrl-C seen between two steps
-/// leaves a whole step, and the run can go on.)
-#[derive(Default)]
-struct Cut(Mutex<Option<String>>);
-
-impl Cut {
-    /// The sentence of the cut, if the run was cut.
-    fn why(&self) -> Option<String> {
-        self.0.lock().unwrap_or_else(|e| e.into_inner()).clone()
-    }
-
-    /// `e` as Python's exception; an exception of the potential is kept
-    /// as it was raised, and the cut noted.
-    fn error(&self, py: Python<'_>, e: hrla_dyn::Error) -> PyErr {
-        let from_potential = matches!(e, hrla_dyn::Error::User(_));
-        let err = layer(e);
-        if from_potential {
-            let what = err
-                .get_type(py)
-                .name()
-                .map_or_else(|_| "an exception".to_owned(), |n| n.to_string());
-            let mut cut = self.0.lock().unwrap_or_else(|e| e.into_inner());
-            cut.get_or_insert(format!(
-                "the run ended when its potential raised {what} in the middle of a step, polish, \
-                 quench or restart: the points of that call were moved and never evaluated, so the \
-                 optimiser cannot go on as a run never interrupted would; its views and best can \
-                 still be read (Ctrl-C seen between two steps leaves a whole step, and the run can \
-                 go on)"
-            ));
-        }
-        err
     }
 }
 
@@ -257,7 +204,6 @@ impl PyOptimizer {
                 dim: engine.dim(),
                 len: engine.len(),
                 engine: Mutex::new(engine),
-                cut: Cut::default(),
             })
         })
     }
@@ -267,12 +213,12 @@ impl PyOptimizer {
     /// interrupts it after a whole step (`KeyboardInterrupt`), and calling
     /// it again goes on as if uninterrupted. An exception of a Python
     /// potential (`KeyboardInterrupt` raised while it runs included) ends
-    /// the call at once, the potential not called again, and ends the run:
-    /// later calls that evaluate raise `HrlaError` saying so.
+    /// the call at once, the potential not called again, and undoes the
+    /// step it was in: calling it again goes on as if uninterrupted.
     #[pyo3(signature = (steps = None))]
     fn step(&self, py: Python<'_>, steps: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
         let steps = config::unsigned_opt(steps, "steps")?.unwrap_or(1);
-        self.evaluating(|e, cut| step(py, e, cut, steps))
+        self.with(|e| step(py, e, steps))
     }
 
     /// Steps until a stopping rule holds; returns the `Report`. Ctrl-C
@@ -293,7 +239,7 @@ impl PyOptimizer {
         with_x: bool,
     ) -> PyResult<PyReport> {
         let observer = observer_of(observer)?;
-        self.evaluating(|e, cut| run(py, e, cut, observer.as_ref(), with_x))
+        self.with(|e| run(py, e, observer.as_ref(), with_x))
     }
 
     /// The first stopping rule that holds now (`"Steps"`, `"Evaluations"`,
@@ -319,7 +265,7 @@ impl PyOptimizer {
         settings: Option<PyPolishSettings>,
     ) -> PyResult<PyPolished> {
         let s = settings.map_or(PolishSettings::new(1000), |s| s.0);
-        self.evaluating(|e, cut| local_search(py, e, cut, chain, s, false))
+        self.with(|e| local_search(py, e, chain, s, false))
     }
 
     /// L-BFGS from a copy of chain `chain`'s current point (the bottom of
@@ -332,13 +278,13 @@ impl PyOptimizer {
         settings: Option<PyPolishSettings>,
     ) -> PyResult<PyPolished> {
         let s = settings.map_or(PolishSettings::new(1000), |s| s.0);
-        self.evaluating(|e, cut| local_search(py, e, cut, chain, s, true))
+        self.with(|e| local_search(py, e, chain, s, true))
     }
 
     /// Moves chain `chain` to `x` (confined) with zero velocity and
     /// evaluates it: one evaluation; `False` when none is left.
-    fn restart(&self, py: Python<'_>, chain: usize, x: Vec<f64>) -> PyResult<bool> {
-        self.evaluating(|e, cut| e.restart(chain, &x).map_err(|e| cut.error(py, e)))
+    fn restart(&self, chain: usize, x: Vec<f64>) -> PyResult<bool> {
+        self.with(|e| e.restart(chain, &x).map_err(layer))
     }
 
     /// Positions `x_k`, shape `(N, D)`: a read-only view, no copy.

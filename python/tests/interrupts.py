@@ -106,11 +106,9 @@ def case_scalar():
 
 def case_python_potential():
     """A Python potential's run: SIGINT seen between two steps leaves a
-    whole step (the run goes on with the bits of one never interrupted);
-    SIGINT while the potential runs raises inside it and ends the run
-    there, and the optimiser then says so instead of stepping on (which
-    of the two happens depends on when the signal comes: both are
-    checked)."""
+    whole step; SIGINT while the potential runs raises inside it and puts
+    the optimiser back as it was before the call. Either way it goes on
+    with the bits of a run never interrupted."""
     def rastrigin(X):
         t = 2 * np.pi * X
         return X.shape[1] + np.sum(X * X - np.cos(t), axis=1), 2 * X + 2 * np.pi * np.sin(t)
@@ -121,11 +119,7 @@ def case_python_potential():
 
     opt = make()
     interrupted(opt.run)
-    try:
-        opt.step(2)
-    except hrla.HrlaError as e:
-        assert "raised KeyboardInterrupt" in str(e), e
-        return
+    opt.step(2)
     fresh = make()
     fresh.step(opt.iteration)
     same_state(opt, fresh)

@@ -42,7 +42,7 @@ use crate::schedule::Schedule;
 /// the seed, whatever mix of [`step`](Optimizer::step) and
 /// [`run`](Optimizer::run) drives it, whatever the executor, and chain `c`
 /// is the same in any run of the same seed.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Optimizer<F: Float, P, S: Sampler<F>, C, St, B = Unbounded, E = Serial> {
     potential: P,
     domain: B,
@@ -63,6 +63,56 @@ pub struct Optimizer<F: Float, P, S: Sampler<F>, C, St, B = Unbounded, E = Seria
     /// a failed run stays failed. [`Error::Poisoned`] while the potential
     /// is being evaluated, so that it stays if the potential panics.
     failed: Option<Error>,
+}
+
+/// A copy of the run; [`clone_from`](Clone::clone_from) copies into the
+/// chains' own storage (a `Vec` keeps its buffer), so that a front end
+/// that reads the chains in place can put a run back as it was.
+impl<F, P, S, C, St, B, E> Clone for Optimizer<F, P, S, C, St, B, E>
+where
+    F: Float,
+    P: Clone,
+    S: Sampler<F> + Clone,
+    C: Clone,
+    St: Clone,
+    B: Clone,
+    E: Clone,
+{
+    fn clone(&self) -> Self {
+        Self {
+            potential: self.potential.clone(),
+            domain: self.domain.clone(),
+            sampler: self.sampler.clone(),
+            kernel: self.kernel,
+            schedule: self.schedule.clone(),
+            chains: self.chains.clone(),
+            executor: self.executor.clone(),
+            best: self.best,
+            iteration: self.iteration,
+            evaluations: self.evaluations,
+            stride: self.stride,
+            stop: self.stop,
+            diverged: self.diverged,
+            stall_value: self.stall_value,
+            stall_since: self.stall_since,
+            failed: self.failed,
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.chains.clone_from(&source.chains);
+        self.potential.clone_from(&source.potential);
+        self.domain.clone_from(&source.domain);
+        self.sampler.clone_from(&source.sampler);
+        self.kernel = source.kernel;
+        self.schedule.clone_from(&source.schedule);
+        self.executor.clone_from(&source.executor);
+        (self.best, self.iteration, self.evaluations) =
+            (source.best, source.iteration, source.evaluations);
+        (self.stride, self.stop, self.diverged) = (source.stride, source.stop, source.diverged);
+        (self.stall_value, self.stall_since, self.failed) =
+            (source.stall_value, source.stall_since, source.failed);
+    }
 }
 
 /// `settings` within `left` evaluations of the run's budget, or, none

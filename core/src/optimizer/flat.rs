@@ -83,6 +83,29 @@ pub struct FlatChains<F, R, Fs, Is, Ds, Rs> {
     item: PhantomData<fn() -> (F, R)>,
 }
 
+/// A copy of the chains; [`clone_from`](Clone::clone_from) copies into
+/// this storage (a `Vec` of the same length keeps its buffer).
+impl<F, R, Fs: Clone, Is: Clone, Ds: Clone, Rs: Clone> Clone for FlatChains<F, R, Fs, Is, Ds, Rs> {
+    fn clone(&self) -> Self {
+        Self {
+            d: self.d,
+            floats: self.floats.clone(),
+            iterations: self.iterations.clone(),
+            diverged: self.diverged.clone(),
+            rngs: self.rngs.clone(),
+            item: PhantomData,
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.d = source.d;
+        self.floats.clone_from(&source.floats);
+        self.iterations.clone_from(&source.iterations);
+        self.diverged.clone_from(&source.diverged);
+        self.rngs.clone_from(&source.rngs);
+    }
+}
+
 /// [`FlatChains`] over slices the caller keeps.
 pub type FlatSlices<'a, F, R> =
     FlatChains<F, R, &'a mut [F], &'a mut [u64], &'a mut [bool], &'a mut [R]>;
