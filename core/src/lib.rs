@@ -291,8 +291,7 @@ mod start;
 mod ziggurat_tables;
 
 pub use auto::{
-    Auto, AutoProgress, AutoProgressOf, AutoSolution, AutoStorage, FlatAutoProgress, FlatSolution,
-    MAX_STEPS, Parts, Sampling, Solution, Tempering,
+    Auto, AutoProgress, AutoStorage, MAX_STEPS, Parts, Problem, Sampling, Solution, Tempering,
 };
 pub use domain::{Bounds, Domain, Interval, Sides, SliceDomain, Unbounded};
 pub use error::Error;

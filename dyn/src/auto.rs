@@ -5,7 +5,7 @@
 use std::ops::ControlFlow;
 
 use hrla::rand_core::SeedableRng;
-use hrla::{Auto, AutoStorage, FlatAutoProgress, Termination};
+use hrla::{Auto, AutoProgress, AutoStorage, Problem as Posed, Termination};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::{BoxSpec, Error, MEMORY, PotentialSpec, Progress, dimension};
@@ -57,6 +57,13 @@ pub struct Problem {
     /// potential is finite; the other chains draw theirs uniformly. None:
     /// every chain draws.
     pub x0: Option<Vec<f64>>,
+    /// End the run once the best value is at or below this.
+    pub target: Option<f64>,
+    /// `(window, tolerance)`: end the rounds once the best value has not
+    /// fallen by more than `tolerance` over `window` rounds.
+    pub stall: Option<(u64, f64)>,
+    /// End the rounds after this many.
+    pub rounds: Option<u64>,
 }
 
 /// Minimises `problem` with `auto` at the problem's dimension, any
@@ -84,7 +91,7 @@ pub fn solve(
     let pot = problem.potential.build(d)?;
     let mut storage = Storage::new(n, d)?;
     let mut lent = storage.lend()?;
-    let observe = |p: &FlatAutoProgress<'_, f64>| {
+    let observe = |p: &AutoProgress<'_, f64>| {
         if pot.failed() {
             return ControlFlow::Break(());
         }
@@ -97,25 +104,20 @@ pub fn solve(
             chains: n,
         })
     };
-    let found = match &problem.x0 {
-        Some(x0) => auto.minimize_flat_from(
-            &pot,
-            &domain,
-            x0,
-            problem.budget,
-            problem.seed,
-            &mut lent,
-            observe,
-        ),
-        None => auto.minimize_flat_with(
-            &pot,
-            &domain,
-            problem.budget,
-            problem.seed,
-            &mut lent,
-            observe,
-        ),
-    };
+    let mut posed = Posed::new(&pot, &domain, problem.budget).seed(problem.seed);
+    if let Some(x0) = &problem.x0 {
+        posed = posed.x0(x0);
+    }
+    if let Some(target) = problem.target {
+        posed = posed.target(target);
+    }
+    if let Some((window, tolerance)) = problem.stall {
+        posed = posed.stall(window, tolerance);
+    }
+    if let Some(rounds) = problem.rounds {
+        posed = posed.rounds(rounds);
+    }
+    let found = auto.minimize_with(&posed, &mut lent, observe);
     pot.finish()?;
     let s = found?;
     Ok(Solution {

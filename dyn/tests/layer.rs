@@ -180,6 +180,9 @@ fn the_observer_sees_the_best_point() {
         chains: Some(4),
         dim: Some(10),
         x0: None,
+        target: None,
+        stall: None,
+        rounds: None,
     };
     let mut calls = 0;
     let s = solve(&Auto::default(), &problem, &mut |p| {
@@ -377,6 +380,9 @@ fn auto_runs_in_a_box_per_coordinate() {
         chains: Some(4),
         dim: None,
         x0: None,
+        target: None,
+        stall: None,
+        rounds: None,
     };
     let sides = wide_and_narrow();
     let found = solve(
@@ -412,7 +418,10 @@ fn auto_runs_at_any_dimension() {
     let mut lbfgs: Lbfgs<f64, 17, 8> = Lbfgs::new();
     let domain = Interval::new(-5.12, 5.12).unwrap();
     let kernel = Auto::default()
-        .minimize(&Rastrigin, domain, 5_000, 2, &mut chains, &mut lbfgs)
+        .minimize(
+            &hrla::Problem::new(&Rastrigin, &domain, 5_000).seed(2),
+            (&mut chains[..], &mut lbfgs),
+        )
         .unwrap();
     for d in [17, 257] {
         let problem = Problem {
@@ -423,6 +432,9 @@ fn auto_runs_at_any_dimension() {
             chains: Some(4),
             dim: Some(d),
             x0: None,
+            target: None,
+            stall: None,
+            rounds: None,
         };
         let s = solve(&Auto::default(), &problem, &mut |_| {
             ControlFlow::Continue(())
@@ -439,7 +451,7 @@ fn auto_runs_at_any_dimension() {
 }
 
 /// `x0` is chain 0's start in the layer as in the kernel (the same bits
-/// as `Auto::minimize_from` over `Chain<f64, 17>`), and its length fixes
+/// as `Auto::minimize` from `x0` over `Chain<f64, 17>`), and its length fixes
 /// the dimension like the box's does.
 #[test]
 fn auto_starts_chain_0_at_x0() {
@@ -448,14 +460,11 @@ fn auto_starts_chain_0_at_x0() {
     let domain = Interval::new(-5.12, 5.12).unwrap();
     let x0: [f64; 17] = std::array::from_fn(|i| 0.25 * i as f64 - 2.0);
     let kernel = Auto::default()
-        .minimize_from(
-            &Rastrigin,
-            domain,
-            &x0,
-            5_000,
-            2,
-            &mut chains,
-            &mut lbfgs,
+        .minimize_with(
+            &hrla::Problem::new(&Rastrigin, &domain, 5_000)
+                .seed(2)
+                .x0(&x0),
+            (&mut chains[..], &mut lbfgs),
             |_| ControlFlow::Continue(()),
         )
         .unwrap();
@@ -467,6 +476,9 @@ fn auto_starts_chain_0_at_x0() {
         chains: Some(4),
         dim: None,
         x0: Some(x0.to_vec()),
+        target: None,
+        stall: None,
+        rounds: None,
     };
     let s = solve(&Auto::default(), &problem, &mut |_| {
         ControlFlow::Continue(())
@@ -498,7 +510,10 @@ fn auto_is_the_kernels() {
     let mut lbfgs: Lbfgs<f64, 10, 8> = Lbfgs::new();
     let domain = Interval::new(-5.12, 5.12).unwrap();
     let kernel = Auto::default()
-        .minimize(&Rastrigin, domain, 20_000, 3, &mut chains, &mut lbfgs)
+        .minimize(
+            &hrla::Problem::new(&Rastrigin, &domain, 20_000).seed(3),
+            (&mut chains[..], &mut lbfgs),
+        )
         .unwrap();
     for potential in [rastrigin_as(false), rastrigin_as(true)] {
         let problem = Problem {
@@ -509,6 +524,9 @@ fn auto_is_the_kernels() {
             chains: Some(8),
             dim: Some(10),
             x0: None,
+            target: None,
+            stall: None,
+            rounds: None,
         };
         let s = solve(&Auto::default(), &problem, &mut |_| {
             ControlFlow::Continue(())

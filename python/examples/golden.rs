@@ -9,8 +9,8 @@
 
 use hrla::{
     Ackley, Auto, Builder, Chain, Chains, Gaussian, Geometric, Hrla, Interval, Lbfgs, Levy, Linear,
-    Ola, Optimizer, Point, PolishSettings, Potential, Quadratic, Rastrigin, Sampler, Schedule,
-    Start, Stop, Ula,
+    Ola, Optimizer, Point, PolishSettings, Potential, Problem, Quadratic, Rastrigin, Sampler,
+    Schedule, Start, Stop, Ula,
 };
 
 /// A float's bits as the tests read them: 16 hex digits.
@@ -152,12 +152,8 @@ fn main() -> Result<(), hrla::Error> {
     let mut storage = chains::<4>(Auto::<f64>::chains_for(budget));
     let mut lbfgs: Lbfgs<f64, 4, 8> = Lbfgs::new();
     let s = Auto::default().minimize(
-        &Rastrigin,
-        Interval::new(-5.12, 5.12)?,
-        budget,
-        5,
-        &mut storage,
-        &mut lbfgs,
+        &Problem::new(&Rastrigin, &Interval::new(-5.12, 5.12)?, budget).seed(5),
+        (&mut storage[..], &mut lbfgs),
     )?;
     println!(
         "{{\"case\":\"auto_rastrigin\",\"x\":{},\"value\":{},\"evaluations\":{},\"rounds\":{},\

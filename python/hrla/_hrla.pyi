@@ -228,4 +228,5 @@ class Auto:
     def minimize(self, potential: PotentialLike, domain: BoxLike, budget: int, seed: Optional[int] = 0, *,
                  chains: Optional[int] = None, dim: Optional[int] = None,
                  x0: Optional[Sequence[float]] = None, observer: Union[None, Observer, ObserverX] = None,
-                 with_x: bool = False) -> Solution: ...
+                 with_x: bool = False, target: Optional[float] = None,
+                 stall: Optional[Tuple[int, float]] = None, rounds: Optional[int] = None) -> Solution: ...

@@ -238,20 +238,16 @@ def seed_of(rng: Any, name: str = "rng") -> int:
 
 
 class _Watch:
-    """What :func:`minimize` checks as a run goes, besides the kernel's
-    own rules: the target, stall and round budget of ``"auto"``, the time
-    limit, the callback and the progress line. Called as the observer of
-    :meth:`Optimizer.run` or :meth:`Auto.minimize` (with ``with_x=True``
-    where the callback needs the best point); returns ``True`` to stop, and
-    keeps why in ``reason``."""
+    """What only Python checks as a run goes: the time limit, the callback
+    and the progress line (the kernel's own rules hold the target, stall
+    and round limits). Called as the observer of :meth:`Optimizer.run` or
+    :meth:`Auto.minimize` (with ``with_x=True`` where the callback needs
+    the best point); returns ``True`` to stop, and keeps why in
+    ``reason``."""
 
-    def __init__(self, method: str, *, target: Optional[float], stall: Optional[Tuple[int, float]],
-                 maxiter: Optional[int], maxtime: Optional[float], callback: Optional[Callable[..., Any]],
+    def __init__(self, method: str, *, maxtime: Optional[float], callback: Optional[Callable[..., Any]],
                  disp: bool, nfev: Callable[[int], int]) -> None:
         self.method = method
-        self.target = target
-        self.stall = stall
-        self.maxiter = maxiter
         self.maxtime = maxtime
         self.callback = callback
         self.form = "x" if callback is None else _objective.callback_form(callback)
@@ -261,21 +257,9 @@ class _Watch:
         self.reason: Optional[str] = None
         self.start = _clock()
         self.shown: Optional[float] = None
-        self.by_round: Dict[int, float] = {}
         self.called_at: Optional[int] = None
 
     def __call__(self, iteration: int, evaluations: int, value: float, x: Optional[np.ndarray] = None) -> bool:
-        if self.target is not None and value <= self.target:
-            return self.stop("Target")
-        if self.stall is not None:
-            window, tolerance = self.stall
-            self.by_round[iteration] = value
-            then = self.by_round.get(iteration - window)
-            if then is not None and then - value <= tolerance:
-                return self.stop("Stalled")
-            self.by_round.pop(iteration - window - 1, None)
-        if self.maxiter is not None and iteration >= self.maxiter:
-            return self.stop("Steps")
         now = _clock()
         if self.disp and (self.shown is None or now - self.shown >= 1.0):
             self.shown = now
@@ -588,20 +572,28 @@ def _renamed(new: Any, old: Any, name: str, old_name: str) -> Any:
 
 def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int], dim: Optional[int],
           x0: Optional[np.ndarray], objective: Optional[_objective.Objective], builtin: bool, fun: Any,
-          nfev: Callable[[int], int], spend: _Budget, **watch: Any) -> OptimizeResult:
+          nfev: Callable[[int], int], spend: _Budget, *, target: Optional[float],
+          stall: Optional[Tuple[int, float]], maxiter: Optional[int], maxtime: Optional[float],
+          callback: Optional[Callable[..., Any]], disp: bool) -> OptimizeResult:
     if box is None:
         raise ValueError('method="auto" needs bounds: D (lo, hi) pairs, scipy.optimize.Bounds, or (lo, hi) with dim=')
 
-    w = _Watch("auto", nfev=nfev, **watch)
-    observed = any(watch[k] is not None for k in ("target", "stall", "maxiter", "maxtime", "callback")) or watch["disp"]
+    w = _Watch("auto", maxtime=maxtime, callback=callback, disp=disp, nfev=nfev)
+    observed = maxtime is not None or callback is not None or disp
+    # The limits as the run's own rules, which take only finite numbers:
+    # the largest float stands for inf (target=inf: any finite value
+    # reaches it; stall's tolerance inf: the run stalls after its window).
     s = Auto().minimize(potential, box, budget, seed, chains=chains, dim=dim,
                         x0=None if x0 is None else [float(v) for v in x0], observer=w if observed else None,
-                        with_x=watch["callback"] is not None)
+                        with_x=callback is not None,
+                        target=None if target is None else min(target, sys.float_info.max),
+                        stall=None if stall is None else (stall[0], min(stall[1], sys.float_info.max)),
+                        rounds=maxiter)
     termination = w.reason if s.termination == "Observer" and w.reason else s.termination
     x = np.asarray(s.x)
     w.polished(x, s.value, termination)
     jac = _gradient(x, objective, builtin, fun)
-    if watch["disp"]:
+    if disp:
         w.show(s.rounds, s.evaluations, s.value, _clock())
     njev = objective.njev if objective is not None else s.evaluations
     note = ""
@@ -660,8 +652,7 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
     if x0 is not None:
         opt.restart(0, [float(v) for v in x0])
 
-    w = _Watch(method, target=None, stall=None, maxiter=None, maxtime=maxtime, callback=callback, disp=disp,
-               nfev=nfev)
+    w = _Watch(method, maxtime=maxtime, callback=callback, disp=disp, nfev=nfev)
     observed = maxtime is not None or callback is not None or disp
     report: Any = None
     termination = "Steps"

@@ -120,7 +120,14 @@ impl PyAuto {
     /// then `"Observer"`, and an exception ends it with that exception.
     /// With `with_x=True` it gets the best point too, a copy:
     /// `observer(rounds, evaluations, best_value, best_x)`.
-    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, x0 = None, observer = None, with_x = false))]
+    ///
+    /// The run's own rules: `target` ends it once the best value is at or
+    /// below it (termination `"Target"`); `stall=(window, tolerance)` ends
+    /// the rounds once the best has not fallen by more than `tolerance`
+    /// over `window` rounds (`"Stalled"`); `rounds` ends them after that
+    /// many (`"Steps"`). A run ended by `stall` or `rounds` still polishes
+    /// its best point.
+    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, x0 = None, observer = None, with_x = false, target = None, stall = None, rounds = None))]
     #[allow(clippy::too_many_arguments)]
     fn minimize(
         &self,
@@ -134,6 +141,9 @@ impl PyAuto {
         x0: Option<Vec<f64>>,
         observer: Option<&Bound<'_, PyAny>>,
         with_x: bool,
+        target: Option<f64>,
+        stall: Option<(u64, f64)>,
+        rounds: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PySolution> {
         guard(|| {
             let problem = Problem {
@@ -144,6 +154,9 @@ impl PyAuto {
                 chains: config::unsigned_opt(chains, "chains")?,
                 dim: config::unsigned_opt(dim, "dim")?,
                 x0,
+                target,
+                stall,
+                rounds: config::unsigned_opt(rounds, "rounds")?,
             };
             self.solve(py, &problem, observer, with_x)
         })

@@ -374,7 +374,9 @@ fn the_run_loop_exists_once() {
     );
 }
 
-/// The twins of the run-time path are gone: one optimiser, one build.
+/// The twins of the run-time path are gone: one optimiser, one build,
+/// one problem and two entry points for `Auto`, whose stopping rules are
+/// the kernel's (a front end keeps none of its own).
 #[test]
 fn no_twin_of_the_optimiser() {
     for (path, src) in product_sources() {
@@ -384,8 +386,29 @@ fn no_twin_of_the_optimiser() {
             "fn step_on(",
             "fn run_on(",
             "FlatProgress",
+            "FlatAutoProgress",
+            "FlatSolution",
+            "minimize_flat",
+            "fn minimize_from(",
         ] {
             assert!(!src.contains(twin), "{} still has {twin}", path.display());
         }
+    }
+}
+
+/// Python's watch of a run keeps only what is Python's own (the time
+/// limit, the callback, the progress line): the target, stall and round
+/// limits are the kernel's rules, for `auto` as for the samplers.
+#[test]
+fn python_keeps_no_stopping_rule_of_its_own() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let src = fs::read_to_string(root.join("python/hrla/_minimize.py")).expect("readable source");
+    let start = src.find("class _Watch").expect("the watch");
+    let end = src[start..]
+        .find("\n\n\ndef ")
+        .map_or(src.len(), |e| start + e);
+    let watch = &src[start..end];
+    for rule in ["self.target", "self.stall", "self.maxiter", "by_round"] {
+        assert!(!watch.contains(rule), "_Watch still checks {rule}");
     }
 }

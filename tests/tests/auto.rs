@@ -10,7 +10,7 @@ use std::ops::ControlFlow;
 use hrla::rand_core::SeedableRng;
 use hrla::{
     Ackley, Auto, AutoStorage, Bounds, Chain, Error, FnPotential, Interval, Lbfgs, Parts,
-    Potential, Rastrigin, Sampling, StyblinskiTang,
+    Potential, Problem, Rastrigin, Sampling, StyblinskiTang, Termination,
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -30,12 +30,8 @@ fn the_budget_is_exact() {
         let mut lbfgs: Lbfgs<f64, 4, 5> = Lbfgs::new();
         let found = Auto::default()
             .minimize(
-                &p,
-                Interval::new(-5.12, 5.12).unwrap(),
-                budget,
-                9,
-                &mut chains::<4>(32),
-                &mut lbfgs,
+                &Problem::new(&p, &Interval::new(-5.12, 5.12).unwrap(), budget).seed(9),
+                (&mut chains::<4>(32)[..], &mut lbfgs),
             )
             .unwrap();
         assert_eq!(found.evaluations, calls.get(), "budget {budget}");
@@ -52,12 +48,8 @@ fn runs_are_reproducible() {
         let mut lbfgs: Lbfgs<f64, 10, 8> = Lbfgs::new();
         Auto::default()
             .minimize(
-                &Ackley,
-                Interval::new(-32.768, 32.768).unwrap(),
-                20_000,
-                seed,
-                &mut chains::<10>(32),
-                &mut lbfgs,
+                &Problem::new(&Ackley, &Interval::new(-32.768, 32.768).unwrap(), 20_000).seed(seed),
+                (&mut chains::<10>(32)[..], &mut lbfgs),
             )
             .unwrap()
     };
@@ -77,12 +69,9 @@ fn finds_styblinski_tang() {
         let mut lbfgs: Lbfgs<f64, 10, 8> = Lbfgs::new();
         let found = Auto::default()
             .minimize(
-                &StyblinskiTang,
-                Interval::new(-5.0, 5.0).unwrap(),
-                125_000,
-                seed,
-                &mut chains::<10>(32),
-                &mut lbfgs,
+                &Problem::new(&StyblinskiTang, &Interval::new(-5.0, 5.0).unwrap(), 125_000)
+                    .seed(seed),
+                (&mut chains::<10>(32)[..], &mut lbfgs),
             )
             .unwrap();
         assert!(found.value - minimum < 1e-9, "seed {seed}: {found:?}");
@@ -97,12 +86,8 @@ fn works_in_f32() {
     let mut lbfgs: Lbfgs<f32, 2, 4> = Lbfgs::new();
     let found = Auto::default()
         .minimize(
-            &Rastrigin,
-            Interval::new(-5.12f32, 5.12).unwrap(),
-            10_000,
-            2,
-            &mut ch,
-            &mut lbfgs,
+            &Problem::new(&Rastrigin, &Interval::new(-5.12f32, 5.12).unwrap(), 10_000).seed(2),
+            (&mut ch[..], &mut lbfgs),
         )
         .unwrap();
     assert!(found.value < 1e-6, "{found:?}");
@@ -116,12 +101,8 @@ fn bad_settings_are_refused() {
     let run = |auto: Auto<f64>, budget: u64, n: usize| {
         let mut lbfgs: Lbfgs<f64, 2, 3> = Lbfgs::new();
         auto.minimize(
-            &Rastrigin,
-            domain,
-            budget,
-            0,
-            &mut chains::<2>(n),
-            &mut lbfgs,
+            &Problem::new(&Rastrigin, &domain, budget).seed(0),
+            (&mut chains::<2>(n)[..], &mut lbfgs),
         )
     };
     let d = Auto::default();
@@ -200,7 +181,10 @@ fn bad_settings_are_refused() {
         f64::NAN
     });
     assert!(matches!(
-        d.minimize(&nan_start, domain, 1000, 0, &mut chains::<2>(4), &mut lbfgs),
+        d.minimize(
+            &Problem::new(&nan_start, &domain, 1000).seed(0),
+            (&mut chains::<2>(4)[..], &mut lbfgs)
+        ),
         Err(Error::NonFiniteStart { what: "value", .. })
     ));
 }
@@ -267,12 +251,13 @@ fn the_returned_point_is_polished() {
             ..Auto::default()
         }
         .minimize(
-            &FnPotential::new(rosenbrock),
-            Interval::new(-5.0, 10.0).unwrap(),
-            5_000,
-            seed,
-            &mut chains::<6>(4),
-            &mut lbfgs,
+            &Problem::new(
+                &FnPotential::new(rosenbrock),
+                &Interval::new(-5.0, 10.0).unwrap(),
+                5_000,
+            )
+            .seed(seed),
+            (&mut chains::<6>(4)[..], &mut lbfgs),
         )
         .unwrap();
         let mut g = [0.0; 6];
@@ -303,22 +288,14 @@ fn the_scale_of_u_does_not_matter() {
         let mut lbfgs: Lbfgs<f64, 4, 8> = Lbfgs::new();
         let plain = Auto::default()
             .minimize(
-                &Rastrigin,
-                domain,
-                20_000,
-                seed,
-                &mut chains::<4>(4),
-                &mut lbfgs,
+                &Problem::new(&Rastrigin, &domain, 20_000).seed(seed),
+                (&mut chains::<4>(4)[..], &mut lbfgs),
             )
             .unwrap();
         let big = Auto::default()
             .minimize(
-                &scaled,
-                domain,
-                20_000,
-                seed,
-                &mut chains::<4>(4),
-                &mut lbfgs,
+                &Problem::new(&scaled, &domain, 20_000).seed(seed),
+                (&mut chains::<4>(4)[..], &mut lbfgs),
             )
             .unwrap();
         assert!(plain.value < 1e-12, "seed {seed}: {plain:?}");
@@ -343,12 +320,8 @@ fn flat_stretches_give_a_finite_step() {
         let mut lbfgs: Lbfgs<f64, 2, 8> = Lbfgs::new();
         let found = Auto::default()
             .minimize(
-                &well,
-                Interval::new(-5.0, 5.0).unwrap(),
-                20_000,
-                seed,
-                &mut chains::<2>(4),
-                &mut lbfgs,
+                &Problem::new(&well, &Interval::new(-5.0, 5.0).unwrap(), 20_000).seed(seed),
+                (&mut chains::<2>(4)[..], &mut lbfgs),
             )
             .unwrap();
         // At most the longest step: a tenth of the box by the velocity.
@@ -389,15 +362,19 @@ where
     let mut storage = AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs).unwrap();
     let mut seen = Vec::new();
     let found = auto
-        .minimize_flat_with(p, domain, budget, seed, &mut storage, |pr| {
-            seen.push(pr.evaluations);
-            seen.push(pr.value.to_f64().to_bits());
-            if pr.evaluations > stop_at {
-                ControlFlow::Break(())
-            } else {
-                ControlFlow::Continue(())
-            }
-        })
+        .minimize_with(
+            &Problem::new(p, &domain, budget).seed(seed),
+            &mut storage,
+            |pr| {
+                seen.push(pr.evaluations);
+                seen.push(pr.value.to_f64().to_bits());
+                if pr.evaluations > stop_at {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+        )
         .map(|s| {
             (
                 s.x.to_vec(),
@@ -429,15 +406,19 @@ where
     let mut lbfgs: Lbfgs<F, D, 6> = Lbfgs::new();
     let mut seen = Vec::new();
     let found = auto
-        .minimize_with(p, domain, budget, seed, &mut chains, &mut lbfgs, |pr| {
-            seen.push(pr.evaluations);
-            seen.push(pr.value.to_f64().to_bits());
-            if pr.evaluations > stop_at {
-                ControlFlow::Break(())
-            } else {
-                ControlFlow::Continue(())
-            }
-        })
+        .minimize_with(
+            &Problem::new(p, &domain, budget).seed(seed),
+            (&mut chains[..], &mut lbfgs),
+            |pr| {
+                seen.push(pr.evaluations);
+                seen.push(pr.value.to_f64().to_bits());
+                if pr.evaluations > stop_at {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+        )
         .map(|s| {
             (
                 s.x.to_vec(),
@@ -672,7 +653,7 @@ fn auto_storage_refuses_bad_shapes() {
     });
     let four = Bounds::new([-1.0; 4], [1.0; 4]).unwrap();
     assert!(matches!(
-        Auto::default().minimize_flat(&p, &four, 1_000, 0, &mut storage),
+        Auto::default().minimize(&Problem::new(&p, &four, 1_000).seed(0), &mut storage),
         Err(Error::Length {
             name: "box sides",
             expected: 3,
@@ -681,11 +662,8 @@ fn auto_storage_refuses_bad_shapes() {
     ));
     let q = hrla::Quadratic::<f64, 2>::new(1.0, [0.0; 2]).unwrap();
     assert!(matches!(
-        Auto::default().minimize_flat(
-            &q,
-            &Interval::new(-1.0, 1.0).unwrap(),
-            1_000,
-            0,
+        Auto::default().minimize(
+            &Problem::new(&q, &Interval::new(-1.0, 1.0).unwrap(), 1_000).seed(0),
             &mut storage
         ),
         Err(Error::Length {
@@ -695,16 +673,16 @@ fn auto_storage_refuses_bad_shapes() {
         })
     ));
     assert!(matches!(
-        Auto::default().minimize_flat(&p, &Interval::new(-1.0, 1.0).unwrap(), 7, 0, &mut storage),
+        Auto::default().minimize(
+            &Problem::new(&p, &Interval::new(-1.0, 1.0).unwrap(), 7).seed(0),
+            &mut storage
+        ),
         Err(Error::Budget { .. })
     ));
     assert_eq!(calls.get(), 0);
     let found = Auto::default()
-        .minimize_flat(
-            &p,
-            &Interval::new(-5.12, 5.12).unwrap(),
-            3_000,
-            0,
+        .minimize(
+            &Problem::new(&p, &Interval::new(-5.12, 5.12).unwrap(), 3_000).seed(0),
             &mut storage,
         )
         .unwrap();
@@ -731,14 +709,9 @@ fn a_start_x0_is_where_chain_0_begins() {
         });
         let mut lbfgs: Lbfgs<f64, 6, 8> = Lbfgs::new();
         let found = Auto::default()
-            .minimize_from(
-                &p,
-                domain,
-                &[0.0; 6],
-                200,
-                seed,
-                &mut chains::<6>(4),
-                &mut lbfgs,
+            .minimize_with(
+                &Problem::new(&p, &domain, 200).seed(seed).x0(&[0.0; 6]),
+                (&mut chains::<6>(4)[..], &mut lbfgs),
                 |_| ControlFlow::Continue(()),
             )
             .unwrap();
@@ -748,12 +721,8 @@ fn a_start_x0_is_where_chain_0_begins() {
         let mut lbfgs: Lbfgs<f64, 6, 8> = Lbfgs::new();
         let drawn = Auto::default()
             .minimize(
-                &Rastrigin,
-                domain,
-                200,
-                seed,
-                &mut chains::<6>(4),
-                &mut lbfgs,
+                &Problem::new(&Rastrigin, &domain, 200).seed(seed),
+                (&mut chains::<6>(4)[..], &mut lbfgs),
             )
             .unwrap();
         assert!(drawn.value > 0.5, "{seed}: {drawn:?}");
@@ -774,14 +743,9 @@ fn a_start_x0_gives_the_same_bits_flat_and_const() {
         let mut lbfgs: Lbfgs<f64, 17, 6> = Lbfgs::new();
         let mut first = Vec::new();
         let want = Auto::default()
-            .minimize_from(
-                &Rastrigin,
-                domain,
-                &x0,
-                budget,
-                seed,
-                &mut chains,
-                &mut lbfgs,
+            .minimize_with(
+                &Problem::new(&Rastrigin, &domain, budget).seed(seed).x0(&x0),
+                (&mut chains[..], &mut lbfgs),
                 |p| {
                     first.push(p.evaluations);
                     ControlFlow::Continue(())
@@ -796,10 +760,14 @@ fn a_start_x0_gives_the_same_bits_flat_and_const() {
         let mut storage = AutoStorage::new(17, m, &mut floats, &mut diverged, &mut rngs).unwrap();
         let mut second = Vec::new();
         let got = Auto::default()
-            .minimize_flat_from(&Rastrigin, &sides, &x0, budget, seed, &mut storage, |p| {
-                second.push(p.evaluations);
-                ControlFlow::Continue(())
-            })
+            .minimize_with(
+                &Problem::new(&Rastrigin, &sides, budget).seed(seed).x0(&x0),
+                &mut storage,
+                |p| {
+                    second.push(p.evaluations);
+                    ControlFlow::Continue(())
+                },
+            )
             .unwrap();
         assert_eq!(got.x, want.x.as_slice());
         assert_eq!(got.value.to_bits(), want.value.to_bits());
@@ -820,22 +788,19 @@ fn a_start_x0_gives_the_same_bits_flat_and_const() {
     let starts = |x0: Option<&[f64; 17]>| {
         let mut chains: Vec<Chain<f64, 17>> = chains::<17>(n);
         let mut lbfgs: Lbfgs<f64, 17, 6> = Lbfgs::new();
-        let stop = |_: &hrla::AutoProgress<'_, f64, 17>| ControlFlow::Break(());
+        let stop = |_: &hrla::AutoProgress<'_, f64>| ControlFlow::Break(());
         let auto = Auto::<f64>::default();
         let found = match x0 {
-            Some(x0) => auto.minimize_from(
-                &Rastrigin,
-                domain,
-                x0,
-                budget,
-                3,
-                &mut chains,
-                &mut lbfgs,
+            Some(x0) => auto.minimize_with(
+                &Problem::new(&Rastrigin, &domain, budget).seed(3).x0(x0),
+                (&mut chains[..], &mut lbfgs),
                 stop,
             ),
-            None => {
-                auto.minimize_with(&Rastrigin, domain, budget, 3, &mut chains, &mut lbfgs, stop)
-            }
+            None => auto.minimize_with(
+                &Problem::new(&Rastrigin, &domain, budget).seed(3),
+                (&mut chains[..], &mut lbfgs),
+                stop,
+            ),
         };
         assert_eq!(found.unwrap().evaluations, n as u64);
         chains.iter().map(|c| *c.x()).collect::<Vec<_>>()
@@ -862,14 +827,9 @@ fn a_bad_start_x0_is_a_typed_error() {
         });
         let mut lbfgs: Lbfgs<f64, 3, 4> = Lbfgs::new();
         let got = Auto::default()
-            .minimize_from(
-                &counted,
-                domain,
-                &x0,
-                1_000,
-                0,
-                &mut chains::<3>(4),
-                &mut lbfgs,
+            .minimize_with(
+                &Problem::new(&counted, &domain, 1_000).seed(0).x0(&x0),
+                (&mut chains::<3>(4)[..], &mut lbfgs),
                 |_| ControlFlow::Continue(()),
             )
             .map(|s| s.value);
@@ -937,12 +897,10 @@ fn a_bad_start_x0_is_a_typed_error() {
         .collect();
     let mut storage = AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs).unwrap();
     let got = Auto::default()
-        .minimize_flat_from(
-            &Rastrigin,
-            &domain,
-            &[0.0, 0.0],
-            1_000,
-            0,
+        .minimize_with(
+            &Problem::new(&Rastrigin, &domain, 1_000)
+                .seed(0)
+                .x0(&[0.0, 0.0]),
             &mut storage,
             |_| ControlFlow::Continue(()),
         )
@@ -1069,12 +1027,12 @@ fn the_step_rule_crosses_deep_regular_barriers() {
                 let mut lbfgs: Lbfgs<f64, 10, 8> = Lbfgs::new();
                 let found = auto
                     .minimize(
-                        &rastrigin,
-                        Interval::new(-5.12, 5.12).unwrap(),
-                        125_000,
-                        seed,
-                        &mut chains::<10>(Auto::<f64>::chains_for(125_000)),
-                        &mut lbfgs,
+                        &Problem::new(&rastrigin, &Interval::new(-5.12, 5.12).unwrap(), 125_000)
+                            .seed(seed),
+                        (
+                            &mut chains::<10>(Auto::<f64>::chains_for(125_000))[..],
+                            &mut lbfgs,
+                        ),
                     )
                     .unwrap();
                 found.value < 1e-6
@@ -1127,7 +1085,8 @@ fn a_callers_sides_are_checked_as_bounds_are() {
         |i| if i == 0 { (f64::NAN, 1.0) } else { (-1.0, 1.0) },
     ];
     for side in sides {
-        let got = Auto::default().minimize_flat(&p, &Own(side), 1_000, 0, &mut storage);
+        let got =
+            Auto::default().minimize(&Problem::new(&p, &Own(side), 1_000).seed(0), &mut storage);
         let want = Interval::new(side(0).0, side(0).1)
             .and(Interval::new(side(1).0, side(1).1))
             .unwrap_err();
@@ -1139,6 +1098,91 @@ fn a_callers_sides_are_checked_as_bounds_are() {
     }
     assert_eq!(calls.get(), 0, "a refused box evaluated the potential");
     // The same sides, in order, run.
-    let fine = Auto::default().minimize_flat(&p, &Own(|_| (-1.0, 1.0)), 1_000, 0, &mut storage);
+    let fine = Auto::default().minimize(
+        &Problem::new(&p, &Own(|_| (-1.0, 1.0)), 1_000).seed(0),
+        &mut storage,
+    );
     assert!(fine.is_ok());
+}
+
+/// The problem's rules end a run for their named reason: the target at
+/// once (no polish), the round limit and the stall rule after a round and
+/// the polish; `rounds(0)` runs the starts and the polish only. A rule
+/// that ends the run early changes nothing before it: the run up to the
+/// first end is the bits of the run without it.
+#[test]
+fn the_problems_rules_end_a_run_for_their_reason() {
+    let domain = Interval::new(-5.12, 5.12).unwrap();
+    let mut lbfgs: Lbfgs<f64, 4, 8> = Lbfgs::new();
+    let mut run = |problem: &Problem<'_, f64, Rastrigin, Interval<f64>>| {
+        let mut trace = Vec::new();
+        let found = Auto::default()
+            .minimize_with(problem, (&mut chains::<4>(4)[..], &mut lbfgs), |p| {
+                trace.push((p.evaluations, p.rounds, p.value.to_bits()));
+                ControlFlow::Continue(())
+            })
+            .unwrap();
+        (found, trace)
+    };
+    let base = Problem::new(&Rastrigin, &domain, 20_000).seed(3);
+    let (free, free_trace) = run(&base);
+    assert_eq!(free.termination, Termination::Evaluations);
+    assert!(free.value < 1e-9 && free.rounds > 5, "{free}");
+
+    // The target: the first look at or below it ends the run.
+    let target = 1.5;
+    let (hit, hit_trace) = run(&base.target(target));
+    assert_eq!(hit.termination, Termination::Target, "{hit}");
+    let first = free_trace
+        .iter()
+        .position(|&(_, _, v)| f64::from_bits(v) <= target)
+        .unwrap();
+    assert_eq!(hit_trace[..], free_trace[..first]);
+    assert_eq!(hit.evaluations, free_trace[first].0);
+    assert!(hit.value <= target);
+
+    // Rounds: exactly that many, then the polish.
+    let (three, _) = run(&base.rounds(3));
+    assert_eq!(three.termination, Termination::Steps, "{three}");
+    assert_eq!(three.rounds, 3);
+    assert!(three.evaluations < free.evaluations);
+    let (none, none_trace) = run(&base.rounds(0));
+    assert_eq!((none.termination, none.rounds), (Termination::Steps, 0));
+    assert!(none_trace.iter().all(|&(_, rounds, _)| rounds == 0));
+
+    // Stall: a window of 2 rounds with no gain beyond an unreachable
+    // tolerance ends the rounds after exactly 2.
+    let (stalled, _) = run(&base.stall(2, 1e9));
+    assert_eq!(stalled.termination, Termination::Stalled, "{stalled}");
+    assert_eq!(stalled.rounds, 2);
+    // With no tolerance, the run ends `window` rounds after the best last
+    // fell: it ran at least `window` rounds and stopped before the budget.
+    let (quiet, _) = run(&base.stall(5, 0.0));
+    assert_eq!(quiet.termination, Termination::Stalled, "{quiet}");
+    assert!(quiet.rounds >= 5 && quiet.evaluations < free.evaluations);
+}
+
+/// A bad rule is a typed error before any evaluation, whichever store.
+#[test]
+fn bad_rules_are_refused() {
+    let domain = Interval::new(-1.0, 1.0).unwrap();
+    let mut lbfgs: Lbfgs<f64, 2, 4> = Lbfgs::new();
+    for (problem, name) in [
+        (
+            Problem::new(&Rastrigin, &domain, 1_000).target(f64::NAN),
+            "target",
+        ),
+        (
+            Problem::new(&Rastrigin, &domain, 1_000).stall(0, 0.0),
+            "stall window",
+        ),
+        (
+            Problem::new(&Rastrigin, &domain, 1_000).stall(3, -1.0),
+            "stall tolerance",
+        ),
+    ] {
+        let got = Auto::default().minimize(&problem, (&mut chains::<2>(4)[..], &mut lbfgs));
+        let said = format!("{:?}", got.unwrap_err());
+        assert!(said.contains(name), "{name}: {said}");
+    }
 }

@@ -16,8 +16,8 @@ use std::ops::ControlFlow;
 
 use hrla::{
     Auto, Builder, Chain, Constant, Domain, Error, Gaussian, Geometric, Hrla, Interval, Lbfgs,
-    Linear, Parts, Point, PolishSettings, Potential, Quadratic, Rastrigin, Sampling, Schedule,
-    Start, Stop, Termination, Unbounded,
+    Linear, Parts, Point, PolishSettings, Potential, Problem, Quadratic, Rastrigin, Sampling,
+    Schedule, Start, Stop, Termination, Unbounded,
 };
 use hrla_tests::hostile::{mostly_sane64, no_panic, steps_strategy, wild64};
 use hrla_tests::prop::config;
@@ -551,12 +551,8 @@ fn exercise_auto(
     let mut calls = 0u64;
     let got = no_panic("Auto::minimize_with", || {
         auto.minimize_with(
-            &potential,
-            domain,
-            budget,
-            seed,
-            &mut chains,
-            &mut lbfgs,
+            &Problem::new(&potential, &domain, budget).seed(seed),
+            (&mut chains[..], &mut lbfgs),
             |p| {
                 calls += 1;
                 assert!(sound(p.value), "observer saw {}", p.value);

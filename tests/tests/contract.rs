@@ -14,7 +14,8 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use hrla::{
     Auto, Builder, Chain, Error, FnPotential, Gaussian, Hrla, Interval, Lbfgs, Point,
-    PolishSettings, Potential, Rastrigin, START_TRIES, Schedule, Stop, Termination, chain_seed,
+    PolishSettings, Potential, Problem, Rastrigin, START_TRIES, Schedule, Stop, Termination,
+    chain_seed,
 };
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -190,12 +191,8 @@ fn auto_constants_above_the_budget_are_bounded_by_it() {
             ..Auto::default()
         }
         .minimize(
-            &Rastrigin,
-            Interval::new(-5.12, 5.12).unwrap(),
-            5_000,
-            3,
-            &mut chains::<2>(4),
-            &mut lbfgs,
+            &Problem::new(&Rastrigin, &Interval::new(-5.12, 5.12).unwrap(), 5_000).seed(3),
+            (&mut chains::<2>(4)[..], &mut lbfgs),
         )
         .unwrap();
         assert!(found.evaluations <= 5_000, "{found:?}");
@@ -332,12 +329,8 @@ fn auto_treats_non_finite_points_as_infeasible() {
         let mut lbfgs: Lbfgs<f64, 2, 8> = Lbfgs::new();
         let found = Auto::default()
             .minimize(
-                &p,
-                Interval::new(-2.0, 3.0).unwrap(),
-                4_000,
-                seed,
-                &mut chains::<2>(8),
-                &mut lbfgs,
+                &Problem::new(&p, &Interval::new(-2.0, 3.0).unwrap(), 4_000).seed(seed),
+                (&mut chains::<2>(8)[..], &mut lbfgs),
             )
             .unwrap();
         assert!((found.value - 1.0).abs() < 1e-12, "{found:?}");
@@ -365,12 +358,8 @@ fn auto_keeps_its_best_through_failing_evaluations() {
         let mut lbfgs: Lbfgs<f64, 4, 8> = Lbfgs::new();
         let found = Auto::default()
             .minimize(
-                &p,
-                Interval::new(-5.12, 5.12).unwrap(),
-                20_000,
-                seed,
-                &mut chains::<4>(8),
-                &mut lbfgs,
+                &Problem::new(&p, &Interval::new(-5.12, 5.12).unwrap(), 20_000).seed(seed),
+                (&mut chains::<4>(8)[..], &mut lbfgs),
             )
             .unwrap();
         assert!(found.value.is_finite() && found.value < 1.0, "{found:?}");
@@ -398,12 +387,8 @@ fn auto_survives_all_chains_diverging() {
         ..Auto::default()
     }
     .minimize_with(
-        &p,
-        Interval::new(-5.0, 5.0).unwrap(),
-        3_000,
-        1,
-        &mut chains::<2>(8),
-        &mut lbfgs,
+        &Problem::new(&p, &Interval::new(-5.0, 5.0).unwrap(), 3_000).seed(1),
+        (&mut chains::<2>(8)[..], &mut lbfgs),
         |p| {
             all_diverged += usize::from(p.diverged_chains == 8);
             ControlFlow::Continue(())
@@ -434,12 +419,8 @@ fn auto_stops_when_its_observer_says_so() {
     let mut best = f64::INFINITY;
     let found = auto
         .minimize_with(
-            &Rastrigin,
-            Interval::new(-5.12, 5.12).unwrap(),
-            u64::MAX,
-            2,
-            &mut chains::<4>(n),
-            &mut lbfgs,
+            &Problem::new(&Rastrigin, &Interval::new(-5.12, 5.12).unwrap(), u64::MAX).seed(2),
+            (&mut chains::<4>(n)[..], &mut lbfgs),
             |p| {
                 calls += 1;
                 assert!(
@@ -448,7 +429,10 @@ fn auto_stops_when_its_observer_says_so() {
                     p.evaluations
                 );
                 assert_eq!(p.improved, p.value < best);
-                assert_eq!(Rastrigin.value(p.x), p.value);
+                assert_eq!(
+                    Rastrigin.value(<&[f64; 4]>::try_from(p.x).unwrap()),
+                    p.value
+                );
                 last = p.evaluations;
                 best = best.min(p.value);
                 if p.evaluations >= 30_000 {
@@ -468,12 +452,8 @@ fn auto_stops_when_its_observer_says_so() {
     // Stopped at the first call: the best initial point, no round.
     let found = auto
         .minimize_with(
-            &Rastrigin,
-            Interval::new(-5.12, 5.12).unwrap(),
-            u64::MAX,
-            2,
-            &mut chains::<4>(n),
-            &mut lbfgs,
+            &Problem::new(&Rastrigin, &Interval::new(-5.12, 5.12).unwrap(), u64::MAX).seed(2),
+            (&mut chains::<4>(n)[..], &mut lbfgs),
             |_| ControlFlow::Break(()),
         )
         .unwrap();
@@ -491,16 +471,15 @@ fn auto_stops_when_its_observer_says_so() {
         let mut store = chains::<4>(n);
         if observer {
             auto.minimize_with(
-                &Rastrigin,
-                domain,
-                10_000,
-                4,
-                &mut store,
-                &mut lbfgs,
+                &Problem::new(&Rastrigin, &domain, 10_000).seed(4),
+                (&mut store[..], &mut lbfgs),
                 |_| ControlFlow::Continue(()),
             )
         } else {
-            auto.minimize(&Rastrigin, domain, 10_000, 4, &mut store, &mut lbfgs)
+            auto.minimize(
+                &Problem::new(&Rastrigin, &domain, 10_000).seed(4),
+                (&mut store[..], &mut lbfgs),
+            )
         }
         .unwrap()
     };
@@ -514,12 +493,8 @@ fn a_solution_says_how_it_ended() {
     let mut lbfgs: Lbfgs<f64, 2, 8> = Lbfgs::new();
     let found = Auto::default()
         .minimize(
-            &Rastrigin,
-            Interval::new(-5.12, 5.12).unwrap(),
-            2_000,
-            0,
-            &mut chains::<2>(8),
-            &mut lbfgs,
+            &Problem::new(&Rastrigin, &Interval::new(-5.12, 5.12).unwrap(), 2_000).seed(0),
+            (&mut chains::<2>(8)[..], &mut lbfgs),
         )
         .unwrap();
     assert_eq!(found.termination, Termination::Evaluations);

@@ -23,7 +23,8 @@ use std::ops::ControlFlow;
 use std::time::Instant;
 
 use hrla::{
-    Builder, Chain, Error, Hrla, Interval, Lbfgs, Linear, Observe, PolishSettings, Potential, Stop,
+    Builder, Chain, Error, Hrla, Interval, Lbfgs, Linear, Observe, PolishSettings, Potential,
+    Problem, Stop,
 };
 use hrla_bench::problems;
 
@@ -158,12 +159,8 @@ fn default<const D: usize>(
     let mut lbfgs: Lbfgs<f64, D, 8> = Lbfgs::new();
     let mut to_1e3 = None;
     let found = auto_for(strategy).minimize_with(
-        p,
-        boxed(bounds),
-        budget,
-        seed,
-        &mut chains,
-        &mut lbfgs,
+        &Problem::new(p, &boxed(bounds), budget).seed(seed),
+        (&mut chains[..], &mut lbfgs),
         |p| {
             if to_1e3.is_none() && p.value - minimum < 1e-3 {
                 to_1e3 = Some(p.evaluations);

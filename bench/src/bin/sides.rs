@@ -13,7 +13,7 @@
 use std::ops::ControlFlow;
 
 use hrla::rand_core::SeedableRng;
-use hrla::{Auto, AutoStorage, Bounds, FnPotential, Potential, Rastrigin};
+use hrla::{Auto, AutoStorage, Bounds, FnPotential, Potential, Problem, Rastrigin};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 const CENTRE: [f64; 6] = [0.7, -1.3, 2.1, -0.4, 1.9, 0.2];
@@ -44,9 +44,11 @@ fn run(side: [f64; 6], budget: u64, seed: u64) -> f64 {
     let mut storage =
         AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs).expect("valid storage");
     Auto::default()
-        .minimize_flat_with(&p, &bounds, budget, seed, &mut storage, |_| {
-            ControlFlow::Continue(())
-        })
+        .minimize_with(
+            &Problem::new(&p, &bounds, budget).seed(seed),
+            &mut storage,
+            |_| ControlFlow::Continue(()),
+        )
         .expect("a run")
         .value
 }

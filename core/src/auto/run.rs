@@ -15,7 +15,7 @@ use super::settings::{Auto, Sampling};
 use crate::domain::{Sides, SliceDomain};
 use crate::error::{Error, floor};
 use crate::float::Float;
-use crate::optimizer::{Chain, Termination, chain_seed, draw_point};
+use crate::optimizer::{Chain, Stop as Rules, Termination, chain_seed, draw_point};
 use crate::optimizer::{Verdict, judge};
 use crate::polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished};
 use crate::potential::{BatchPotential, SlicePotential};
@@ -29,6 +29,8 @@ pub(super) enum Stop {
     Observer,
     /// A failure to report (a potential unbounded below).
     Failed(Error),
+    /// The target was reached.
+    Target,
 }
 
 type Flow = ControlFlow<Stop>;
@@ -432,6 +434,13 @@ pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
     h: F,
     /// Rounds since the best last fell.
     stalled: u64,
+    /// The problem's target, stall and round rules.
+    rules: Rules<F>,
+    /// The best value when it last fell by more than the stall tolerance,
+    /// and the round it did.
+    stall_from: (F, u64),
+    /// The rule that ended the rounds.
+    ended: Option<Termination>,
     /// The longest step the box allows.
     longest: F,
     /// Each rung's step as a multiple of `h` (beyond [`SLOTS`] rungs,
@@ -541,9 +550,34 @@ where
             a0: F::ONE,
             h: F::ONE,
             stalled: 0,
+            rules: Rules::new(),
+            stall_from: (F::INFINITY, 0),
+            ended: None,
             longest: F::ONE,
             scale: [F::ONE; SLOTS],
         })
+    }
+
+    /// The run with the problem's target, stall and round `rules`.
+    pub(super) fn with_rules(mut self, rules: Rules<F>) -> Self {
+        self.rules = rules;
+        self
+    }
+
+    /// The rule that ends the rounds before the next one, if any.
+    fn rule(&mut self) -> Option<Termination> {
+        let best = self.tally.best_value;
+        let rounds = self.tally.rounds;
+        let tolerance = self.rules.stall.map_or(F::ZERO, |(_, t)| t);
+        if best < self.stall_from.0 - tolerance {
+            self.stall_from = (best, rounds);
+        }
+        self.rules.holds(best, rounds, 0, 0, self.stall_from.1)
+    }
+
+    /// Why the run ended when it was not stopped: a rule, or the budget.
+    pub(super) fn ended(&self) -> Termination {
+        self.ended.unwrap_or(Termination::Evaluations)
     }
 
     /// The method: quench the initial points, measure the settings, then
@@ -560,7 +594,12 @@ where
             }
         }
         self.measure()?;
+        self.stall_from = (self.tally.best_value, 0);
         while self.tally.remaining() > self.tally.reserve() {
+            if let Some(rule) = self.rule() {
+                self.ended = Some(rule);
+                break;
+            }
             let before = self.tally.evaluations;
             self.round()?;
             if self.tally.evaluations == before {
@@ -958,6 +997,9 @@ where
 
     fn observe(&mut self) -> Flow {
         let value = self.tally.best_value;
+        if self.rules.target.is_some_and(|t| value <= t) {
+            return ControlFlow::Break(Stop::Target);
+        }
         let improved = self.seen.is_none_or(|v| value < v);
         self.seen = Some(value);
         let seen = Seen {

@@ -6,7 +6,7 @@ use crate::error::Error;
 use crate::float::Float;
 use crate::polish::LbfgsIn;
 
-/// Storage for a run of [`Auto::minimize_flat`](super::Auto::minimize_flat)
+/// Storage for a run of [`Auto::minimize`](super::Auto::minimize)
 /// with `n` chains of dimension `d` and L-BFGS memory `m`, lent by the
 /// caller: one float array of [`floats(n, d, m)`](AutoStorage::floats), a
 /// flag and a generator per chain. A run overwrites it all; the best
