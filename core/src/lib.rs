@@ -291,7 +291,8 @@ mod start;
 mod ziggurat_tables;
 
 pub use auto::{
-    Auto, AutoProgress, AutoStorage, MAX_STEPS, Parts, Problem, Sampling, Solution, Tempering,
+    Auto, AutoProgress, AutoStorage, CONVERGED, MAX_STEPS, Parts, Problem, Sampling, Solution,
+    Tempering,
 };
 pub use domain::{Bounds, Domain, Interval, Sides, SliceDomain, Unbounded};
 pub use error::Error;

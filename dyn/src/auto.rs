@@ -64,6 +64,8 @@ pub struct Problem {
     pub stall: Option<(u64, f64)>,
     /// End the rounds after this many.
     pub rounds: Option<u64>,
+    /// The convergence rule's window of rounds ([`hrla::Problem::converge`]).
+    pub converge: Option<u64>,
 }
 
 /// Minimises `problem` with `auto` at the problem's dimension, any
@@ -116,6 +118,9 @@ pub fn solve(
     }
     if let Some(rounds) = problem.rounds {
         posed = posed.rounds(rounds);
+    }
+    if let Some(window) = problem.converge {
+        posed = posed.converge(window);
     }
     let found = auto.minimize_with(&posed, &mut lent, observe);
     pot.finish()?;

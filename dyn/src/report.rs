@@ -5,7 +5,14 @@ use hrla::Termination;
 
 /// Every termination's name, in the order of [`termination_code`] (from
 /// 1): what Python's `status` indexes.
-pub const TERMINATIONS: [&str; 5] = ["Steps", "Evaluations", "Target", "Stalled", "Observer"];
+pub const TERMINATIONS: [&str; 6] = [
+    "Steps",
+    "Evaluations",
+    "Target",
+    "Stalled",
+    "Observer",
+    "Converged",
+];
 
 /// The kernel's variant name of a termination: `"Steps"`, `"Target"`, ...
 pub fn termination_name(t: Termination) -> &'static str {
@@ -19,12 +26,13 @@ fn index(t: Termination) -> usize {
         Termination::Target => 2,
         Termination::Stalled => 3,
         Termination::Observer => 4,
+        Termination::Converged => 5,
     }
 }
 
 /// The code of a stopping reason as a number (for a flat buffer): 0 while
 /// the run goes on, then 1 step budget, 2 evaluation budget, 3 target, 4
-/// stalled, 5 observer.
+/// stalled, 5 observer, 6 converged.
 pub fn termination_code(t: Option<Termination>) -> f64 {
     t.map_or(0.0, |t| (index(t) + 1) as f64)
 }

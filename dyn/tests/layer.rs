@@ -183,6 +183,7 @@ fn the_observer_sees_the_best_point() {
         target: None,
         stall: None,
         rounds: None,
+        converge: None,
     };
     let mut calls = 0;
     let s = solve(&Auto::default(), &problem, &mut |p| {
@@ -383,6 +384,7 @@ fn auto_runs_in_a_box_per_coordinate() {
         target: None,
         stall: None,
         rounds: None,
+        converge: None,
     };
     let sides = wide_and_narrow();
     let found = solve(
@@ -435,6 +437,7 @@ fn auto_runs_at_any_dimension() {
             target: None,
             stall: None,
             rounds: None,
+            converge: None,
         };
         let s = solve(&Auto::default(), &problem, &mut |_| {
             ControlFlow::Continue(())
@@ -479,6 +482,7 @@ fn auto_starts_chain_0_at_x0() {
         target: None,
         stall: None,
         rounds: None,
+        converge: None,
     };
     let s = solve(&Auto::default(), &problem, &mut |_| {
         ControlFlow::Continue(())
@@ -527,6 +531,7 @@ fn auto_is_the_kernels() {
             target: None,
             stall: None,
             rounds: None,
+            converge: None,
         };
         let s = solve(&Auto::default(), &problem, &mut |_| {
             ControlFlow::Continue(())

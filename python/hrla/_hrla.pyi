@@ -218,6 +218,7 @@ class Auto:
     quench: int
     jump_rate: float
     stall: int
+    converged_window: int
     accept: float
     def __init__(self, *, steps: Optional[int] = None, step_scale: Optional[float] = None,
                  ladder: Optional[float] = None, quench: Optional[int] = None,
@@ -229,4 +230,5 @@ class Auto:
                  chains: Optional[int] = None, dim: Optional[int] = None,
                  x0: Optional[Sequence[float]] = None, observer: Union[None, Observer, ObserverX] = None,
                  with_x: bool = False, target: Optional[float] = None,
-                 stall: Optional[Tuple[int, float]] = None, rounds: Optional[int] = None) -> Solution: ...
+                 stall: Optional[Tuple[int, float]] = None, rounds: Optional[int] = None,
+                 converge: Optional[int] = None) -> Solution: ...

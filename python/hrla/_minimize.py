@@ -22,8 +22,9 @@ _clock: Callable[[], float] = time.monotonic
 #: ``maxiter``; ``"Evaluations"``: ``maxfun``; ``"Target"``; ``"Stalled"``;
 #: ``"Observer"``: an observer of :meth:`Optimizer.run` or
 #: :meth:`Auto.minimize`), then ``"Time"`` (``maxtime``) and
-#: ``"Callback"`` (the callback asked to stop).
-TERMINATIONS = ("Steps", "Evaluations", "Target", "Stalled", "Observer", "Time", "Callback")
+#: ``"Callback"`` (the callback asked to stop), then ``"Converged"``
+#: (``"auto"``'s convergence rule).
+TERMINATIONS = ("Steps", "Evaluations", "Target", "Stalled", "Observer", "Time", "Callback", "Converged")
 
 #: The sentence of each reason :func:`minimize` itself stops a run for.
 _REASONS = {
@@ -32,6 +33,7 @@ _REASONS = {
     "Stalled": "the best value stalled",
     "Time": "the time limit (maxtime) is reached",
     "Callback": "the callback asked to stop",
+    "Converged": "converged (the best did not fall over the convergence window)",
 }
 
 _SAMPLERS: Dict[str, Any] = {"hrla": Hrla, "ula": Ula, "ola": Ola}
@@ -64,11 +66,15 @@ class OptimizeResult(Dict[str, Any]):
       (``"auto"``);
     - ``success``: ``True`` only when ``fun`` is finite, some chain is still
       alive and a stopping rule other than the callback ended the run;
+      with ``"auto"``, only when the run converged (its convergence rule
+      or ``stall``) or reached ``target``: a run that ``maxfun``,
+      ``maxiter`` or ``maxtime`` cut short did not converge;
       ``termination``: why it ended; ``status``: its index in
       :data:`TERMINATIONS`. scipy's ``status`` is 0 for success and a
       solver's own code otherwise; hrla's names only why the run ended,
-      and ``success`` says whether it succeeded (a spent budget is a
-      normal end, as ``maxiter`` is for ``dual_annealing``):
+      and ``success`` says whether it succeeded (for the samplers, whose
+      runs have a length, a spent budget is a normal end, as ``maxiter``
+      is for ``dual_annealing``):
 
       ======  ===============  =======  ==================================
       status  termination      success  the run ended when
@@ -81,6 +87,7 @@ class OptimizeResult(Dict[str, Any]):
                                         objects asked to stop
       5       ``Time``         yes      ``maxtime`` seconds passed
       6       ``Callback``     no       the callback asked to stop
+      7       ``Converged``    yes      ``"auto"``'s convergence rule held
       ======  ===============  =======  ==================================
 
       (``success`` is also ``False`` when ``fun`` is not finite or every
@@ -324,6 +331,7 @@ def minimize(
     maxtime: Optional[float] = None,
     target: Optional[float] = None,
     stall: Optional[Tuple[int, float]] = None,
+    converge: Any = None,
     rng: Any = None,
     seed: Any = None,
     callback: Optional[Callable[..., Any]] = None,
@@ -390,6 +398,16 @@ def minimize(
     ``target=-inf`` is never reached (no target); a ``stall`` tolerance of
     ``inf`` stalls the run after its window.
 
+    ``"auto"`` also ends by itself when it has converged, so that
+    ``maxfun`` is a cap, not a target: when its best has not fallen beyond
+    rounding (``1e-12`` of the spread of ``f`` at the initial points, a
+    tolerance in the problem's own units) over ``Auto().converged_window``
+    rounds (60: one restart of the hotter half of its chains found nothing
+    better), it polishes the best and ends with ``termination ==
+    "Converged"``. ``converge=`` a window of rounds sets another;
+    ``converge=False`` switches the rule off (the run then spends
+    ``maxfun``).
+
     ``rng`` (or ``seed``) is ``None`` (fresh entropy), an int or a
     ``numpy.random.Generator``; the result's ``seed`` repeats the run.
     ``callback(intermediate_result)`` gets an :class:`OptimizeResult`
@@ -425,6 +443,14 @@ def minimize(
         raise ValueError(f"unknown method {method!r}; expected one of: auto hrla ula ola")
     maxfun = _renamed(maxfun, budget, "maxfun", "budget")
     maxiter = _renamed(maxiter, steps, "maxiter", "steps")
+    if converge is not None and method != "auto":
+        raise ValueError("converge is used by method='auto' only (the samplers' runs have a length)")
+    if converge is None or converge is True:
+        converge = Auto().converged_window if method == "auto" else None
+    elif converge is False:
+        converge = None
+    else:
+        converge = _count(converge, "converge", 1)
     if method == "auto":
         given = {"h": h, "schedule": schedule, "start": start, "polish": polish}
         for name in _SAMPLER_ONLY:
@@ -521,7 +547,8 @@ def minimize(
         spend = _Budget(maxfun, cost, spare)
         if method == "auto":
             return _auto(potential, box, budget_k, run_seed, chains, dim, x0, objective, builtin, fun, nfev, spend,
-                         target=target, stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
+                         target=target, stall=stall, converge=converge, maxiter=maxiter, maxtime=maxtime,
+                         callback=callback, disp=disp)
         return _sampler(method, potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
                         spend, h=h, schedule=schedule, start=start, polish=polish, x0=x0, target=target,
                         stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
@@ -573,7 +600,8 @@ def _renamed(new: Any, old: Any, name: str, old_name: str) -> Any:
 def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int], dim: Optional[int],
           x0: Optional[np.ndarray], objective: Optional[_objective.Objective], builtin: bool, fun: Any,
           nfev: Callable[[int], int], spend: _Budget, *, target: Optional[float],
-          stall: Optional[Tuple[int, float]], maxiter: Optional[int], maxtime: Optional[float],
+          stall: Optional[Tuple[int, float]], converge: Optional[int], maxiter: Optional[int],
+          maxtime: Optional[float],
           callback: Optional[Callable[..., Any]], disp: bool) -> OptimizeResult:
     if box is None:
         raise ValueError('method="auto" needs bounds: D (lo, hi) pairs, scipy.optimize.Bounds, or (lo, hi) with dim=')
@@ -588,7 +616,7 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
                         with_x=callback is not None,
                         target=None if target is None else min(target, sys.float_info.max),
                         stall=None if stall is None else (stall[0], min(stall[1], sys.float_info.max)),
-                        rounds=maxiter)
+                        rounds=maxiter, converge=converge)
     termination = w.reason if s.termination == "Observer" and w.reason else s.termination
     x = np.asarray(s.x)
     w.polished(x, s.value, termination)
@@ -722,6 +750,9 @@ def _message(kernel: str, termination: str, r: OptimizeResult, budget_note: str)
     text = (f"{reason}: best f = {float(r['fun'])!r} after {r['nfev']} calls of fun "
             f"({r['njev']} gradients) in {r['nit']} {unit}")
     k, n = r["diverged_chains"], r["chains"]
+    if r["method"] == "auto" and r["nit"] == 0 and termination in ("Evaluations", "Time"):
+        text += ("; the run ended before its first round of sampling (the starts' quenches took the budget): "
+                 "raise maxfun, or give jac")
     if k and r["method"] == "auto":
         text += f"; the last proposal of {k} of {n} chains met a point where f is not finite (rejected)"
     elif k:
@@ -736,8 +767,10 @@ def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, 
     any chain is still alive); ``message`` last."""
     alive = holds_basins or diverged_chains < chains
     r = OptimizeResult(fun=fun, **rest)
+    ended = (termination in ("Target", "Stalled", "Converged") if rest.get("method") == "auto"
+             else termination not in ("Observer", "Callback"))
     r.update(
-        success=termination not in ("Observer", "Callback") and alive and bool(np.isfinite(fun)),
+        success=ended and alive and bool(np.isfinite(fun)),
         status=TERMINATIONS.index(termination), termination=termination,
         all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
     )

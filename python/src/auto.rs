@@ -97,6 +97,14 @@ impl PyAuto {
         })
     }
 
+    /// The convergence window measured best for these settings:
+    /// `2 stall` rounds, one restart of the hotter half finding nothing
+    /// better.
+    #[getter]
+    fn converged_window(&self) -> u64 {
+        self.stall.saturating_mul(2)
+    }
+
     /// The number of chains measured best for an evaluation budget:
     /// `budget / 60 000` within `[4, 16]`.
     #[staticmethod]
@@ -125,9 +133,12 @@ impl PyAuto {
     /// below it (termination `"Target"`); `stall=(window, tolerance)` ends
     /// the rounds once the best has not fallen by more than `tolerance`
     /// over `window` rounds (`"Stalled"`); `rounds` ends them after that
-    /// many (`"Steps"`). A run ended by `stall` or `rounds` still polishes
-    /// its best point.
-    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, x0 = None, observer = None, with_x = false, target = None, stall = None, rounds = None))]
+    /// many (`"Steps"`); `converge=window` ends them as converged once the
+    /// best has not fallen, beyond rounding (relative to the spread of the
+    /// initial values), over `window` rounds (`"Converged"`; `converged_window`
+    /// is the measured default). A run ended by `stall`, `rounds` or
+    /// `converge` still polishes its best point.
+    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, x0 = None, observer = None, with_x = false, target = None, stall = None, rounds = None, converge = None))]
     #[allow(clippy::too_many_arguments)]
     fn minimize(
         &self,
@@ -144,6 +155,7 @@ impl PyAuto {
         target: Option<f64>,
         stall: Option<(u64, f64)>,
         rounds: Option<&Bound<'_, PyAny>>,
+        converge: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PySolution> {
         guard(|| {
             let problem = Problem {
@@ -157,6 +169,7 @@ impl PyAuto {
                 target,
                 stall,
                 rounds: config::unsigned_opt(rounds, "rounds")?,
+                converge: config::unsigned_opt(converge, "converge")?,
             };
             self.solve(py, &problem, observer, with_x)
         })

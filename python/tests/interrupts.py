@@ -89,9 +89,9 @@ def case_minimize():
 
 
 def case_auto():
-    interrupted(lambda: hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 10, maxfun=10**10))
-    res = hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 2, maxfun=5_000)
-    assert res.success
+    interrupted(lambda: hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 10, maxfun=10**10, converge=False))
+    res = hrla.minimize(hrla.Rastrigin(), [(-5, 5)] * 2, maxfun=20_000)
+    assert res.success and res.termination == "Converged", res
 
 
 def case_scalar():
@@ -99,9 +99,10 @@ def case_scalar():
     each method; the callback and time limit watch the run too."""
     for method in ("auto", "hrla"):
         interrupted(lambda: hrla.minimize(lambda x: float(x @ x), [(-5, 5)] * 3, method=method, maxfun=10**12,
-                                          maxtime=10**6, callback=lambda intermediate_result: None))
-    res = hrla.minimize(lambda x: float(x @ x), [(-5, 5)] * 3, maxfun=5_000)
-    assert res.success
+                                          maxtime=10**6, callback=lambda intermediate_result: None,
+                                          **({"converge": False} if method == "auto" else {})))
+    res = hrla.minimize(lambda x: float(x @ x), [(-5, 5)] * 3, maxfun=50_000)
+    assert res.success and res.termination == "Converged", res
 
 
 def case_python_potential():

@@ -65,8 +65,9 @@ def test_builtin_potential_agrees_with_numpy():
 def test_auto_and_the_methods_on_10d_rastrigin():
     box = [(-5.12, 5.12)] * 10
     res = hrla.minimize(hrla.Rastrigin(), box, seed=1)
-    assert res.success and res.termination == "Evaluations" and res.fun < 1e-10, res
-    assert res.nfev <= 125_000
+    # It ends by itself: converged, well within the default maxfun.
+    assert res.success and res.termination == "Converged" and res.fun < 1e-10, res
+    assert res.nfev < 125_000
     # Algorithm 1 with a batched numpy potential: the same as the built-in
     # up to the last bits of numpy's sine, so only the quality is checked.
     res = hrla.minimize(rastrigin_columns, box, jac=True, vectorized=True, method="hrla", seed=1, maxfun=50_000,

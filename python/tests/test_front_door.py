@@ -146,7 +146,8 @@ def test_the_first_ctrl_c_ends_a_run_whose_worker_hangs(tmp_path):
 
         if __name__ == "__main__":
             try:
-                hrla.minimize(f, [(-5.0, 5.0)] * 2, args=(sys.argv[1],), workers=2, maxfun=10**9, rng=1)
+                hrla.minimize(f, [(-5.0, 5.0)] * 2, args=(sys.argv[1],), workers=2, maxfun=10**9, rng=1,
+                              converge=False)
             except KeyboardInterrupt:
                 print("ok")
     """)
@@ -349,7 +350,10 @@ INF = float("inf")
 ])
 def test_every_method_reads_the_limits_alike(method, kw, termination, nit):
     res = hrla.minimize(sphere_value, BOX, method=method, maxfun=20_000, rng=1, **kw)
-    assert (res.termination, res.nit, res.success) == (termination, nit, True), res
+    # "auto" succeeds only when it converged or met its target: a run that
+    # maxiter cut short did not converge.
+    success = method != "auto" or termination != "Steps"
+    assert (res.termination, res.nit, res.success) == (termination, nit, success), res
 
 
 @pytest.mark.parametrize("method", METHODS)
@@ -432,7 +436,7 @@ def test_a_budget_spent_says_what_it_left_and_why(method, kw):
 
 
 def test_a_budget_spent_whole_adds_no_note():
-    res = hrla.minimize(hrla.Rastrigin(), BOX, maxfun=10_000, rng=1)
+    res = hrla.minimize(hrla.Rastrigin(), BOX, maxfun=10_000, rng=1, converge=False)
     assert res.nfev == 10_000 and "maxfun=" not in res.message, res.message
 
 

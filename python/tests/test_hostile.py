@@ -311,8 +311,11 @@ def test_the_result_says_why_it_ended_after_the_polish():
     # The message is the polished result's.
     assert best_u(res.message) == res.fun, res.message
     assert hrla.TERMINATIONS[res.status] == res.termination
+    res = hrla.minimize(hrla.Rastrigin(), [(-5.12, 5.12)] * 3, seed=1, maxfun=20_000, converge=False)
+    # A run that maxfun ended did not converge: no success, whatever it found.
+    assert not res.success and hrla.TERMINATIONS[res.status] == res.termination == "Evaluations", res
     res = hrla.minimize(hrla.Rastrigin(), [(-5.12, 5.12)] * 3, seed=1, maxfun=20_000)
-    assert res.success and hrla.TERMINATIONS[res.status] == res.termination == "Evaluations", res
+    assert res.success and hrla.TERMINATIONS[res.status] == res.termination == "Converged", res
     assert best_u(res.message) == res.fun and not res.all_diverged, res.message
 
 

@@ -1186,3 +1186,72 @@ fn bad_rules_are_refused() {
         assert!(said.contains(name), "{name}: {said}");
     }
 }
+
+/// The convergence rule ends a run whose best stopped falling: on a bowl,
+/// long before the budget, polished to the minimum; its tolerance is
+/// relative to the spread of `U` at the initial points, so the same bowl
+/// times `1e-10` converges after the same rounds. On
+/// Rastrigin the run is the unconverged run's bits up to its end.
+#[test]
+fn a_converged_run_ends_by_itself() {
+    let domain = Interval::new(-5.0, 5.0).unwrap();
+    let mut lbfgs: Lbfgs<f64, 3, 8> = Lbfgs::new();
+    let bowl = |c: f64| {
+        FnPotential::new(move |x: &[f64; 3], g: &mut [f64; 3]| {
+            let mut u = 0.0;
+            for i in 0..3 {
+                let z = x[i] - 0.3 * i as f64;
+                u += c * z * z;
+                g[i] = 2.0 * c * z;
+            }
+            u
+        })
+    };
+    let auto = Auto::default();
+    let mut ends = Vec::new();
+    for c in [1.0, 1e-10] {
+        let p = bowl(c);
+        let found = auto
+            .minimize(
+                &Problem::new(&p, &domain, 1_000_000)
+                    .seed(4)
+                    .converged(&auto),
+                (&mut chains::<3>(4)[..], &mut lbfgs),
+            )
+            .unwrap();
+        assert_eq!(found.termination, Termination::Converged, "{found}");
+        assert!(found.evaluations < 100_000, "{found}");
+        assert!(found.value <= 1e-20 * c, "{found}");
+        ends.push(found.rounds);
+    }
+    assert_eq!(ends[0], ends[1]);
+
+    let domain = Interval::new(-5.12, 5.12).unwrap();
+    let mut lbfgs: Lbfgs<f64, 4, 8> = Lbfgs::new();
+    let mut trace = |problem: Problem<'_, f64, Rastrigin, Interval<f64>>| {
+        let mut seen = Vec::new();
+        let found = auto
+            .minimize_with(&problem, (&mut chains::<4>(4)[..], &mut lbfgs), |p| {
+                seen.push((p.evaluations, p.value.to_bits()));
+                ControlFlow::Continue(())
+            })
+            .unwrap();
+        (found, seen)
+    };
+    let base = Problem::new(&Rastrigin, &domain, 200_000).seed(5);
+    let (done, done_seen) = trace(base.converge(20));
+    let (free, free_seen) = trace(base);
+    assert_eq!(done.termination, Termination::Converged, "{done}");
+    assert_eq!(free.termination, Termination::Evaluations);
+    assert!(done.evaluations < free.evaluations);
+    // Up to the polish, which the budget-ended run reaches later.
+    let rounds_end = done_seen.len() - 1;
+    assert_eq!(done_seen[..rounds_end], free_seen[..rounds_end]);
+    let window = Problem::new(&Rastrigin, &domain, 1_000).converge(0);
+    assert!(matches!(
+        auto.minimize(&window, (&mut chains::<4>(4)[..], &mut lbfgs)),
+        Err(Error::Zero {
+            name: "convergence window"
+        })
+    ));
+}

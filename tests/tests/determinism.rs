@@ -36,6 +36,7 @@ fn termination_code(t: Option<Termination>) -> u64 {
         Some(Termination::Target) => 3,
         Some(Termination::Stalled) => 4,
         Some(Termination::Observer) => 5,
+        Some(Termination::Converged) => 6,
     }
 }
 

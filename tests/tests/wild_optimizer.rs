@@ -463,6 +463,7 @@ where
                 Termination::Target => prop_assert!(best.value <= w.target.unwrap()),
                 Termination::Stalled => prop_assert!(k >= w.stall.unwrap().0),
                 Termination::Observer => prop_assert_eq!(k, STEPS),
+                Termination::Converged => prop_assert!(false, "only Auto converges"),
             }
             if report.termination != Termination::Observer {
                 prop_assert_eq!(opt.termination(), Some(report.termination));

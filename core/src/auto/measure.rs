@@ -12,9 +12,8 @@ pub(super) const H_RANGE: (f64, f64) = (1e-8, 50.0);
 /// above another is `e` times less likely. Where every basin has the same
 /// value (one basin, or a convex problem), `1 / max(1, |median|)`.
 pub(super) fn centre<F: Float>(values: &mut [F]) -> F {
-    sort(values);
+    let spread = spread(values);
     let n = values.len();
-    let spread = values[3 * n / 4] - values[n / 4];
     let a = if spread.is_finite() && spread > F::ZERO {
         F::ONE / spread
     } else {
@@ -22,6 +21,15 @@ pub(super) fn centre<F: Float>(values: &mut [F]) -> F {
         F::ONE / if m > F::ONE { m } else { F::ONE }
     };
     clamp(a, A_RANGE)
+}
+
+/// The interquartile range of `values` (sorted in place), or zero where
+/// it is not finite.
+pub(super) fn spread<F: Float>(values: &mut [F]) -> F {
+    sort(values);
+    let n = values.len();
+    let spread = values[3 * n / 4] - values[n / 4];
+    if spread.is_finite() { spread } else { F::ZERO }
 }
 
 /// Chain `c`'s rung of `n`: `a_0 exp(ladder (2c / (n - 1) - 1))`, the

@@ -74,7 +74,7 @@ use crate::optimizer::{Stop, Termination};
 use crate::potential::BatchPotential;
 use crate::schedule::Schedule;
 
-pub use problem::{AutoProgress, Problem, Solution};
+pub use problem::{AutoProgress, CONVERGED, Problem, Solution};
 pub use settings::{Auto, MAX_STEPS, Parts, Sampling};
 pub use storage::AutoStorage;
 
@@ -261,6 +261,11 @@ impl<F: Float> Auto<F> {
             ..problem.rules
         }
         .validate()?;
+        if problem.converge == Some(0) {
+            return Err(Error::Zero {
+                name: "convergence window",
+            });
+        }
         let n = chains.len();
         if n == 0 {
             return Err(Error::Zero { name: "chains" });
@@ -294,7 +299,7 @@ impl<F: Float> Auto<F> {
             buffers,
             observer,
         )?
-        .with_rules(problem.rules);
+        .with_rules(problem.rules, problem.converge);
         let termination = match run.solve() {
             ControlFlow::Continue(()) => run.ended(),
             ControlFlow::Break(run::Stop::Observer) => Termination::Observer,

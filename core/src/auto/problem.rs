@@ -43,10 +43,13 @@ use crate::potential::traits::Potential;
 ///   ([`Termination::Steps`]);
 /// - [`stall`](Problem::stall): the rounds end when the best value has not
 ///   fallen by more than the tolerance over the window's rounds
-///   ([`Termination::Stalled`]).
+///   ([`Termination::Stalled`]);
+/// - [`converge`](Problem::converge): the same with a tolerance relative
+///   to the problem's scale ([`Termination::Converged`]): the rule that
+///   makes the budget a cap rather than a target.
 ///
-/// A run ended by its rounds or its stall rule still polishes its best
-/// point with what is left of the budget; one that reached its target
+/// A run ended by its rounds, its stall or its convergence rule still
+/// polishes its best point with what is left of the budget; one that reached its target
 /// ends there.
 #[derive(Clone, Copy, Debug)]
 pub struct Problem<'p, F, P: ?Sized, B: ?Sized> {
@@ -57,6 +60,8 @@ pub struct Problem<'p, F, P: ?Sized, B: ?Sized> {
     pub(super) x0: Option<&'p [F]>,
     /// Target, stall and rounds (`steps`); the budget is `budget`.
     pub(super) rules: Stop<F>,
+    /// The convergence rule's window of rounds.
+    pub(super) converge: Option<u64>,
 }
 
 impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
@@ -72,6 +77,7 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
             seed: 0,
             x0: None,
             rules: Stop::new(),
+            converge: None,
         }
     }
 
@@ -105,6 +111,26 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
         self
     }
 
+    /// End the run as converged ([`Termination::Converged`]) when the
+    /// best value has not fallen, beyond rounding, over the last `window`
+    /// rounds: by more than [`CONVERGED`] times the spread (interquartile
+    /// range) of `U` at the initial points, a tolerance in the problem's
+    /// own units, so that the rule reads the same whatever the scale of
+    /// `U`. The hotter half of the chains restarts after [`Auto::stall`]
+    /// rounds without a new best, so a window of twice that
+    /// ([`Problem::converged`]) sees one restart find nothing better. The
+    /// best point is then polished.
+    pub fn converge(mut self, window: u64) -> Self {
+        self.converge = Some(window);
+        self
+    }
+
+    /// [`converge`](Problem::converge) with the window `auto` measured
+    /// best: two restarts' worth of rounds, `2 auto.stall`.
+    pub fn converged(self, auto: &Auto<F>) -> Self {
+        self.converge(auto.stall.saturating_mul(2))
+    }
+
     /// End the rounds after `k` of them (`0`: the starts and the polish
     /// only).
     pub fn rounds(mut self, k: u64) -> Self {
@@ -112,6 +138,10 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
         self
     }
 }
+
+/// The convergence rule's tolerance, relative to the spread of `U` at the
+/// initial points: a fall smaller than this is rounding.
+pub const CONVERGED: f64 = 1e-12;
 
 /// What a run of [`Auto`] found, its best point as `X`: an array `[F; D]`
 /// from const-generic chains, a slice of the caller's [`AutoStorage`]

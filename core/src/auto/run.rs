@@ -437,8 +437,12 @@ pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
     /// The problem's target, stall and round rules.
     rules: Rules<F>,
     /// The best value when it last fell by more than the stall tolerance,
-    /// and the round it did.
+    /// and the round it did; the same for the convergence tolerance.
     stall_from: (F, u64),
+    converge_from: (F, u64),
+    /// The convergence rule's window, and its tolerance once measured.
+    converge: Option<u64>,
+    tolerance: F,
     /// The rule that ended the rounds.
     ended: Option<Termination>,
     /// The longest step the box allows.
@@ -552,15 +556,20 @@ where
             stalled: 0,
             rules: Rules::new(),
             stall_from: (F::INFINITY, 0),
+            converge_from: (F::INFINITY, 0),
+            converge: None,
+            tolerance: F::ZERO,
             ended: None,
             longest: F::ONE,
             scale: [F::ONE; SLOTS],
         })
     }
 
-    /// The run with the problem's target, stall and round `rules`.
-    pub(super) fn with_rules(mut self, rules: Rules<F>) -> Self {
+    /// The run with the problem's target, stall and round `rules`, and
+    /// its convergence window.
+    pub(super) fn with_rules(mut self, rules: Rules<F>, converge: Option<u64>) -> Self {
         self.rules = rules;
+        self.converge = converge;
         self
     }
 
@@ -572,7 +581,15 @@ where
         if best < self.stall_from.0 - tolerance {
             self.stall_from = (best, rounds);
         }
-        self.rules.holds(best, rounds, 0, 0, self.stall_from.1)
+        if best < self.converge_from.0 - self.tolerance {
+            self.converge_from = (best, rounds);
+        }
+        self.rules
+            .holds(best, rounds, 0, 0, self.stall_from.1)
+            .or_else(|| {
+                let window = self.converge?;
+                (rounds - self.converge_from.1 >= window).then_some(Termination::Converged)
+            })
     }
 
     /// Why the run ended when it was not stopped: a rule, or the budget.
@@ -583,6 +600,7 @@ where
     /// The method: quench the initial points, measure the settings, then
     /// rounds until the budget is spent, then polish the best point.
     pub(super) fn solve(&mut self) -> Flow {
+        self.tolerance = F::from_f64(super::problem::CONVERGED) * self.spread();
         self.observe()?;
         if self.tally.auto.parts.quenches {
             for c in 0..self.chains.len() {
@@ -595,6 +613,7 @@ where
         }
         self.measure()?;
         self.stall_from = (self.tally.best_value, 0);
+        self.converge_from = (self.tally.best_value, 0);
         while self.tally.remaining() > self.tally.reserve() {
             if let Some(rule) = self.rule() {
                 self.ended = Some(rule);
@@ -972,6 +991,18 @@ where
             Err(e) => return ControlFlow::Break(Stop::Failed(e)),
         }
         self.observe()
+    }
+
+    /// The interquartile range of `U` at (up to 64 of) the chains' points:
+    /// the problem's scale, before any quench.
+    fn spread(&self) -> F {
+        let n = self.chains.len();
+        let m = n.min(64);
+        let mut values = [F::ZERO; 64];
+        for (i, v) in values.iter_mut().take(m).enumerate() {
+            *v = self.chains.value(i * n / m);
+        }
+        measure::spread(&mut values[..m])
     }
 
     fn rung(&self, c: usize) -> F {

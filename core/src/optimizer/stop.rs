@@ -151,6 +151,10 @@ pub enum Termination {
     Stalled,
     /// The observer asked to stop.
     Observer,
+    /// [`Auto`](crate::Auto)'s convergence rule held: its best did not
+    /// fall over the rule's window of rounds (see
+    /// [`Problem::converge`](crate::Problem::converge)).
+    Converged,
 }
 
 impl fmt::Display for Termination {
@@ -161,6 +165,7 @@ impl fmt::Display for Termination {
             Termination::Target => "target reached",
             Termination::Stalled => "stalled",
             Termination::Observer => "stopped by the observer",
+            Termination::Converged => "converged",
         })
     }
 }
