@@ -3,6 +3,10 @@
 
 use crate::float::Float;
 
+/// The convergence rule's tolerance, relative to the spread of `U` at the
+/// initial points: a fall smaller than this is rounding.
+pub const CONVERGED: f64 = 1e-12;
+
 /// The inverse temperatures the exact step is tested for.
 pub(super) const A_RANGE: (f64, f64) = (1e-6, 1e6);
 /// The steps `alpha h` the exact step is tested for (`alpha = 1`).

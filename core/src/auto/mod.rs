@@ -74,7 +74,8 @@ use crate::optimizer::{Stop, Termination};
 use crate::potential::BatchPotential;
 use crate::schedule::Schedule;
 
-pub use problem::{AutoProgress, CONVERGED, Problem, Solution};
+pub use measure::CONVERGED;
+pub use problem::{AutoProgress, Problem, Solution};
 pub use settings::{Auto, MAX_STEPS, Parts, Sampling};
 pub use storage::AutoStorage;
 

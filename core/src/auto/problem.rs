@@ -113,7 +113,7 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
 
     /// End the run as converged ([`Termination::Converged`]) when the
     /// best value has not fallen, beyond rounding, over the last `window`
-    /// rounds: by more than [`CONVERGED`] times the spread (interquartile
+    /// rounds: by more than [`CONVERGED`](crate::CONVERGED) times the spread (interquartile
     /// range) of `U` at the initial points, a tolerance in the problem's
     /// own units, so that the rule reads the same whatever the scale of
     /// `U`. The hotter half of the chains restarts after [`Auto::stall`]
@@ -138,10 +138,6 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
         self
     }
 }
-
-/// The convergence rule's tolerance, relative to the spread of `U` at the
-/// initial points: a fall smaller than this is rounding.
-pub const CONVERGED: f64 = 1e-12;
 
 /// What a run of [`Auto`] found, its best point as `X`: an array `[F; D]`
 /// from const-generic chains, a slice of the caller's [`AutoStorage`]

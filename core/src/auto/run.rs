@@ -600,7 +600,7 @@ where
     /// The method: quench the initial points, measure the settings, then
     /// rounds until the budget is spent, then polish the best point.
     pub(super) fn solve(&mut self) -> Flow {
-        self.tolerance = F::from_f64(super::problem::CONVERGED) * self.spread();
+        self.tolerance = F::from_f64(measure::CONVERGED) * self.spread();
         self.observe()?;
         if self.tally.auto.parts.quenches {
             for c in 0..self.chains.len() {
