@@ -216,12 +216,14 @@ class Auto:
     step_scale: float
     ladder: float
     quench: int
+    first_quench: int
     jump_rate: float
     stall: int
     converged_window: int
     accept: float
     def __init__(self, *, steps: Optional[int] = None, step_scale: Optional[float] = None,
                  ladder: Optional[float] = None, quench: Optional[int] = None,
+                 first_quench: Optional[int] = None,
                  jump_rate: Optional[float] = None, stall: Optional[int] = None,
                  accept: Optional[float] = None) -> None: ...
     @staticmethod

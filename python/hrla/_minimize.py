@@ -325,7 +325,7 @@ def minimize(
     *,
     jac: Any = None,
     x0: Any = None,
-    method: str = "auto",
+    method: Any = "auto",
     maxfun: Optional[float] = None,
     maxiter: Optional[float] = None,
     maxtime: Optional[float] = None,
@@ -380,7 +380,9 @@ def minimize(
     diverged).
 
     The run: ``method`` is ``"auto"`` (the default: :class:`Auto`, no
-    setting to tune; ``chains`` defaults to ``Auto.chains_for``) or
+    setting to tune; ``chains`` defaults to ``Auto.chains_for``), an
+    :class:`Auto` with constants of the caller's (``method=hrla.Auto(
+    steps=3)``: ``"auto"`` with those), or
     ``"hrla"``, ``"ula"``, ``"ola"`` (Algorithm 1 of the paper with that
     sampler in its paper setting at step ``h`` (default 0.01), the
     ``schedule`` (default ``a = 4``), ``chains`` chains (default 10) from
@@ -403,8 +405,9 @@ def minimize(
     rounding (``1e-12`` of the spread of ``f`` at the initial points, a
     tolerance in the problem's own units) over ``Auto().converged_window``
     rounds (60: one restart of the hotter half of its chains found nothing
-    better), it polishes the best and ends with ``termination ==
-    "Converged"``. ``converge=`` a window of rounds sets another;
+    better), or over a sixth of them while every chain's basin was the
+    best's (a unimodal problem), it polishes the best and ends with
+    ``termination == "Converged"``. ``converge=`` a window of rounds sets another;
     ``converge=False`` switches the rule off (the run then spends
     ``maxfun``).
 
@@ -436,8 +439,11 @@ def minimize(
     ``ValueError`` naming the argument; failed runs raise
     :class:`HrlaError` (with the kernel's message) or a subclass.
     """
+    settings: Optional[Auto] = None
+    if isinstance(method, Auto):
+        settings, method = method, "auto"
     if not isinstance(method, str):
-        raise TypeError(f"method must be a str (auto hrla ula ola), got {type(method).__name__}")
+        raise TypeError(f"method must be a str (auto hrla ula ola) or an hrla.Auto, got {type(method).__name__}")
     method = method.lower()
     if method != "auto" and method not in _SAMPLERS:
         raise ValueError(f"unknown method {method!r}; expected one of: auto hrla ula ola")
@@ -446,7 +452,7 @@ def minimize(
     if converge is not None and method != "auto":
         raise ValueError("converge is used by method='auto' only (the samplers' runs have a length)")
     if converge is None or converge is True:
-        converge = Auto().converged_window if method == "auto" else None
+        converge = (settings or Auto()).converged_window if method == "auto" else None
     elif converge is False:
         converge = None
     else:
@@ -547,8 +553,8 @@ def minimize(
         spend = _Budget(maxfun, cost, spare)
         if method == "auto":
             return _auto(potential, box, budget_k, run_seed, chains, dim, x0, objective, builtin, fun, nfev, spend,
-                         target=target, stall=stall, converge=converge, maxiter=maxiter, maxtime=maxtime,
-                         callback=callback, disp=disp)
+                         settings=settings, target=target, stall=stall, converge=converge, maxiter=maxiter,
+                         maxtime=maxtime, callback=callback, disp=disp)
         return _sampler(method, potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
                         spend, h=h, schedule=schedule, start=start, polish=polish, x0=x0, target=target,
                         stall=stall, maxiter=maxiter, maxtime=maxtime, callback=callback, disp=disp)
@@ -599,7 +605,7 @@ def _renamed(new: Any, old: Any, name: str, old_name: str) -> Any:
 
 def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int], dim: Optional[int],
           x0: Optional[np.ndarray], objective: Optional[_objective.Objective], builtin: bool, fun: Any,
-          nfev: Callable[[int], int], spend: _Budget, *, target: Optional[float],
+          nfev: Callable[[int], int], spend: _Budget, *, settings: Optional[Auto], target: Optional[float],
           stall: Optional[Tuple[int, float]], converge: Optional[int], maxiter: Optional[int],
           maxtime: Optional[float],
           callback: Optional[Callable[..., Any]], disp: bool) -> OptimizeResult:
@@ -611,7 +617,7 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
     # The limits as the run's own rules, which take only finite numbers:
     # the largest float stands for inf (target=inf: any finite value
     # reaches it; stall's tolerance inf: the run stalls after its window).
-    s = Auto().minimize(potential, box, budget, seed, chains=chains, dim=dim,
+    s = (settings or Auto()).minimize(potential, box, budget, seed, chains=chains, dim=dim,
                         x0=None if x0 is None else [float(v) for v in x0], observer=w if observed else None,
                         with_x=callback is not None,
                         target=None if target is None else min(target, sys.float_info.max),

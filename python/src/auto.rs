@@ -32,6 +32,8 @@ pub struct PyAuto {
     pub ladder: f64,
     /// Evaluations per quench, at most.
     pub quench: u64,
+    /// Evaluations per quench of the initial points, at most.
+    pub first_quench: u64,
     /// Probability that a chain's round starts with a differential move.
     pub jump_rate: f64,
     /// Rounds without a new best before the hotter half restarts.
@@ -72,12 +74,14 @@ pub struct PySolution {
 #[pymethods]
 impl PyAuto {
     #[new]
-    #[pyo3(signature = (*, steps = None, step_scale = None, ladder = None, quench = None, jump_rate = None, stall = None, accept = None))]
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (*, steps = None, step_scale = None, ladder = None, quench = None, first_quench = None, jump_rate = None, stall = None, accept = None))]
     fn new(
         steps: Option<&Bound<'_, PyAny>>,
         step_scale: Option<f64>,
         ladder: Option<f64>,
         quench: Option<&Bound<'_, PyAny>>,
+        first_quench: Option<&Bound<'_, PyAny>>,
         jump_rate: Option<f64>,
         stall: Option<&Bound<'_, PyAny>>,
         accept: Option<f64>,
@@ -85,12 +89,14 @@ impl PyAuto {
         let d = Auto::<f64>::default();
         let steps = config::unsigned_opt(steps, "steps")?;
         let quench = config::unsigned_opt(quench, "quench")?;
+        let first_quench = config::unsigned_opt(first_quench, "first_quench")?;
         let stall = config::unsigned_opt(stall, "stall")?;
         Ok(Self {
             steps: steps.unwrap_or(d.steps),
             step_scale: step_scale.unwrap_or(d.step_scale),
             ladder: ladder.unwrap_or(d.ladder),
             quench: quench.unwrap_or(d.quench),
+            first_quench: first_quench.unwrap_or(d.first_quench),
             jump_rate: jump_rate.unwrap_or(d.jump_rate),
             stall: stall.unwrap_or(d.stall),
             accept: accept.unwrap_or(d.accept),
@@ -191,6 +197,7 @@ impl PyAuto {
             step_scale: self.step_scale,
             ladder: self.ladder,
             quench: self.quench,
+            first_quench: self.first_quench,
             jump_rate: self.jump_rate,
             stall: self.stall,
             accept: self.accept,

@@ -512,6 +512,7 @@ fn wild_auto() -> impl Strategy<Value = Auto<f64>> {
                     step_scale,
                     ladder,
                     quench,
+                    first_quench: quench,
                     jump_rate,
                     stall,
                     accept,

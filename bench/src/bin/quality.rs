@@ -127,6 +127,7 @@ fn auto_for(strategy: &str) -> hrla::Auto<f64> {
         step_scale: env("HRLA_AUTO_SCALE", d.step_scale),
         ladder: env("HRLA_AUTO_LADDER", d.ladder),
         quench: env("HRLA_AUTO_QUENCH", d.quench),
+        first_quench: env("HRLA_AUTO_FIRST_QUENCH", d.first_quench),
         jump_rate: env("HRLA_AUTO_JUMP", d.jump_rate),
         stall: env("HRLA_AUTO_STALL", d.stall),
         accept: env("HRLA_AUTO_ACCEPT", d.accept),

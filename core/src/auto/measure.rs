@@ -7,6 +7,13 @@ use crate::float::Float;
 /// initial points: a fall smaller than this is rounding.
 pub const CONVERGED: f64 = 1e-12;
 
+/// How close to the best, relative to the spread of `U` at the initial
+/// points, a chain's basin is the best's for the convergence rule.
+pub(super) const AGREE: f64 = 1e-8;
+/// The convergence rule also holds after a window over this many rounds
+/// in which the best did not fall and every chain's basin was the best's.
+pub(super) const AGREED_SHARE: u64 = 6;
+
 /// The inverse temperatures the exact step is tested for.
 pub(super) const A_RANGE: (f64, f64) = (1e-6, 1e6);
 /// The steps `alpha h` the exact step is tested for (`alpha = 1`).

@@ -119,7 +119,11 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
     /// `U`. The hotter half of the chains restarts after [`Auto::stall`]
     /// rounds without a new best, so a window of twice that
     /// ([`Problem::converged`]) sees one restart find nothing better. The
-    /// best point is then polished.
+    /// rule also holds after a sixth of the window (at least one round)
+    /// in which the best did not fall and every chain's basin was the
+    /// best's (within `1e-8` of that spread): every chain, the hottest
+    /// included, keeps finding the one basin, as on a unimodal problem.
+    /// The best point is then polished.
     pub fn converge(mut self, window: u64) -> Self {
         self.converge = Some(window);
         self

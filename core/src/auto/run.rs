@@ -352,11 +352,17 @@ where
         }
     }
 
-    /// L-BFGS from `x` (in place) for chain `c`, within [`Auto::quench`]
+    /// L-BFGS from `x` (in place) for chain `c`, within `cap` evaluations
     /// and the budget: the value at its end, or `None` where `x` is
     /// infeasible. `scratch` is a point's worth of working space.
-    fn quench(&mut self, c: usize, x: &mut [F], scratch: &mut [F]) -> ControlFlow<Stop, Option<F>> {
-        let cap = self.auto.quench.min(self.remaining());
+    fn quench(
+        &mut self,
+        c: usize,
+        x: &mut [F],
+        scratch: &mut [F],
+        cap: u64,
+    ) -> ControlFlow<Stop, Option<F>> {
+        let cap = cap.min(self.remaining());
         if cap == 0 {
             return ControlFlow::Break(Stop::Budget);
         }
@@ -440,9 +446,12 @@ pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
     /// and the round it did; the same for the convergence tolerance.
     stall_from: (F, u64),
     converge_from: (F, u64),
-    /// The convergence rule's window, and its tolerance once measured.
+    /// The last round at whose end some chain's basin was not the best's.
+    agree_from: u64,
+    /// The convergence rule's window, and the spread of `U` at the initial
+    /// points its tolerances are relative to.
     converge: Option<u64>,
-    tolerance: F,
+    spread: F,
     /// The rule that ended the rounds.
     ended: Option<Termination>,
     /// The longest step the box allows.
@@ -557,8 +566,9 @@ where
             rules: Rules::new(),
             stall_from: (F::INFINITY, 0),
             converge_from: (F::INFINITY, 0),
+            agree_from: 0,
             converge: None,
-            tolerance: F::ZERO,
+            spread: F::ZERO,
             ended: None,
             longest: F::ONE,
             scale: [F::ONE; SLOTS],
@@ -581,14 +591,22 @@ where
         if best < self.stall_from.0 - tolerance {
             self.stall_from = (best, rounds);
         }
-        if best < self.converge_from.0 - self.tolerance {
+        if best < self.converge_from.0 - F::from_f64(measure::CONVERGED) * self.spread {
             self.converge_from = (best, rounds);
+        }
+        // Every basin the best's: one basin found again and again.
+        let agree = F::from_f64(measure::AGREE) * self.spread;
+        if (0..self.chains.len()).any(|c| self.chains.value(c) - best > agree) {
+            self.agree_from = rounds;
         }
         self.rules
             .holds(best, rounds, 0, 0, self.stall_from.1)
             .or_else(|| {
                 let window = self.converge?;
-                (rounds - self.converge_from.1 >= window).then_some(Termination::Converged)
+                let quiet = rounds - self.converge_from.1;
+                let agreed = rounds - self.agree_from.max(self.converge_from.1);
+                (quiet >= window || agreed >= (window / measure::AGREED_SHARE).max(1))
+                    .then_some(Termination::Converged)
             })
     }
 
@@ -600,12 +618,13 @@ where
     /// The method: quench the initial points, measure the settings, then
     /// rounds until the budget is spent, then polish the best point.
     pub(super) fn solve(&mut self) -> Flow {
-        self.tolerance = F::from_f64(measure::CONVERGED) * self.spread();
+        self.spread = self.spread();
         self.observe()?;
         if self.tally.auto.parts.quenches {
             for c in 0..self.chains.len() {
                 self.x.copy_from_slice(self.chains.x(c));
-                if let Some(value) = self.tally.quench(c, self.x, self.base)? {
+                let cap = self.tally.auto.first_quench;
+                if let Some(value) = self.tally.quench(c, self.x, self.base, cap)? {
                     settle(self.chains.chain(c), self.x, value);
                 }
                 self.observe()?;
@@ -864,7 +883,9 @@ where
             return ControlFlow::Continue(point);
         }
         let found = if self.tally.auto.parts.quenches {
-            let found = self.tally.quench(c, self.x, self.base)?;
+            let found = self
+                .tally
+                .quench(c, self.x, self.base, self.tally.auto.quench)?;
             if found.is_some() {
                 self.grad.fill(F::ZERO);
             }
@@ -953,7 +974,10 @@ where
                 continue;
             };
             if self.tally.auto.parts.quenches {
-                let Some(v) = self.tally.quench(c, self.x, self.base)? else {
+                let Some(v) = self
+                    .tally
+                    .quench(c, self.x, self.base, self.tally.auto.quench)?
+                else {
                     continue;
                 };
                 value = v;

@@ -58,6 +58,12 @@ pub struct Auto<F> {
     pub ladder: F,
     /// Evaluations per quench, at most (it ends earlier when it converges).
     pub quench: u64,
+    /// Evaluations per quench of the initial points, at most, before the
+    /// first round: where a gradient costs `1 + d` calls of a black-box
+    /// function, a few make the run anytime (its first round of sampling
+    /// starts within a few dozen gradients) and the rounds' own quenches
+    /// finish the descent.
+    pub first_quench: u64,
     /// Probability that a chain's round starts with a differential move.
     pub jump_rate: F,
     /// Rounds without a new best before the hotter half restarts.
@@ -75,8 +81,8 @@ pub struct Auto<F> {
 
 impl<F: Float> Default for Auto<F> {
     /// 10 HRLA steps per round from `h = 2 / L`, steered to accept half
-    /// the proposals, a ladder of `±3.5` in `ln a`, quenches of up to 1000
-    /// evaluations, differential moves in 10% of the rounds, restarts
+    /// the proposals, a ladder of `±3.5` in `ln a`, quenches (the initial
+    /// points' too) of up to 1000 evaluations, differential moves in 10% of the rounds, restarts
     /// after 30 rounds without a new best.
     fn default() -> Self {
         Self {
@@ -84,6 +90,7 @@ impl<F: Float> Default for Auto<F> {
             step_scale: F::TWO,
             ladder: F::from_f64(3.5),
             quench: 1000,
+            first_quench: 1000,
             jump_rate: F::from_f64(0.1),
             stall: 30,
             parts: Parts::default(),
@@ -98,6 +105,11 @@ impl<F: Float> Auto<F> {
     pub(super) fn validate(&self) -> Result<(), Error> {
         if self.quench == 0 {
             return Err(Error::Zero { name: "quench" });
+        }
+        if self.first_quench == 0 {
+            return Err(Error::Zero {
+                name: "first_quench",
+            });
         }
         if self.stall == 0 {
             return Err(Error::Zero { name: "stall" });
