@@ -32,6 +32,7 @@
 #![deny(missing_docs)]
 
 pub mod auto;
+pub mod budget;
 mod engine;
 mod error;
 mod potential;

@@ -234,3 +234,6 @@ class Auto:
                  with_x: bool = False, target: Optional[float] = None,
                  stall: Optional[Tuple[int, float]] = None, rounds: Optional[int] = None,
                  converge: Optional[int] = None) -> Solution: ...
+
+def split_budget(budget: int, chains: int, polish: Optional[int] = None,
+                 x0: bool = False) -> Optional[Tuple[Optional[int], int]]: ...

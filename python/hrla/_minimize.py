@@ -11,7 +11,7 @@ from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tu
 import numpy as np
 
 from . import _objective
-from ._hrla import Auto, Hrla, Interval, Ola, Optimizer, PolishSettings, Potential, Stop, Ula
+from ._hrla import Auto, Hrla, Interval, Ola, Optimizer, PolishSettings, Potential, Stop, Ula, split_budget
 
 #: The clock of ``maxtime`` and of the progress line's rate (seconds); a
 #: test may replace it with a fake one.
@@ -659,15 +659,17 @@ def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chai
         start = box
     n = 10 if chains is None else chains
     cost = spend.cost
-    polish_k = min(1000, budget // 4) if polish is None else polish // cost
+    # The sampling leaves the polish its share of the budget (the layer's
+    # rule, which every front end shares).
+    split = split_budget(budget, n, None if polish is None else polish // cost, x0 is not None)
+    if split is None:
+        asked = min(1000, budget // 4) if polish is None else polish // cost
+        raise ValueError(f"maxfun leaves no step to {n} chains before a polish of {asked} gradients "
+                         f"({cost} calls of fun each): raise maxfun, or lower polish or chains")
+    sampling, polish_k = split
     stop = Stop().evaluations(budget)
     steps = maxiter
-    if polish_k > 0:
-        # The sampling leaves the polish its share of the budget.
-        sampling = (budget - polish_k - n - (x0 is not None)) // max(n, 1)
-        if sampling < 1:
-            raise ValueError(f"maxfun leaves no step to {n} chains before a polish of {polish_k} gradients "
-                             f"({cost} calls of fun each): raise maxfun, or lower polish or chains")
+    if sampling is not None:
         steps = sampling if steps is None else min(steps, sampling)
     # The limits as the kernel's rules, which take only finite numbers and
     # a step budget of one or more; every method reads them the same way

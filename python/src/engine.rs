@@ -386,6 +386,23 @@ impl PyOptimizer {
     }
 }
 
+/// How a sampler's run of `budget` evaluations with `chains` chains
+/// shares it with the polish at its end (`polish` evaluations, or the
+/// default share; `x0`: a start of the caller's, one evaluation more):
+/// `(steps, polish)`, `steps` `None` where only the budget ends the
+/// sampling; `None` where the polish leaves no whole step.
+#[pyfunction]
+#[pyo3(signature = (budget, chains, polish = None, x0 = false))]
+fn split_budget(
+    budget: u64,
+    chains: usize,
+    polish: Option<u64>,
+    x0: bool,
+) -> Option<(Option<u64>, u64)> {
+    hrla_dyn::budget::split(budget, chains, polish, x0).map(|s| (s.steps, s.polish))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_class::<PyOptimizer>()
+    m.add_class::<PyOptimizer>()?;
+    m.add_function(wrap_pyfunction!(split_budget, m)?)
 }
