@@ -268,7 +268,8 @@ def test_maxfun_counts_every_call(method):
         res = hrla.minimize(lambda x: calls.append(1) or fun(x), [(-5, 5)] * 2, jac=jac, method=method, rng=1,
                             maxfun=2_500)
         assert len(calls) == res.nfev <= 2_500, (jac, res)
-        assert res.termination in ("Evaluations", "Steps"), res
+        # "auto" may converge first: every call is counted either way.
+        assert res.termination in ("Evaluations", "Steps", "Converged"), res
 
 
 @pytest.mark.parametrize("method", METHODS)
