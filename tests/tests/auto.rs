@@ -241,10 +241,9 @@ fn rosenbrock(x: &[f64; 6], g: &mut [f64; 6]) -> f64 {
 
 /// The returned point is a local minimum to machine precision even when
 /// every quench is cut short (5 evaluations, far from converged in a
-/// curved valley): the best point is polished until L-BFGS converges, to
-/// the precision of the problem's scale (`U` falls by no more than 64
-/// `eps` of its unit of energy, about 40 in this box, where `U` reaches
-/// `1e6`: `|∇U|^2 / L <= 6e-13` at the valley's curvature `L ~ 800`).
+/// curved valley, and the initial quenches stop in the units of the values
+/// at random points, up to `1e6` here): the best point is polished until
+/// the gradient vanishes or no step lowers `U`.
 #[test]
 fn the_returned_point_is_polished() {
     for seed in 0..3 {
@@ -267,7 +266,7 @@ fn the_returned_point_is_polished() {
         rosenbrock(&found.x, &mut g);
         let norm = g.iter().map(|v| v.abs()).fold(0.0, f64::max);
         assert!(
-            norm < 2e-5 && found.value < 1e-12,
+            norm < 1e-6 && found.value < 1e-12,
             "seed {seed}: |g| = {norm:e}, {found:?}"
         );
     }

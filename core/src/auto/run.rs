@@ -750,6 +750,10 @@ where
         let m = self.sample_values(&mut values);
         self.units = self.units.measured(curvature, &mut values[..m]);
         self.tally.scale = self.scale(true);
+        // A quench before the measurement converged in the units of the
+        // spread of values at random points, often orders of magnitude
+        // coarser than the basins' own: its end is no minimum in these.
+        self.tally.polished = false;
         self.a0 = measure::centre(&mut values[..m], self.units.energy);
         // The step's cap: a tenth of the narrowest side in unit coordinates.
         let mut width = F::INFINITY;
@@ -1055,8 +1059,18 @@ where
             return ControlFlow::Continue(());
         }
         self.x.copy_from_slice(tally.best);
-        let settings = PolishSettings::new(tally.remaining());
-        match tally.local(self.x, self.base, settings) {
+        // To the float type's precision: the quenches' resolution (and a
+        // value tolerance) stops them while U still falls in a narrow
+        // valley, many times the rounding of U where U's minimum is 0. The
+        // search ends where the gradient vanishes or no step lowers U, at
+        // most what is left of the budget.
+        let mut settings = PolishSettings::new(tally.remaining());
+        settings.value_tolerance = F::ZERO;
+        let quenches = tally.scale;
+        tally.scale.resolution = F::ZERO;
+        let done = tally.local(self.x, self.base, settings);
+        tally.scale = quenches;
+        match done {
             Ok(done) => {
                 tally.evaluations += done.evaluations;
                 tally.record(self.x, done.value, done.end != PolishEnd::Budget);
