@@ -58,6 +58,53 @@ impl<F: Float> PolishSettings<F> {
     }
 }
 
+/// The units a search measures its absolute constants in: its first step,
+/// along `-∇U`, moves at most `length` in any coordinate and is at most
+/// `step` (`length^2 / energy`: a step of unit curvature), and an
+/// iteration that lowers `U` by no more than `value_tolerance * max(energy,
+/// |U|)` ends it. The public searches run in units of 1, so that their
+/// constants are those of the coordinates and values they are given;
+/// `Auto` runs its quenches in the problem's own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Scale<F> {
+    pub(crate) length: F,
+    pub(crate) energy: F,
+    pub(crate) step: F,
+    /// A direction is searched only where the first-order decrease its
+    /// first step predicts exceeds `resolution` value tolerances: below,
+    /// the search's comparisons of values would be decided by their
+    /// rounding, and so would its length. The search ends there instead,
+    /// converged ([`PolishEnd::Value`]). 0 searches every direction.
+    pub(crate) resolution: F,
+}
+
+impl<F: Float> Scale<F> {
+    /// The coordinates' and the values' own units, every direction searched.
+    pub(crate) const ONE: Self = Self {
+        length: F::ONE,
+        energy: F::ONE,
+        step: F::ONE,
+        resolution: F::ZERO,
+    };
+
+    /// The least fall of `U` from `value` these units resolve:
+    /// `resolution` value tolerances of [`PolishSettings::new`].
+    pub(crate) fn resolved(&self, value: F) -> F {
+        self.resolution * self.tolerance(PolishSettings::<F>::new(0).value_tolerance, value)
+    }
+
+    /// `value_tolerance * max(energy, |value|)`: a fall of `U` within its
+    /// last bits at `value`.
+    fn tolerance(&self, value_tolerance: F, value: F) -> F {
+        let scale = if value.abs() > self.energy {
+            value.abs()
+        } else {
+            self.energy
+        };
+        value_tolerance * scale
+    }
+}
+
 /// Why a polish ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum PolishEnd {
@@ -245,18 +292,20 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
             &Arrays::<_, D>(domain),
             x,
             settings,
+            Scale::ONE,
         )
     }
 
-    /// [`minimize_in`](Lbfgs::minimize_in) through the slice traits, for
-    /// the code that runs at any dimension over this storage (`x` of
-    /// length `D`, which its callers guarantee).
+    /// [`minimize_in`](Lbfgs::minimize_in) through the slice traits, in
+    /// the units `scale`, for the code that runs at any dimension over this
+    /// storage (`x` of length `D`, which its callers guarantee).
     pub(crate) fn minimize_slices<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
         x: &mut [F],
         settings: PolishSettings<F>,
+        scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
         if x.len() != D {
             return Err(Error::Length {
@@ -281,7 +330,7 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
             m: M,
             d: D,
         };
-        memory.minimize_in(potential, domain, x, settings)
+        memory.minimize_in(potential, domain, x, settings, scale)
     }
 }
 
@@ -364,6 +413,18 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
         x: &mut [F],
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
+        self.minimize_scaled(potential, domain, x, settings, Scale::ONE)
+    }
+
+    /// [`minimize_in`](LbfgsIn::minimize_in) in the units `scale`.
+    pub(crate) fn minimize_scaled<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &mut [F],
+        settings: PolishSettings<F>,
+        scale: Scale<F>,
+    ) -> Result<Polished<F>, Error> {
         let d = self.d;
         if x.len() != d {
             return Err(Error::Length {
@@ -373,7 +434,7 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
             });
         }
         let (mut memory, _) = self.split();
-        memory.minimize_in(potential, domain, x, settings)
+        memory.minimize_in(potential, domain, x, settings, scale)
     }
 
     /// Polishes a copy of `start` (of the storage's dimension) in the
@@ -387,7 +448,7 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
     ) -> (Result<Polished<F>, Error>, &[F]) {
         let (mut memory, point) = self.split();
         point.copy_from_slice(start);
-        let done = memory.minimize_in(potential, domain, point, settings);
+        let done = memory.minimize_in(potential, domain, point, settings, Scale::ONE);
         (done, point)
     }
 
@@ -557,9 +618,11 @@ impl<F: Float> Memory<'_, F> {
         domain: &B,
         x: &mut [F],
         settings: PolishSettings<F>,
+        scale: Scale<F>,
     ) -> (Search<F>, Next<F>) {
         let mut search = Search {
             settings,
+            scale,
             phase: Phase::Start,
             budget: 0,
             iterations: 0,
@@ -674,13 +737,21 @@ impl<F: Float> Memory<'_, F> {
             }
         }
         // Unit steps for quasi-Newton directions; the first, along
-        // -grad, is scaled to move x by at most 1 in any coordinate.
+        // -grad, is a step of unit curvature that moves x by at most one
+        // length in any coordinate, both in the search's units.
         let first = if *self.len == 0 {
-            let m = max_abs(self.direction);
-            if m > F::ONE { F::ONE / m } else { F::ONE }
+            let Scale { length, step, .. } = s.scale;
+            let cap = length / max_abs(self.direction);
+            if cap < step { cap } else { step }
         } else {
             F::ONE
         };
+        let resolution = s.scale.resolution;
+        if resolution > F::ZERO
+            && -slope * first <= resolution * s.scale.tolerance(s.settings.value_tolerance, s.value)
+        {
+            return Self::end(s, Ok(s.polished(PolishEnd::Value)));
+        }
         // A step satisfying the strong Wolfe conditions from (0, f0, d0):
         // first a bracket, doubling the step, then a zoom into it.
         s.f0 = s.value;
@@ -863,12 +934,7 @@ impl<F: Float> Memory<'_, F> {
         self.grad.copy_from_slice(self.trial_grad);
         s.value = p.value;
         s.iterations += 1;
-        let scale = if s.value.abs() > F::ONE {
-            s.value.abs()
-        } else {
-            F::ONE
-        };
-        if drop <= s.settings.value_tolerance * scale {
+        if drop <= s.scale.tolerance(s.settings.value_tolerance, s.value) {
             return Self::end(s, Ok(s.polished(PolishEnd::Value)));
         }
         self.iterate(s, domain, x)
@@ -882,8 +948,9 @@ impl<F: Float> Memory<'_, F> {
         domain: &B,
         x: &mut [F],
         settings: PolishSettings<F>,
+        scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
-        let (mut search, mut next) = self.begin(domain, x, settings);
+        let (mut search, mut next) = self.begin(domain, x, settings, scale);
         loop {
             match next {
                 Next::Evaluate => {
@@ -925,6 +992,7 @@ enum Phase {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Search<F> {
     settings: PolishSettings<F>,
+    scale: Scale<F>,
     phase: Phase,
     /// Evaluations left (the one in flight charged).
     budget: u64,

@@ -360,8 +360,10 @@ def minimize(
     - ``jac``: ``None`` or ``"2-point"`` (forward differences, ``D``
       calls of ``fun`` per gradient), ``"3-point"`` (central differences,
       ``2 D`` calls), both with the steps of
-      ``scipy.optimize.approx_derivative`` and turned inward at the box's
-      faces so that no call leaves the box; ``True`` (``fun`` returns
+      ``scipy.optimize.approx_derivative`` in the box's units (its
+      ``max(1, |x|)`` with the side over 10.24 for the 1, so that the
+      steps scale with the box) and turned inward at the box's faces so
+      that no call leaves the box; ``True`` (``fun`` returns
       ``(f, g)``); or a callable ``jac(x, *args)`` returning ``g``;
     - ``vectorized=True``: ``fun`` is called once per batch with ``x`` of
       shape ``(D, S)``, a column per point, and returns ``S`` values

@@ -10,7 +10,8 @@ scipy's conventions, each mapped here once:
 - the gradient: ``jac=True`` (``fun`` returns ``(f, g)``, ``g`` of shape
   ``(D,)``, or ``(D, S)`` when vectorized), a callable ``jac(x, *args)``
   of the same shapes, or finite differences (``None``, ``"2-point"``,
-  ``"3-point"``) with the steps of ``scipy.optimize.approx_derivative``;
+  ``"3-point"``) with the steps of ``scipy.optimize.approx_derivative``
+  in the box's units of length (:func:`steps`);
 - ``workers``: an int (a ``multiprocessing.Pool`` of that many processes,
   ``-1`` for every CPU) or a map-like callable, which evaluates the points
   of a batch in parallel, then their finite-difference probes (those of
@@ -38,20 +39,38 @@ EPS = float(np.finfo(np.float64).eps)
 SCHEMES = {"2-point": 1, "3-point": 2}
 
 
+#: The width of a side of the box that is one unit of length to the
+#: finite differences, as to ``Auto``: the paper's box ``[-5.12, 5.12]``.
+WIDTH = 10.24
+
+
+def units(lb: np.ndarray, ub: np.ndarray) -> np.ndarray:
+    """Each coordinate's unit of length: its side of the box over
+    :data:`WIDTH` (1 on the paper's box), or 1 where a side is not finite
+    (no box to measure)."""
+    width = np.asarray(ub, dtype=np.float64) - np.asarray(lb, dtype=np.float64)
+    unit: np.ndarray = np.where(np.isfinite(width), width / WIDTH, 1.0)
+    return unit
+
+
 def steps(x: np.ndarray, lb: np.ndarray, ub: np.ndarray, scheme: str) -> Tuple[np.ndarray, np.ndarray]:
     """The finite-difference steps at the rows of ``x`` and whether each is
-    one-sided: ``scipy.optimize.approx_derivative``'s rule, row by row.
+    one-sided: ``scipy.optimize.approx_derivative``'s rule, row by row, in
+    the box's units of length.
 
-    The step is ``r sign(x) max(1, |x|)`` with ``r = sqrt(eps)``
-    (``"2-point"``) or ``eps^(1/3)`` (``"3-point"``), ``sign(0) = 1``. At a
-    face of the box ``[lb, ub]`` it is turned inward (``"2-point"``: the
-    backward difference; ``"3-point"``: the one-sided three-point
+    The step is ``r sign(x) max(l, |x|)`` with ``r = sqrt(eps)``
+    (``"2-point"``) or ``eps^(1/3)`` (``"3-point"``), ``sign(0) = 1``, and
+    ``l`` the coordinate's unit (:func:`units`): scipy's ``max(1, |x|)``
+    with the box's unit for its 1, so that the steps, and the gradients,
+    scale with the box (in ``s`` times the box, ``s`` times the steps).
+    At a face of the box ``[lb, ub]`` it is turned inward (``"2-point"``:
+    the backward difference; ``"3-point"``: the one-sided three-point
     formula), and shortened where the box is narrower than it, so that no
     probe leaves the box.
     """
     rstep = EPS ** 0.5 if scheme == "2-point" else EPS ** (1 / 3)
     sign = (x >= 0).astype(np.float64) * 2 - 1
-    h = rstep * sign * np.maximum(1.0, np.abs(x))
+    h = rstep * sign * np.maximum(np.broadcast_to(units(lb, ub), x.shape), np.abs(x))
     lb = np.broadcast_to(lb, x.shape)
     ub = np.broadcast_to(ub, x.shape)
     if scheme == "2-point":

@@ -48,22 +48,32 @@ def near_a_minimum(x):
 @pytest.mark.parametrize("scheme", ["2-point", "3-point"])
 def test_finite_differences_are_approx_derivatives_bits(scheme):
     """The gradient of every row equals `approx_derivative`'s with the
-    same scheme and bounds, bit for bit: inside the box, on each face,
-    near one, and in a box narrower than the step."""
-    lb, ub = np.array([-5.0, 0.0, 1.0]), np.array([5.0, 1e-9, 1.0 + 1e-12])
+    same scheme and bounds and its absolute step `r sign(x) max(l, |x|)`
+    (`l` the side over 10.24), bit for bit: inside the box, on each face,
+    near one, and in a box narrower than the step. On the paper's box
+    `[-5.12, 5.12]` that step is scipy's own."""
+    lb, ub = np.array([-5.0, 0.0, 1.0, -5.12]), np.array([5.0, 1e-9, 1.0 + 1e-12, 5.12])
 
     def f(x):
-        return float(np.sin(x[0]) * np.exp(x[1]) + x[0] * x[2] ** 3)
+        return float(np.sin(x[0]) * np.exp(x[1]) + x[0] * x[2] ** 3 + np.cos(3 * x[3]))
 
-    rows = np.array([[0.3, 0.0, 1.0], [5.0, 1e-9, 1.0 + 1e-12], [-5.0, 5e-10, 1.0], [4.9999999999, 0.0, 1.0],
-                     [-1e-3, 1e-10, 1.0 + 5e-13]])
+    rows = np.array([[0.3, 0.0, 1.0, 0.25], [5.0, 1e-9, 1.0 + 1e-12, 5.12], [-5.0, 5e-10, 1.0, -5.12],
+                     [4.9999999999, 0.0, 1.0, 0.0], [-1e-3, 1e-10, 1.0 + 5e-13, -3.0]])
     obj = _objective.Objective(f, (), scheme, False, _objective.Mapper(1), lb, ub)
     u, g = obj(rows)
+    r = _objective.EPS ** 0.5 if scheme == "2-point" else _objective.EPS ** (1 / 3)
+    unit = (ub - lb) / 10.24
+    assert unit[3] == 1.0
     for row, value, grad in zip(rows, u, g):
-        want = approx_derivative(f, row, method=scheme, bounds=(lb, ub))
+        sign = np.where(row >= 0, 1.0, -1.0)
+        step = r * sign * np.maximum(unit, np.abs(row))
+        want = approx_derivative(f, row, method=scheme, bounds=(lb, ub), abs_step=step)
         assert value == f(row)
         np.testing.assert_array_equal(grad, want)
-    per_row = 1 + _objective.SCHEMES[scheme] * 3
+        # The last coordinate, on the paper's box: scipy's own step.
+        default = approx_derivative(f, row, method=scheme, bounds=(lb, ub))
+        assert grad[3] == default[3]
+    per_row = 1 + _objective.SCHEMES[scheme] * 4
     assert obj.nfev == len(rows) * per_row and obj.njev == len(rows)
     # Without a box: the same as approx_derivative without bounds.
     free = _objective.Objective(f, (), scheme, False, _objective.Mapper(1), -np.inf, np.inf)

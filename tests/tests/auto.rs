@@ -241,7 +241,9 @@ fn rosenbrock(x: &[f64; 6], g: &mut [f64; 6]) -> f64 {
 
 /// The returned point is a local minimum to machine precision even when
 /// every quench is cut short (5 evaluations, far from converged in a
-/// curved valley): the best point is polished until L-BFGS converges.
+/// curved valley, and the initial quenches stop in the units of the values
+/// at random points, up to `1e6` here): the best point is polished until
+/// the gradient vanishes or no step lowers `U`.
 #[test]
 fn the_returned_point_is_polished() {
     for seed in 0..3 {
@@ -305,8 +307,9 @@ fn the_scale_of_u_does_not_matter() {
 
 /// A landscape flat at every start (a narrow well of width 0.2 in a box
 /// of width 10: the gradient underflows to 0 at almost every point) gives
-/// a step bounded by the box, not the exact step's cap of 50, and the run
-/// still finds the well.
+/// a finite step, and the run still finds the well. (The step is in the
+/// units that the curvature of the tails the probes meet defines, whose
+/// values underflow: a finite number of the order of their inverse.)
 #[test]
 fn flat_stretches_give_a_finite_step() {
     let well = FnPotential::new(|x: &[f64; 2], g: &mut [f64; 2]| {
@@ -324,8 +327,7 @@ fn flat_stretches_give_a_finite_step() {
                 (&mut chains::<2>(4)[..], &mut lbfgs),
             )
             .unwrap();
-        // At most the longest step: a tenth of the box by the velocity.
-        assert!(found.step <= 0.1 * 10f64.sqrt() * 10.0, "{found:?}");
+        assert!(found.step.is_finite() && found.step > 0.0, "{found:?}");
         found_it += usize::from(found.value < -1.0 + 1e-12);
     }
     assert!(found_it >= 4, "the well found in {found_it} of 5 runs");
@@ -989,16 +991,16 @@ fn a_box_of_equal_sides_keeps_its_bits() {
         let h = outcome_hash(&x, value, evaluations, rounds, f64::from_bits(step));
         hashes.push((h, h));
     }
-    // Pinned when each rung's step began to follow its acceptance rate.
+    // Pinned with the run in the problem's units.
     assert_eq!(
         hashes,
         [
-            (0xa3337beb7ff7dfda, 0x87565594b7eff7fd),
-            (0xa7f48b66b48cee5d, 0x56dadc5a1e48799e),
-            (0x2c3d6a367876abf0, 0x2c3d6a367876abf0),
-            (0xc202e2c70683a3c6, 0xfe7b0596a54cebed),
-            (0x893d629e4ae28fa3, 0x5b1908a00bc66e2d),
-            (0x0ca0e45107a56b74, 0x0ca0e45107a56b74),
+            (0x51292e9dc1ddf80e, 0xb3bfcfff1461b92c),
+            (0x3569e9e30355c189, 0x42daa3b68656bea3),
+            (0xcfffafc36faa6c41, 0xcfffafc36faa6c41),
+            (0xc4e11431840dedce, 0x3d5164ac8a29bd38),
+            (0xcc6d70fb5fbe4ee1, 0x38e772b4599d09f4),
+            (0x8df77d4ab487f558, 0x8df77d4ab487f558),
         ]
     );
 }

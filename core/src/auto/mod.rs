@@ -35,12 +35,38 @@
 //! within the polish).
 //!
 //! The settings are **measured** on the problem, after the initial points
-//! are quenched ([`measure`]): the ladder is centred on `a_0 = 1 / IQR` of
-//! the quenched values (minima are on the problem's own scale even where
-//! random points reach `1e9`), `±` [`Auto::ladder`] in `ln a`; the step is
-//! `h = step_scale / L`, `L` the median curvature along random directions
-//! at the basins' bottoms, where it is positive even on landscapes with
-//! flat stretches; every rung starts from it.
+//! are quenched ([`measure`]), and every constant holds in the
+//! **problem's own units**: lengths in units of `ℓ`, the box's widest side
+//! over `10.24`, and energies in units of `ε`, at which the median
+//! curvature `L` along random directions at the basins' bottoms (positive
+//! there even on landscapes with flat stretches) is `2 + 4π^2`. On the
+//! paper's Rastrigin in `[-5.12, 5.12]^d` these are about the units of `x`
+//! and `U`; on `c U(x / s)` in `s` times the box they are `s ℓ` and `c ε`,
+//! and the run makes the same decisions, up to rounding (which the hot
+//! rungs' long trajectories across a rugged landscape multiply, a
+//! hundredfold or more a step: there the first rounds are the same, and
+//! the rest the same in law). In them:
+//!
+//! - the sampling is the paper's HRLA (`alpha = beta = 1`, `b = 10`), and
+//!   every rung starts from `h = step_scale / L`, never longer than the
+//!   step whose velocity term `h |y|` moves a tenth of the box (the whole
+//!   rule where no curvature is measured); `alpha h` within `[1e-8, 50]`;
+//! - the ladder is centred on `a_0 = 1 / IQR` of the quenched values
+//!   (minima are on the problem's own scale even where random points reach
+//!   `1e9`), `±` [`Auto::ladder`] in `ln a`, every rung within `[1e-6,
+//!   1e6] / ε`; where the basins have one value (a spread below `1e-9` of
+//!   their size), `1 / max(ε, |median|)`;
+//! - a quench's first step moves at most `ℓ` in any coordinate and is at
+//!   most `ℓ^2 / ε`, and it ends where the decrease its next step would
+//!   predict is below `64 eps max(ε, |U|)`: no line search is decided by the
+//!   rounding of the values it compares. The initial quenches, before
+//!   any curvature is known, take the spread of the initial values for
+//!   `ε` and no bound on the first step but `ℓ`.
+//!
+//! The random numbers of the Metropolis test and of the exchanges are
+//! drawn whatever the values compare, and the best falling by less than
+//! a quench resolves is no progress for [`Auto::stall`]: values equal up
+//! to their rounding never change the run's course.
 //!
 //! In a box whose sides differ, the sampling, the quenches, the polish
 //! and the curvature probes run in the box's **unit coordinates**

@@ -156,8 +156,8 @@ pub struct Solution<F, X> {
     pub evaluations: u64,
     /// Rounds done.
     pub rounds: u64,
-    /// The step size measured (`step_scale / L`), from which every rung
-    /// started.
+    /// The step size measured (`step_scale / L`, in units of `x^2 / U`),
+    /// from which every rung started.
     pub step: F,
     /// The inverse temperature of the coldest chain.
     pub inverse_temperature: F,

@@ -8,7 +8,7 @@ use core::ops::ControlFlow;
 
 use rand_core::{Rng, SeedableRng};
 
-use super::measure::{self, A_RANGE};
+use super::measure::{self, A_RANGE, Units};
 use super::moves;
 use super::scale::{Scaled, Unit};
 use super::settings::{Auto, Sampling};
@@ -17,7 +17,7 @@ use crate::error::{Error, floor};
 use crate::float::Float;
 use crate::optimizer::{Chain, Stop as Rules, Termination, chain_seed, draw_point};
 use crate::optimizer::{Verdict, judge};
-use crate::polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished};
+use crate::polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished, Scale};
 use crate::potential::{BatchPotential, SlicePotential};
 use crate::sampler::{Hrla, Kernel, OuKernel, Sampler};
 
@@ -213,13 +213,15 @@ impl<'a, F> Buffers<'a, F> {
 
 /// L-BFGS over some storage, as the run's quenches and polish use it.
 pub(super) trait Quencher<F: Float> {
-    /// L-BFGS from `x` within the box, `x` ending at the best point.
+    /// L-BFGS from `x` within the box in the units `scale`, `x` ending at
+    /// the best point.
     fn quench<P, B>(
         &mut self,
         potential: &P,
         domain: &B,
         x: &mut [F],
         settings: PolishSettings<F>,
+        scale: Scale<F>,
     ) -> Result<Polished<F>, Error>
     where
         P: SlicePotential<F> + ?Sized,
@@ -233,12 +235,13 @@ impl<F: Float, const D: usize, const M: usize> Quencher<F> for Lbfgs<F, D, M> {
         domain: &B,
         x: &mut [F],
         settings: PolishSettings<F>,
+        scale: Scale<F>,
     ) -> Result<Polished<F>, Error>
     where
         P: SlicePotential<F> + ?Sized,
         B: Sides<F> + ?Sized,
     {
-        self.minimize_slices(potential, domain, x, settings)
+        self.minimize_slices(potential, domain, x, settings, scale)
     }
 }
 
@@ -249,12 +252,13 @@ impl<F: Float> Quencher<F> for LbfgsIn<'_, F> {
         domain: &B,
         x: &mut [F],
         settings: PolishSettings<F>,
+        scale: Scale<F>,
     ) -> Result<Polished<F>, Error>
     where
         P: SlicePotential<F> + ?Sized,
         B: Sides<F> + ?Sized,
     {
-        self.minimize_in(potential, domain, x, settings)
+        self.minimize_scaled(potential, domain, x, settings, scale)
     }
 }
 
@@ -303,6 +307,8 @@ struct Tally<'a, F, P: ?Sized, B: ?Sized, L: ?Sized> {
     /// The box's unit coordinates, where the dynamics and the quenches run.
     unit: Unit<'a, F, B>,
     lbfgs: &'a mut L,
+    /// The problem's units, in which the quenches' constants hold.
+    scale: Scale<F>,
     budget: u64,
     evaluations: u64,
     rounds: u64,
@@ -392,9 +398,11 @@ where
         scratch: &mut [F],
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
-        let unit = self.unit;
+        let (unit, scale) = (self.unit, self.scale);
         if unit.is_identity() {
-            return self.lbfgs.quench(&self.potential, self.domain, x, settings);
+            return self
+                .lbfgs
+                .quench(&self.potential, self.domain, x, settings, scale);
         }
         let scaled = Scaled {
             potential: &self.potential,
@@ -402,7 +410,7 @@ where
             x: RefCell::new(scratch),
         };
         unit.scale_in(x);
-        let done = self.lbfgs.quench(&scaled, &unit, x, settings);
+        let done = self.lbfgs.quench(&scaled, &unit, x, settings, scale);
         unit.scale_out(x);
         done
     }
@@ -435,7 +443,9 @@ pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
     observer: O,
     /// The best value at the observer's last call.
     seen: Option<F>,
-    /// The measured settings: the ladder's centre and the step.
+    /// The problem's units, and the settings measured in them: the
+    /// ladder's centre and the step.
+    units: Units<F>,
     a0: F,
     h: F,
     /// Rounds since the best last fell.
@@ -454,13 +464,17 @@ pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
     spread: F,
     /// The rule that ended the rounds.
     ended: Option<Termination>,
-    /// The longest step the box allows.
+    /// The longest step the box allows, in the problem's units.
     longest: F,
     /// Each rung's step as a multiple of `h` (beyond [`SLOTS`] rungs,
     /// neighbouring rungs share one).
     scale: [F; SLOTS],
 }
 
+/// The least decrease of `U`, in value tolerances, that a quench's line
+/// search is tried for: above the rounding of the values it compares, so
+/// that the problem in other units makes the same decisions.
+const RESOLUTION: f64 = 16.0;
 /// Rungs whose steps adapt apart.
 const SLOTS: usize = 16;
 /// The gain of the step rule: `ln h_c` moves by `KAPPA (1 - accept)` after
@@ -544,6 +558,7 @@ where
                 domain,
                 unit: Unit::new(domain, best.len()),
                 lbfgs,
+                scale: Scale::ONE,
                 budget,
                 evaluations,
                 rounds: 0,
@@ -560,6 +575,10 @@ where
             g0,
             observer,
             seen: None,
+            units: Units {
+                length: F::ONE,
+                energy: F::ONE,
+            },
             a0: F::ONE,
             h: F::ONE,
             stalled: 0,
@@ -620,6 +639,10 @@ where
     pub(super) fn solve(&mut self) -> Flow {
         self.spread = self.spread();
         self.observe()?;
+        let mut values = [F::ZERO; 64];
+        let m = self.sample_values(&mut values);
+        self.units = Units::start(self.tally.unit.widest(), &mut values[..m]);
+        self.tally.scale = self.scale(false);
         if self.tally.auto.parts.quenches {
             for c in 0..self.chains.len() {
                 self.x.copy_from_slice(self.chains.x(c));
@@ -648,18 +671,42 @@ where
         self.polish()
     }
 
-    /// The ladder's centre from the basins' values, the step from the
-    /// curvature along a random direction at up to [`PROBES`] basins (one
-    /// evaluation each), each coordinate displaced in proportion to its
-    /// side of the box.
-    fn measure(&mut self) -> Flow {
+    /// The values of up to 64 chains, evenly spaced, into `values`: how
+    /// many.
+    fn sample_values(&self, values: &mut [F; 64]) -> usize {
         let n = self.chains.len();
         let m = n.min(64);
-        let mut values = [F::ZERO; 64];
         for (i, v) in values.iter_mut().take(m).enumerate() {
             *v = self.chains.value(i * n / m);
         }
-        self.a0 = measure::centre(&mut values[..m]);
+        m
+    }
+
+    /// The problem's units as the quenches take them: their first step is
+    /// one of unit curvature once the curvature is `measured`, and before,
+    /// bounded by the box alone (the values at random points tell nothing
+    /// of the basins' curvature).
+    fn scale(&self, measured: bool) -> Scale<F> {
+        let Units { length, energy } = self.units;
+        Scale {
+            length,
+            energy,
+            step: if measured {
+                length * length / energy
+            } else {
+                F::INFINITY
+            },
+            resolution: F::from_f64(RESOLUTION),
+        }
+    }
+
+    /// The problem's units and the settings in them: the curvature along
+    /// a random direction at up to [`PROBES`] basins (one evaluation each),
+    /// each coordinate displaced in proportion to its side of the box,
+    /// sets the unit of energy; the ladder's centre comes from the basins'
+    /// values in it, and the step from the box.
+    fn measure(&mut self) -> Flow {
+        let n = self.chains.len();
         let probes = n.min(PROBES);
         let domain = self.tally.domain;
         let delta = F::from_f64(1e-4);
@@ -698,6 +745,16 @@ where
                 F::ZERO
             };
         }
+        let curvature = measure::median_curvature(&mut curvature[..probes]);
+        let mut values = [F::ZERO; 64];
+        let m = self.sample_values(&mut values);
+        self.units = self.units.measured(curvature, &mut values[..m]);
+        self.tally.scale = self.scale(true);
+        // A quench before the measurement converged in the units of the
+        // spread of values at random points, often orders of magnitude
+        // coarser than the basins' own: its end is no minimum in these.
+        self.tally.polished = false;
+        self.a0 = measure::centre(&mut values[..m], self.units.energy);
         // The step's cap: a tenth of the narrowest side in unit coordinates.
         let mut width = F::INFINITY;
         for j in 0..self.x.len() {
@@ -706,8 +763,8 @@ where
                 width = hi - lo;
             }
         }
-        self.h = measure::step(&mut curvature[..probes], self.tally.auto.step_scale, width);
-        self.longest = measure::clamp(measure::longest(width), measure::H_RANGE);
+        self.longest = measure::longest(width / self.units.length);
+        self.h = measure::step(curvature, self.tally.auto.step_scale, self.longest);
         self.observe()
     }
 
@@ -726,7 +783,8 @@ where
         }
         self.tally.rounds += 1;
         self.exchange();
-        self.stalled = if self.tally.best_value < before {
+        // A fall within the rounding of the quenches' ends is no progress.
+        self.stalled = if self.tally.best_value < before - self.tally.scale.resolved(before) {
             0
         } else {
             self.stalled + 1
@@ -744,6 +802,7 @@ where
     /// four steps of a round, each its own method.
     fn propose(&mut self, c: usize) -> Flow {
         let a = self.rung(c);
+        let Units { length, energy } = self.units;
         self.x.copy_from_slice(self.chains.x(c));
         self.y.copy_from_slice(self.chains.chain(c).y);
         self.grad.fill(F::ZERO);
@@ -756,7 +815,7 @@ where
         let slot = if n > SLOTS { c * SLOTS / n } else { c };
         let h = measure::clamp(self.h * self.scale[slot], measure::H_RANGE);
         let kernel = match Hrla::paper(h).and_then(|s| s.at(a)) {
-            Ok(k) => k,
+            Ok(k) => k.in_units(length, energy),
             Err(e) => return ControlFlow::Break(Stop::Failed(e)),
         };
         let point = self.sample(c, &kernel, point)?;
@@ -764,7 +823,7 @@ where
             self.chains.chain(c).y.copy_from_slice(self.y);
         }
         match self.settle(c, point)? {
-            Point::Known(value) => self.accept(c, a, slot, value),
+            Point::Known(value) => self.accept(c, a / energy, slot, value),
             _ => self.reject(c),
         }
     }
@@ -904,10 +963,10 @@ where
         let chain = self.chains.chain(c);
         *chain.diverged = false;
         let old = *chain.value;
-        let accept = value <= old || {
-            let p = (-a * (value - old)).exp();
-            moves::chance(chain.rng, p)
-        };
+        // Drawn whatever the values: where they differ by their rounding
+        // alone, the stream does not depend on which is lower.
+        let draw: F = moves::uniform(chain.rng);
+        let accept = value <= old || draw < (-a * (value - old)).exp();
         if accept {
             chain.x.copy_from_slice(self.x);
             *chain.value = value;
@@ -953,9 +1012,10 @@ where
     fn exchange(&mut self) {
         let n = self.chains.len();
         for c in 0..n.saturating_sub(1) {
-            let (a, b) = (self.rung(c), self.rung(c + 1));
+            let (a, b) = (self.temperature(c), self.temperature(c + 1));
             let delta = (b - a) * (self.chains.value(c + 1) - self.chains.value(c));
-            let swap = delta >= F::ZERO || moves::chance(self.chains.chain(c).rng, delta.exp());
+            let draw: F = moves::uniform(self.chains.chain(c).rng);
+            let swap = delta >= F::ZERO || draw < delta.exp();
             if swap {
                 self.chains.swap(c);
             }
@@ -999,8 +1059,18 @@ where
             return ControlFlow::Continue(());
         }
         self.x.copy_from_slice(tally.best);
-        let settings = PolishSettings::new(tally.remaining());
-        match tally.local(self.x, self.base, settings) {
+        // To the float type's precision: the quenches' resolution (and a
+        // value tolerance) stops them while U still falls in a narrow
+        // valley, many times the rounding of U where U's minimum is 0. The
+        // search ends where the gradient vanishes or no step lowers U, at
+        // most what is left of the budget.
+        let mut settings = PolishSettings::new(tally.remaining());
+        settings.value_tolerance = F::ZERO;
+        let quenches = tally.scale;
+        tally.scale.resolution = F::ZERO;
+        let done = tally.local(self.x, self.base, settings);
+        tally.scale = quenches;
+        match done {
             Ok(done) => {
                 tally.evaluations += done.evaluations;
                 tally.record(self.x, done.value, done.end != PolishEnd::Budget);
@@ -1017,8 +1087,9 @@ where
         self.observe()
     }
 
-    /// The interquartile range of `U` at (up to 64 of) the chains' points:
-    /// the problem's scale, before any quench.
+    /// The spread of `U` at (up to 64 of) the chains' points: the
+    /// problem's scale of values, before any quench (0 where `U` is 0 at
+    /// every one).
     fn spread(&self) -> F {
         let n = self.chains.len();
         let m = n.min(64);
@@ -1026,11 +1097,17 @@ where
         for (i, v) in values.iter_mut().take(m).enumerate() {
             *v = self.chains.value(i * n / m);
         }
-        measure::spread(&mut values[..m])
+        measure::spread(&mut values[..m]).unwrap_or(F::ZERO)
     }
 
+    /// Chain `c`'s inverse temperature in the problem's units.
     fn rung(&self, c: usize) -> F {
         measure::rung(self.a0, self.tally.auto.ladder, c, self.chains.len())
+    }
+
+    /// Chain `c`'s inverse temperature in `U`'s units.
+    fn temperature(&self, c: usize) -> F {
+        self.rung(c) / self.units.energy
     }
 
     fn best_chain(&self) -> usize {
@@ -1063,7 +1140,7 @@ where
             x: self.tally.best,
             value,
             improved,
-            inverse_temperature: self.rung(self.chains.len() - 1),
+            inverse_temperature: self.temperature(self.chains.len() - 1),
             diverged_chains: self.diverged(),
         };
         match (self.observer)(&seen) {
@@ -1078,8 +1155,9 @@ where
             value: self.tally.best_value,
             evaluations: self.tally.evaluations,
             rounds: self.tally.rounds,
-            step: self.h,
-            inverse_temperature: measure::clamp(self.rung(self.chains.len() - 1), A_RANGE),
+            step: self.units.step(self.h),
+            inverse_temperature: measure::clamp(self.rung(self.chains.len() - 1), A_RANGE)
+                / self.units.energy,
             termination,
             diverged_chains: self.diverged(),
             chains: self.chains.len(),

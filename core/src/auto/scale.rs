@@ -65,6 +65,11 @@ impl<'a, F: Float, B: Sides<F> + ?Sized> Unit<'a, F, B> {
         self.equal
     }
 
+    /// The widest side: every side's length in unit coordinates.
+    pub(super) fn widest(&self) -> F {
+        self.widest
+    }
+
     /// `w_i`: coordinate `i`'s side over the widest.
     #[inline(always)]
     pub(super) fn w(&self, i: usize) -> F {

@@ -233,6 +233,24 @@ impl<F: Float> OuKernel<F> {
         Ok(self)
     }
 
+    /// This kernel, whose coefficients hold in units of `length` and
+    /// `energy`, for positions and gradients in units of 1: the step moves
+    /// `length x` and takes `(energy / length) g` as it moved `x` with `g`
+    /// (the momentum stays in the kernel's units). Applied after
+    /// [`at`](Self::at), which it does not commute with.
+    pub(crate) fn in_units(mut self, length: F, energy: F) -> Self {
+        let drift = length * length / energy;
+        self.c_xy *= length;
+        self.l_xy *= length;
+        self.l_xx *= length;
+        self.c_xg *= drift;
+        self.c_yg *= length / energy;
+        self.two_beta_h *= length * length;
+        self.schur_y *= length * length;
+        self.cov_xy *= length;
+        self
+    }
+
     /// The factor that turns two standard normals into the step's noise.
     pub fn noise_factor(&self) -> NoiseFactor<F> {
         NoiseFactor {
