@@ -275,7 +275,7 @@ def test_a_true_answer_of_the_callback_stops_the_run(method, answer):
 @pytest.mark.parametrize("answer", [False, np.False_, 0, None, ""])
 def test_a_false_answer_of_the_callback_goes_on(answer):
     res = hrla.minimize(sphere_value, BOX, maxfun=3_000, rng=1, callback=lambda xk: answer)
-    assert res.termination == "Evaluations"
+    assert res.termination in ("Evaluations", "Converged"), res
 
 
 # --- counts as integral floats ------------------------------------------

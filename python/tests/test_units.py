@@ -30,8 +30,8 @@ def run(c, s, jac, seed):
 
 @pytest.mark.parametrize("seed", [0, 1])
 def test_the_gradients_bowl_is_run_alike_in_any_units(seed):
-    """With its gradient, the same decisions (calls, rounds, why it
-    ended), and the point, value, step and inverse temperature within
+    """With its gradient, the same decisions (rounds, why it ended,
+    the calls up to the final polish's last few), and the point, value, step and inverse temperature within
     `1e-10` of the unscaled run's (relative to the box, to 1, and to
     themselves): the arithmetic of the same decisions on inputs that
     differ in their last bits, the settings' difference of gradients
@@ -42,7 +42,11 @@ def test_the_gradients_bowl_is_run_alike_in_any_units(seed):
         for s in S:
             got = run(c, s, True, seed)
             case = f"c = {c:e}, s = {s:e}: {got} against {want}"
-            assert (got.nfev, got.nit, got.termination) == (want.nfev, want.nit, want.termination), case
+            # The same rounds and end; the final polish, which runs to the
+            # float type's precision, ends where rounding decides, within a
+            # few calls of the unscaled run's end.
+            assert (got.nit, got.termination) == (want.nit, want.termination), case
+            assert abs(got.nfev - want.nfev) <= 4, case
             np.testing.assert_allclose(got.x / s, want.x, rtol=0, atol=1e-10, err_msg=case)
             assert abs(got.fun / c - want.fun) <= 1e-10, case
             assert got.step * c / s ** 2 == pytest.approx(want.step, rel=1e-10), case
