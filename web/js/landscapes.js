@@ -30,7 +30,7 @@ export const LANDSCAPES = {
     minimisers: [[0, 0]],
     headline: "On Rastrigin ULA wins here: its momentum carries its chains over the ripples down the bowl.",
     compare:
-      "On Rastrigin, ULA wins. Its ripples (height 2) sit on a big bowl, and the start at (3, 3) is 18 above the bottom. ULA keeps the energy its chains gain rolling down the bowl as momentum (friction removes it only over a time 1/α = 1), which carries them over the ripples to the centre. HRLA and OLA, nearly overdamped with the paper's parameters, lose that energy at once and must hop each ripple by a random kick, rare at a = 4.",
+      "On Rastrigin, ULA wins. Its ripples (height 2) sit on a big bowl, and the start at (3, 3) is 18 above the bottom. ULA moves its position only through its velocity, which gathers the bowl's slope as momentum (friction removes it only over a time 1/α = 1) and carries its chains over the ripples to the centre. HRLA's velocity follows exactly ULA's equation and gathers the same momentum, but HRLA also pulls the position straight down the local gradient (β∇U, β = 1), toward the minimum of whichever ripple it sits in: that pull holds its chains in a ripple until a random kick on the position carries them over, rare at a = 4. OLA has the same pull and no momentum at all.",
     measured: { hrla: [0.08, 0.31, 0.79], ula: [0.94, 0.98, 0.99], ola: [0.06, 0.3, 0.78] },
   },
   ackley: {

@@ -72,3 +72,51 @@ test("each note's ranking agrees with its numbers", () => {
     if (trails) for (const s of leads) assert.ok(last(s) - last(trails) >= 0.3, `${name}: ${trails} does not trail ${s}`);
   }
 });
+
+// The Rastrigin note's physics, read from the kernel's own step laws:
+// HRLA's velocity follows exactly ULA's equation (the same mean of the new
+// velocity, affine in (y, g) with the same coefficients, and the same
+// variance), and what HRLA adds is a pull of the position down the local
+// gradient, hundreds of times ULA's (ULA's position feels the gradient
+// only through the velocity, to second order in h).
+test("the Rastrigin note's physics is the kernel's", () => {
+  const note = LANDSCAPES.rastrigin.compare;
+  assert.match(note, /HRLA's velocity follows exactly ULA's equation/);
+  assert.match(note, /pulls the position straight down the local gradient/);
+  // HRLA's velocity is ULA's: nothing about it is overdamped.
+  assert.doesNotMatch(note, /overdamped/);
+  const law = (sampler, steps) => {
+    const opt = new wasm.Optimizer({
+      potential: "rastrigin",
+      sampler,
+      a: LANDSCAPES.rastrigin.a,
+      annealing: null,
+      h: LANDSCAPES.rastrigin.h,
+      chains: 3,
+      centre: [3, 3],
+      spread: 0.5,
+      seed: 7,
+      stopSteps: null,
+      stopTarget: null,
+    });
+    assert.equal(opt.advance(steps), steps);
+    const laws = [0, 1, 2].map((c) => opt.nextStep(c));
+    opt.free();
+    // a, x0, x1, y0, y1, g0, g1, then per coordinate mean_x, mean_y, var_x, cov_xy, var_y, then the pushes.
+    return laws.map((s) => ({ y: s[3], g: s[5], meanY: s[8], varY: s[11], gradientPush: s[17] }));
+  };
+  // ULA's velocity mean is e·y − c·g: solve for (e, c) from two chains.
+  const [p, q, r] = law("ula", 25);
+  const det = p.y * q.g - q.y * p.g;
+  const e = (p.meanY * q.g - q.meanY * p.g) / det;
+  const c = (p.y * q.meanY - q.y * p.meanY) / -det;
+  assert.ok(Math.abs(r.meanY - (e * r.y - c * r.g)) <= 1e-12 * (1 + Math.abs(r.meanY)), "ULA's velocity mean is affine in (y, g)");
+  for (const s of law("hrla", 40)) {
+    assert.ok(s.y !== 0 && s.g !== 0, "a state with velocity and gradient");
+    assert.ok(Math.abs(s.meanY - (e * s.y - c * s.g)) <= 1e-12 * (1 + Math.abs(s.meanY)), `HRLA's velocity mean ${s.meanY} is ULA's ${e * s.y - c * s.g}`);
+    assert.equal(s.varY, p.varY, "the same velocity variance");
+    // The same gradient pushes HRLA's position far more than ULA's.
+    const ulaPush = (p.gradientPush / p.g) * s.g;
+    assert.ok(Math.abs(s.gradientPush) > 100 * Math.abs(ulaPush), `HRLA's pull ${s.gradientPush} against ULA's ${ulaPush}`);
+  }
+});
