@@ -123,23 +123,34 @@ impl Undefined {
     fn none() -> Self {
         Self {
             first: None,
-            region: [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY],
+            region: [
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            ],
         }
     }
 
     fn add(&mut self, x: [f64; 2], value: f64, gradient: [f64; 2]) {
         self.first.get_or_insert((x, value, gradient));
         let r = &mut self.region;
-        *r = [r[0].min(x[0]), r[1].max(x[0]), r[2].min(x[1]), r[3].max(x[1])];
+        *r = [
+            r[0].min(x[0]),
+            r[1].max(x[0]),
+            r[2].min(x[1]),
+            r[3].max(x[1]),
+        ];
     }
 
     fn error(&self) -> Option<GridError> {
-        self.first.map(|(x, value, gradient)| GridError::FormulaNotFinite {
-            x,
-            value,
-            gradient,
-            region: self.region,
-        })
+        self.first
+            .map(|(x, value, gradient)| GridError::FormulaNotFinite {
+                x,
+                value,
+                gradient,
+                region: self.region,
+            })
     }
 }
 
@@ -557,7 +568,10 @@ mod tests {
         // U undefined on a half of the box: only moving the box helps.
         let log = refusal("log(x)");
         assert!(log.starts_with("U = NaN at (-5, -5), "), "{log}");
-        assert!(log.contains("with x from -5 to 0 and y from -5 to 5"), "{log}");
+        assert!(
+            log.contains("with x from -5 to 0 and y from -5 to 5"),
+            "{log}"
+        );
         assert!(log.contains("move the box"), "{log}");
         // U infinite at one point.
         let pole = refusal("1/(x^2 + y^2)");
@@ -566,7 +580,10 @@ mod tests {
         assert!(pole.contains("1/(x^2 + y^2 + 1e-6)"), "{pole}");
         // U finite, its gradient not: said as such.
         let cone = refusal("sqrt(x^2 + y^2)");
-        assert!(cone.starts_with("U = 0 at (0, 0) is finite, but its gradient is not"), "{cone}");
+        assert!(
+            cone.starts_with("U = 0 at (0, 0) is finite, but its gradient is not"),
+            "{cone}"
+        );
         assert!(cone.contains("sqrt(x^2 + y^2 + 1e-6)"), "{cone}");
         assert!(Landscape::formula("sqrt(x^2 + y^2 + 1e-6)", [-5.0, 5.0, -5.0, 5.0]).is_ok());
         // Its picture is drawn where it is finite.

@@ -70,7 +70,9 @@ use wasm_bindgen::prelude::*;
 pub use descent::Descent;
 pub use error::{Error, Given};
 pub use formula::{Formula, FormulaError, FormulaErrorKind, MAX_FORMULA_DEPTH, MAX_FORMULA_LEN};
-pub use landscape::{formula_picture, Custom, CustomError, GridError, Landscape, MAX_GRID, UnknownLandscape};
+pub use landscape::{
+    Custom, CustomError, GridError, Landscape, MAX_GRID, UnknownLandscape, formula_picture,
+};
 pub use settings::{KEYS, Settings, Temperature, parse_sampler, potential};
 
 /// The most chains a run may have (the page offers up to 1024): more is
@@ -231,7 +233,11 @@ impl Optimizer {
         let mut result = result.map_err(Error::from);
         if let Err(Error::RanAway { lowest, .. }) = &mut result {
             // Downhill or uphill: an unbounded U, or a step too long.
-            let low = self.engine.values().into_iter().fold(f64::INFINITY, f64::min);
+            let low = self
+                .engine
+                .values()
+                .into_iter()
+                .fold(f64::INFINITY, f64::min);
             *lowest = (low < self.landscape.global_minimum()).then_some(low);
         }
         match &result {

@@ -166,7 +166,7 @@ export function drawColourBar(canvas, scale) {
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.clearRect(0, 0, w, h);
   // The title runs up the left edge, the ticks' labels right of the bar.
-  const bar = { left: 20, top: 8, width: 14, height: h - 16 };
+  const bar = { left: 15, top: 8, width: 10, height: h - 16 };
   for (let y = 0; y < bar.height; y++) {
     ctx.fillStyle = viridisCss(1 - y / (bar.height - 1));
     ctx.fillRect(bar.left, bar.top + y, bar.width, 1);
@@ -176,11 +176,11 @@ export function drawColourBar(canvas, scale) {
   ctx.fillStyle = colour;
   ctx.lineWidth = 1;
   ctx.strokeRect(bar.left - 0.5, bar.top - 0.5, bar.width + 1, bar.height + 1);
-  ctx.font = "11px system-ui, sans-serif";
+  ctx.font = "10px system-ui, sans-serif";
   ctx.textAlign = "left";
   ctx.textBaseline = "middle";
   ctx.save();
-  ctx.translate(9, bar.top + bar.height / 2);
+  ctx.translate(7, bar.top + bar.height / 2);
   ctx.rotate(-Math.PI / 2);
   ctx.textAlign = "center";
   ctx.fillText(scale.title, 0, 0, bar.height);
@@ -196,7 +196,7 @@ export function drawColourBar(canvas, scale) {
     ctx.moveTo(bar.left + bar.width, y);
     ctx.lineTo(bar.left + bar.width + 4, y);
     ctx.stroke();
-    ctx.fillText(text, bar.left + bar.width + 6, y);
+    ctx.fillText(text, bar.left + bar.width + 6, y, w - (bar.left + bar.width + 7));
   }
   canvas.setAttribute("aria-label", `colour bar: ${scale.title}, ticks ${scale.ticks.map((k) => k[1]).join(", ")}`);
   // For the tests: what the bar shows.

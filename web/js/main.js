@@ -828,11 +828,11 @@ function readouts(runs, eps) {
     `(${ESCAPE_HALF_WIDTHS} times the view's half-width); they count as failures in P`;
   const outside = r.outside(f.x0, f.x1, f.y0, f.y1);
   setOutput("out-outside", `${outside} of ${r.n}`, outside);
-  const p = scored(r, eps);
+  const p = r.fractionWithin(eps);
   setOutput(
     "out-prob",
     r.belowMinimum(eps) !== null
-      ? "none: chains went below U*, so U* is no minimum"
+      ? "none: U went below U*"
       : Number.isFinite(p)
         ? `${p.toFixed(2)}: ${r.groupsWithin(eps)} of ${r.groups} groups of ${r.groupSize}`
         : "–",
@@ -895,21 +895,12 @@ function readouts(runs, eps) {
       const q = run.s;
       setOutput(`cmp-best-${run.sampler}`, q[S.BestValue].toExponential(3), q[S.BestValue]);
       setOutput(`cmp-at-${run.sampler}`, String(q[S.BestIteration]), q[S.BestIteration]);
-      const pr = scored(run, eps);
+      const pr = run.fractionWithin(eps);
       setOutput(`cmp-prob-${run.sampler}`, Number.isFinite(pr) ? pr.toFixed(2) : "none", pr);
       const l = run.lost();
       setOutput(`cmp-lost-${run.sampler}`, String(l.diverged + l.ranAway), l.diverged + l.ranAway);
     }
   }
-}
-
-/**
- * The success rate P of a run, or NaN when none can be scored: a chain
- * below U* means U* is not the landscape's minimum (U looks unbounded
- * below), and a rate against it would call a runaway a success.
- */
-function scored(run, eps) {
-  return run.belowMinimum(eps) === null ? run.fractionWithin(eps) : NaN;
 }
 
 /** What the status says of a run whose chains went below U*: why, and what can help. */

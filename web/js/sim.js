@@ -78,6 +78,8 @@ export class Run {
     this.iters = new Float64Array(HISTORY);
     this.best = new Float64Array(HISTORY);
     this.groupBest = new Float64Array(HISTORY * Math.max(1, this.groups));
+    /** The lowest U of any chain not diverged (run away included), per history point. */
+    this.lowest = new Float64Array(HISTORY);
     this.count = 0;
     this.every = 1;
     this.snapshots = 0;
@@ -160,9 +162,13 @@ export class Run {
     this.opt.free();
   }
 
-  /** Fraction of groups whose current best chain has U - U* <= eps, at history point i. */
+  /**
+   * Fraction of groups whose current best chain has U - U* <= eps, at
+   * history point i; NaN when a chain was below U* by more than eps then
+   * (U* is no minimum: no success can be scored against it).
+   */
   fractionWithin(eps, i = this.count - 1) {
-    if (this.groups === 0 || i < 0) return NaN;
+    if (this.groups === 0 || i < 0 || this.lowest[i] < this.minimum - Math.max(eps, 0)) return NaN;
     return this.groupsWithin(eps, i) / this.groups;
   }
 
@@ -250,6 +256,7 @@ export class Run {
       for (let i = 0; i < HISTORY / 2; i++) {
         this.iters[i] = this.iters[2 * i];
         this.best[i] = this.best[2 * i];
+        this.lowest[i] = this.lowest[2 * i];
         this.groupBest.copyWithin(i * g, 2 * i * g, (2 * i + 1) * g);
       }
       this.count = HISTORY / 2;
@@ -258,6 +265,9 @@ export class Run {
     const i = this.count++;
     this.iters[i] = this.s[Summary.Iteration];
     this.best[i] = this.s[Summary.BestValue];
+    let low = Infinity;
+    for (const u of this.u) if (u < low) low = u;
+    this.lowest[i] = low;
     for (let g = 0; g < this.groups; g++) {
       let m = Infinity;
       for (let c = g * this.groupSize; c < (g + 1) * this.groupSize; c++) {

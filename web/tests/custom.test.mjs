@@ -175,7 +175,13 @@ test("a saddle unbounded below: runaways are failures, P is not scored, and the 
   assert.equal(wrong, 0);
   // Some chains have run away downhill: no success is scored.
   assert.equal(await h.page.getAttribute("#out-prob", "data-value"), "NaN");
-  assert.match(await h.page.textContent("#out-prob"), /^none: chains went below U\*/);
+  assert.equal(await h.page.textContent("#out-prob"), "none: U went below U*");
+  // Nor in the plot of P: no point of the series is 1 once U went below U*.
+  const series = await h.page.evaluate(() => {
+    const r = window.hrlaDemo.state.runs[0];
+    return [...r.probabilitySeries(0.1, new Float64Array(r.count))].slice(-1)[0];
+  });
+  assert.ok(Number.isNaN(series), `P at the last point: ${series}`);
   const status = await h.page.textContent("#status");
   assert.match(status, /chains ran away downhill \(to U = -[0-9.e+]+\), below U\* = -50: U looks unbounded below beyond the box, so no success can be scored/);
   assert.match(status, /No step h or temperature a holds chains on it: give U a floor/);
