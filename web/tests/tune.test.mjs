@@ -78,6 +78,19 @@ test("the a slider changes a on the running chains; two changes replay from the 
   assert.deepEqual(await snapshot(), after);
 });
 
+test("in compare mode every sampler takes the change at the same iteration, and the address replays all three", async () => {
+  await openPaused({ spf: 30, seed: 2, compare: "1" });
+  await advance(30);
+  await setControl("a", 2);
+  for (const k of [60, 90]) await advance(k);
+  const all = () => h.page.evaluate(() => window.hrlaDemo.state.runs.map((r) => ({ a: r.s[5], x: [...r.x] })));
+  const after = await all();
+  assert.deepEqual(after.map((r) => r.a), [2, 2, 2]);
+  await load(h.page.url());
+  for (const k of [30, 60, 90]) await advance(k);
+  assert.deepEqual(await all(), after);
+});
+
 test("a refused h leaves the run going as it was, the field saying why", async () => {
   await openPaused({ spf: 20 });
   await advance(20);
