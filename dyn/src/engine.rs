@@ -471,6 +471,26 @@ impl Engine {
         self.opt.diverged_chains()
     }
 
+    /// Replaces the sampler and the schedule between steps (a page's
+    /// slider moving `h` or `a` of a running run), keeping every chain's
+    /// state, running best and random stream: the next step runs the new
+    /// sampler's kernel at the new schedule's `a_k`, its exact-step
+    /// coefficients computed afresh. The sampler's refusal of that `a_k`
+    /// leaves the run unchanged; a failed run returns its error.
+    pub fn retune(
+        &mut self,
+        sampler: AnySampler<f64>,
+        schedule: AnySchedule<f64>,
+    ) -> Result<(), Error> {
+        self.check()?;
+        let old = core::mem::replace(self.opt.schedule_mut(), schedule);
+        if let Err(e) = self.opt.set_sampler(sampler) {
+            *self.opt.schedule_mut() = old;
+            return Err(Error::Kernel(e));
+        }
+        Ok(())
+    }
+
     /// The inverse temperature of the last step (`a_0` before the first).
     pub fn inverse_temperature(&self) -> f64 {
         self.opt.kernel().inverse_temperature()

@@ -58,6 +58,8 @@ pub enum Error {
     /// `annealing` is neither an object `{ aLow, aHigh, steps }` nor
     /// `null` or absent.
     BadAnnealing,
+    /// An `a` for a run that anneals: its schedule sets `a` at every step.
+    AnnealedA,
     /// `centre` is not an array of exactly two numbers.
     BadCentre,
     /// `potential` names no landscape.
@@ -94,6 +96,10 @@ pub enum Error {
         farthest: f64,
         /// How many of the chains diverged rather than ran away.
         diverged: usize,
+        /// The lowest `U` the chains reached, when it is below the
+        /// landscape's `U*` (a formula's lowest value on its box): they ran
+        /// downhill, and `U` looks unbounded below, which no step holds.
+        lowest: Option<f64>,
     },
     /// The run-time layer refused the run for a reason the page's settings
     /// cannot give (its message).
@@ -125,6 +131,9 @@ impl fmt::Display for Error {
             Self::BadAnnealing => f.write_str(
                 "`annealing` must be an object { aLow, aHigh, steps }, or null for a constant `a`",
             ),
+            Self::AnnealedA => f.write_str(
+                "`a` cannot be set on a run that anneals: its schedule sets a at every step",
+            ),
             Self::UnknownPotential(e) => fmt::Display::fmt(e, f),
             Self::BadCentre => f.write_str("`centre` must be an array of two numbers"),
             Self::BadSeed => f.write_str(
@@ -149,6 +158,7 @@ impl fmt::Display for Error {
                 radius,
                 farthest,
                 diverged,
+                lowest,
             } => {
                 write!(
                     f,
@@ -158,10 +168,18 @@ impl fmt::Display for Error {
                 if *diverged > 0 {
                     write!(f, " or diverged ({diverged} of them)")?;
                 }
-                f.write_str(
-                    ": the step is too long for this landscape, or U does not hold the chains: \
-                     try a smaller `h`",
-                )
+                match lowest {
+                    Some(u) => write!(
+                        f,
+                        ", downhill to U = {u:.2e}, below the landscape's U*: U looks unbounded below, \
+                         and U does not hold the chains at any step or temperature: \
+                         give U a floor (for a formula, add a term that grows, such as (x^2 + y^2)^2 / 1000)"
+                    ),
+                    None => f.write_str(
+                        ": the step is too long for this landscape, or U does not hold the chains: \
+                         try a smaller `h`",
+                    ),
+                }
             }
         }
     }
@@ -182,6 +200,7 @@ impl Error {
             Self::NotACount { name, .. } => Some(name),
             Self::UnknownSampler => Some("sampler"),
             Self::BadAnnealing => Some("annealing"),
+            Self::AnnealedA => Some("a"),
             Self::UnknownPotential(_) => Some("potential"),
             Self::BadCentre => Some("centre"),
             Self::BadSeed => Some("seed"),
@@ -191,7 +210,9 @@ impl Error {
             Self::BadFormulaPotential => Some("potential"),
             Self::Kernel(e) => kernel_field(e),
             Self::Diverged { .. } => Some("chain"),
-            Self::RanAway { .. } => Some("h"),
+            Self::RanAway { lowest: None, .. } => Some("h"),
+            // No step holds chains on a U unbounded below: the landscape is at fault.
+            Self::RanAway { .. } => Some("potential"),
             Self::Layer(_) => None,
         }
     }
@@ -242,6 +263,7 @@ impl From<hrla_dyn::Error> for Error {
                 radius: r.radius,
                 farthest: r.farthest,
                 diverged: r.diverged,
+                lowest: None,
             },
             other => Self::Layer(other.to_string()),
         }

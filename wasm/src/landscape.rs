@@ -81,16 +81,25 @@ impl Landscape {
         let n = SEARCH_GRID;
         let (dx, dy) = ((x1 - x0) / (n - 1) as f64, (y1 - y0) / (n - 1) as f64);
         let mut best = (f64::INFINITY, [x0, y0]);
+        // Where U is not finite, and where only its gradient is not: the
+        // first point and the extent of each, for a refusal that says where.
+        let (mut bad_value, mut bad_gradient) = (Undefined::none(), Undefined::none());
         for j in 0..n {
             for i in 0..n {
                 let x = [x0 + i as f64 * dx, y0 + j as f64 * dy];
                 let (u, g) = formula.value_and_gradient(x[0], x[1]);
-                if !(u.is_finite() && g.iter().all(|v| v.is_finite())) {
-                    return Err(GridError::NotFinite { x, value: u }.into());
-                }
-                if u < best.0 {
+                if !u.is_finite() {
+                    bad_value.add(x, u, g);
+                } else if !g.iter().all(|v| v.is_finite()) {
+                    bad_gradient.add(x, u, g);
+                } else if u < best.0 {
                     best = (u, x);
                 }
+            }
+        }
+        for bad in [bad_value, bad_gradient] {
+            if let Some(e) = bad.error() {
+                return Err(e.into());
             }
         }
         let (minimum, minimiser) = descend(&formula, best, bounds);
@@ -100,6 +109,48 @@ impl Landscape {
             minimum,
             minimiser,
         })))
+    }
+}
+
+/// The grid points of a formula's box where it is not finite: the first
+/// one and the rectangle holding them all.
+struct Undefined {
+    first: Option<([f64; 2], f64, [f64; 2])>,
+    region: [f64; 4],
+}
+
+impl Undefined {
+    fn none() -> Self {
+        Self {
+            first: None,
+            region: [
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            ],
+        }
+    }
+
+    fn add(&mut self, x: [f64; 2], value: f64, gradient: [f64; 2]) {
+        self.first.get_or_insert((x, value, gradient));
+        let r = &mut self.region;
+        *r = [
+            r[0].min(x[0]),
+            r[1].max(x[0]),
+            r[2].min(x[1]),
+            r[3].max(x[1]),
+        ];
+    }
+
+    fn error(&self) -> Option<GridError> {
+        self.first
+            .map(|(x, value, gradient)| GridError::FormulaNotFinite {
+                x,
+                value,
+                gradient,
+                region: self.region,
+            })
     }
 }
 
@@ -184,32 +235,63 @@ impl Landscape {
         nx: usize,
         ny: usize,
     ) -> Result<Vec<f64>, GridError> {
-        let bounds = [x0, x1, y0, y1];
-        if !(bounds.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
-            return Err(GridError::Box(bounds));
-        }
-        let (width, height) = (x1 - x0, y1 - y0);
-        if !(width.is_finite() && height.is_finite()) {
-            return Err(GridError::TooWide(bounds));
-        }
-        if nx == 0 || ny == 0 || nx.saturating_mul(ny) > MAX_GRID {
-            return Err(GridError::Points { nx, ny });
-        }
-        let mut out = Vec::with_capacity(nx * ny);
-        let (dx, dy) = (width / nx as f64, height / ny as f64);
-        for j in 0..ny {
-            let y = y1 - (j as f64 + 0.5) * dy;
-            for i in 0..nx {
-                let x = [x0 + (i as f64 + 0.5) * dx, y];
-                let u = self.value(&x);
-                if !u.is_finite() {
-                    return Err(GridError::NotFinite { x, value: u });
-                }
-                out.push(u);
+        cells([x0, x1, y0, y1], nx, ny, |x| {
+            let u = self.value(&x);
+            if u.is_finite() {
+                Ok(u)
+            } else {
+                Err(GridError::NotFinite { x, value: u })
             }
-        }
-        Ok(out)
+        })
     }
+}
+
+/// A formula's `U` on a grid laid out as [`Landscape::grid`]'s, NaN where
+/// it is not finite: the picture of a formula refused on its box, or seen
+/// beyond it, shows where it is defined and where not. Refused: a formula
+/// that cannot be read, and a grid [`Landscape::grid`] refuses for its
+/// box or its points.
+pub fn formula_picture(
+    text: &str,
+    bounds: [f64; 4],
+    nx: usize,
+    ny: usize,
+) -> Result<Vec<f64>, CustomError> {
+    let formula = Formula::parse(text).map_err(CustomError::Formula)?;
+    Ok(cells(bounds, nx, ny, |x| {
+        let u = formula.value_and_gradient(x[0], x[1]).0;
+        Ok(if u.is_finite() { u } else { f64::NAN })
+    })?)
+}
+
+/// `value` at each cell centre of an `nx` by `ny` grid over the box, row
+/// by row from the top, after checking the box and the count.
+fn cells(
+    bounds: [f64; 4],
+    nx: usize,
+    ny: usize,
+    mut value: impl FnMut([f64; 2]) -> Result<f64, GridError>,
+) -> Result<Vec<f64>, GridError> {
+    let [x0, x1, y0, y1] = bounds;
+    if !(bounds.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
+        return Err(GridError::Box(bounds));
+    }
+    let (width, height) = (x1 - x0, y1 - y0);
+    if !(width.is_finite() && height.is_finite()) {
+        return Err(GridError::TooWide(bounds));
+    }
+    if nx == 0 || ny == 0 || nx.saturating_mul(ny) > MAX_GRID {
+        return Err(GridError::Points { nx, ny });
+    }
+    let mut out = Vec::with_capacity(nx * ny);
+    let (dx, dy) = (width / nx as f64, height / ny as f64);
+    for j in 0..ny {
+        let y = y1 - (j as f64 + 0.5) * dy;
+        for i in 0..nx {
+            out.push(value([x0 + (i as f64 + 0.5) * dx, y])?);
+        }
+    }
+    Ok(out)
 }
 
 /// The most grid points [`Landscape::grid`] computes at once (a 2048 x 2048
@@ -260,6 +342,21 @@ pub enum GridError {
         /// Rows.
         ny: usize,
     },
+    /// A visitor's formula, or only its gradient, is not finite at points
+    /// of the grid its box is searched on: the chains follow the
+    /// gradient, so both must be finite over the whole box.
+    FormulaNotFinite {
+        /// The first such point, row by row from `(x0, y0)`.
+        x: [f64; 2],
+        /// `U` there (finite when only the gradient is not).
+        value: f64,
+        /// The gradient there.
+        gradient: [f64; 2],
+        /// The smallest rectangle `[x0, x1, y0, y1]` holding every such
+        /// point of the grid (of those where `U` is not finite, when there
+        /// are any).
+        region: [f64; 4],
+    },
     /// `U` is not finite at a cell centre.
     NotFinite {
         /// The cell centre.
@@ -303,9 +400,50 @@ impl fmt::Display for GridError {
                 f,
                 "the grid must have between 1 and {MAX_GRID} points, got `nx` x `ny` = {nx} x {ny}"
             ),
+            Self::FormulaNotFinite {
+                x,
+                value,
+                gradient,
+                region,
+            } => {
+                let at = format!("({}, {})", n(x[0]), n(x[1]));
+                let single = region[0] == region[1] && region[2] == region[3];
+                // What the box must leave out: the one point, or the part
+                // of the box where the grid found such points.
+                let part = if single {
+                    at.clone()
+                } else {
+                    format!(
+                        "the part with x from {} to {} and y from {} to {}",
+                        n(region[0]),
+                        n(region[1]),
+                        n(region[2]),
+                        n(region[3])
+                    )
+                };
+                if value.is_finite() {
+                    write!(
+                        f,
+                        "U = {} at {at} is finite, but its gradient is not ({}, {}), and the chains follow the gradient: \
+                         move the box so that it leaves out {part}, or smooth the formula there \
+                         (a kink such as sqrt(x^2 + y^2) is smooth as sqrt(x^2 + y^2 + 1e-6))",
+                        n(value),
+                        n(gradient[0]),
+                        n(gradient[1])
+                    )
+                } else {
+                    write!(
+                        f,
+                        "U = {} at {at}, and U must be finite over the whole box: move the box so that it leaves out {part} \
+                         (a smaller box only helps where U overflows far out), or shift the formula so that it is \
+                         defined there (1/(x^2 + y^2) is finite as 1/(x^2 + y^2 + 1e-6))",
+                        n(value)
+                    )
+                }
+            }
             Self::NotFinite { x, value } => write!(
                 f,
-                "U = {} at ({}, {}) in the grid's `box`: choose a smaller box",
+                "U = {} at ({}, {}) in the grid's `box`: choose a box that leaves that point out",
                 n(value),
                 n(x[0]),
                 n(x[1])
@@ -419,10 +557,39 @@ mod tests {
 
     #[test]
     fn a_formula_that_cannot_be_drawn_on_its_box_is_refused() {
-        assert!(matches!(
-            Landscape::formula("log(x)", [-1.0, 1.0, -1.0, 1.0]),
-            Err(CustomError::Grid(GridError::NotFinite { .. }))
-        ));
+        let refusal = |text: &str| {
+            let Err(CustomError::Grid(e @ GridError::FormulaNotFinite { .. })) =
+                Landscape::formula(text, [-5.0, 5.0, -5.0, 5.0])
+            else {
+                panic!("{text} accepted");
+            };
+            e.to_string()
+        };
+        // U undefined on a half of the box: only moving the box helps.
+        let log = refusal("log(x)");
+        assert!(log.starts_with("U = NaN at (-5, -5), "), "{log}");
+        assert!(
+            log.contains("with x from -5 to 0 and y from -5 to 5"),
+            "{log}"
+        );
+        assert!(log.contains("move the box"), "{log}");
+        // U infinite at one point.
+        let pole = refusal("1/(x^2 + y^2)");
+        assert!(pole.starts_with("U = inf at (0, 0), "), "{pole}");
+        assert!(pole.contains("leaves out (0, 0) "), "{pole}");
+        assert!(pole.contains("1/(x^2 + y^2 + 1e-6)"), "{pole}");
+        // U finite, its gradient not: said as such.
+        let cone = refusal("sqrt(x^2 + y^2)");
+        assert!(
+            cone.starts_with("U = 0 at (0, 0) is finite, but its gradient is not"),
+            "{cone}"
+        );
+        assert!(cone.contains("sqrt(x^2 + y^2 + 1e-6)"), "{cone}");
+        assert!(Landscape::formula("sqrt(x^2 + y^2 + 1e-6)", [-5.0, 5.0, -5.0, 5.0]).is_ok());
+        // Its picture is drawn where it is finite.
+        let p = formula_picture("log(x)", [-1.0, 1.0, -1.0, 1.0], 4, 1).unwrap();
+        assert!(p[0].is_nan() && p[1].is_nan());
+        assert_eq!(p[3], 0.75f64.ln());
         assert!(Landscape::formula("log(x)", [0.5, 1.0, -1.0, 1.0]).is_ok());
         assert!(matches!(
             Landscape::formula("x", [1.0, -1.0, -1.0, 1.0]),

@@ -70,7 +70,9 @@ use wasm_bindgen::prelude::*;
 pub use descent::Descent;
 pub use error::{Error, Given};
 pub use formula::{Formula, FormulaError, FormulaErrorKind, MAX_FORMULA_DEPTH, MAX_FORMULA_LEN};
-pub use landscape::{Custom, CustomError, GridError, Landscape, MAX_GRID, UnknownLandscape};
+pub use landscape::{
+    Custom, CustomError, GridError, Landscape, MAX_GRID, UnknownLandscape, formula_picture,
+};
 pub use settings::{KEYS, Settings, Temperature, parse_sampler, potential};
 
 /// The most chains a run may have (the page offers up to 1024): more is
@@ -122,6 +124,9 @@ pub struct Optimizer {
     /// The potential, for its name and minimum.
     landscape: Landscape,
     seed: u64,
+    /// The sampler and the temperature it was made with, for [`Optimizer::retune`].
+    sampler: hrla::SamplerKind,
+    temperature: Temperature,
     /// Whether the run has stopping rules to consult before each step.
 
     /// Whether the page set stopping rules: without, it steps past the
@@ -185,6 +190,8 @@ impl Optimizer {
             engine,
             landscape: settings.landscape.clone(),
             seed: settings.seed,
+            sampler: settings.sampler,
+            temperature: settings.temperature,
             stops: stop.is_some(),
             termination: None,
             failed: None,
@@ -223,7 +230,16 @@ impl Optimizer {
         } else {
             self.engine.step(steps).map(|()| None)
         };
-        let result = result.map_err(Error::from);
+        let mut result = result.map_err(Error::from);
+        if let Err(Error::RanAway { lowest, .. }) = &mut result {
+            // Downhill or uphill: an unbounded U, or a step too long.
+            let low = self
+                .engine
+                .values()
+                .into_iter()
+                .fold(f64::INFINITY, f64::min);
+            *lowest = (low < self.landscape.global_minimum()).then_some(low);
+        }
         match &result {
             Ok(termination) => self.termination = self.termination.or(*termination),
             Err(e @ Error::RanAway { .. }) => self.failed = Some(e.clone()),
@@ -233,6 +249,31 @@ impl Optimizer {
         // At most `steps`, a `u32`: the count fits.
         let done = u32::try_from(self.engine.iteration() - before).unwrap_or(u32::MAX);
         result.map(|_| done)
+    }
+
+    /// Sets the step `h` of the next steps and, for a run at a constant
+    /// temperature, its inverse temperature `a` (`None` keeps it; an
+    /// annealing run keeps its schedule, which is indexed by the
+    /// iteration). Every chain keeps its state, its running best and its
+    /// random stream: a run retuned at iteration `k` goes on exactly as a
+    /// replay retuned at the same `k`. Refused, with the run unchanged: an
+    /// `h` or `a` the sampler or the schedule refuses, an `a` for an
+    /// annealing run, and any change to a run that failed.
+    pub fn retune(&mut self, h: f64, a: Option<f64>) -> Result<(), Error> {
+        if let Some(e) = &self.failed {
+            return Err(e.clone());
+        }
+        let temperature = match (self.temperature, a) {
+            (Temperature::Constant(_), Some(a)) => Temperature::Constant(a),
+            (t, None) => t,
+            (_, Some(_)) => return Err(Error::AnnealedA),
+        };
+        let schedule = temperature.schedule()?;
+        let sampler = AnySampler::paper(self.sampler, h)?;
+        self.engine.retune(sampler, schedule)?;
+        self.temperature = temperature;
+        self.publish();
+        Ok(())
     }
 
     /// Why the run stopped, once a stopping rule held.
@@ -446,6 +487,21 @@ impl Optimizer {
         self.step_n(steps).map_err(|e| e.to_js())
     }
 
+    /// Sets the step `h` and the inverse temperature `a` of the next steps
+    /// without a restart (see [`Optimizer::retune`]); `a` `undefined` or
+    /// `null` keeps the temperature (an annealing run takes no `a`).
+    /// Throws an `Error` with `field` `"h"` or `"a"` on a value refused.
+    #[wasm_bindgen(js_name = retune)]
+    pub fn retune_js(&mut self, h: &JsValue, a: &JsValue) -> Result<(), JsValue> {
+        let h = read::number(h, "h").map_err(|e| e.to_js())?;
+        let a = if a.is_undefined() || a.is_null() {
+            None
+        } else {
+            Some(read::number(a, "a").map_err(|e| e.to_js())?)
+        };
+        self.retune(h, a).map_err(|e| e.to_js())
+    }
+
     /// Why the run stopped (`"target reached"`, `"step budget spent"`), or
     /// `undefined` while it runs.
     #[wasm_bindgen(js_name = termination)]
@@ -533,6 +589,32 @@ pub fn potential_grid(
         let [x0, x1, y0, y1] =
             [(x0, "x0"), (x1, "x1"), (y0, "y0"), (y1, "y1")].map(|(v, n)| read::number(v, n));
         Ok(landscape.grid(x0?, x1?, y0?, y1?, nx, ny)?)
+    };
+    grid().map_err(|e| e.to_js())
+}
+
+/// A visitor's formula `U` on a grid laid out as [`potential_grid`]'s, NaN
+/// where it is not finite ([`formula_picture`]): the picture of a formula
+/// the page refuses on its box, or sees beyond it. Throws an `Error` with
+/// `field` `"formula"` (with a `column`) when the formula cannot be read,
+/// and as [`potential_grid`] on the bounds and counts.
+#[wasm_bindgen(js_name = formulaPicture)]
+pub fn formula_picture_js(
+    formula: &str,
+    x0: &JsValue,
+    x1: &JsValue,
+    y0: &JsValue,
+    y1: &JsValue,
+    nx: &JsValue,
+    ny: &JsValue,
+) -> Result<Vec<f64>, JsValue> {
+    let grid = || -> Result<Vec<f64>, Error> {
+        let max = MAX_GRID as u64;
+        let [nx, ny] =
+            [(nx, "nx"), (ny, "ny")].map(|(v, n)| read::count(v, n, 1, max).map(|c| c as usize));
+        let [x0, x1, y0, y1] =
+            [(x0, "x0"), (x1, "x1"), (y0, "y0"), (y1, "y1")].map(|(v, n)| read::number(v, n));
+        Ok(formula_picture(formula, [x0?, x1?, y0?, y1?], nx?, ny?)?)
     };
     grid().map_err(|e| e.to_js())
 }
@@ -726,6 +808,41 @@ mod tests {
     /// with an escape radius the run fails at the first step where every
     /// chain is beyond it, whatever the steps asked per call, and keeps
     /// failing.
+    /// A retune keeps every chain's state and stream: the same change at
+    /// the same iteration gives the same bits, however the run is driven.
+    #[test]
+    fn a_retuned_run_replays_bit_for_bit() {
+        let settings = Settings {
+            chains: 8,
+            ..Settings::default()
+        };
+        let drive = |chunks: &[u32]| {
+            let mut opt = Optimizer::from_settings(&settings).unwrap();
+            let mut done = 0;
+            for &k in chunks {
+                opt.step_n(k).unwrap();
+                done += k;
+                if done == 30 {
+                    opt.retune(0.05, Some(2.5)).unwrap();
+                }
+            }
+            assert_eq!(opt.summary()[Summary::A as usize], 2.5);
+            opt.positions().to_vec()
+        };
+        let a = drive(&[30, 70]);
+        assert_eq!(a, drive(&[10, 20, 1, 69]));
+        // A retune changes the run from there on.
+        let mut plain = Optimizer::from_settings(&settings).unwrap();
+        plain.step_n(100).unwrap();
+        assert_ne!(a, plain.positions());
+        // Refused values leave the run as it is.
+        let mut opt = Optimizer::from_settings(&settings).unwrap();
+        assert_eq!(opt.retune(-1.0, None).unwrap_err().field(), Some("h"));
+        assert_eq!(opt.retune(0.1, Some(-2.0)).unwrap_err().field(), Some("a"));
+        opt.step_n(100).unwrap();
+        assert_eq!(opt.positions(), plain.positions());
+    }
+
     #[test]
     fn every_chain_beyond_the_escape_radius_fails_the_run() {
         let settings = Settings {
@@ -746,6 +863,7 @@ mod tests {
             radius,
             farthest,
             diverged,
+            lowest: None,
         } = err
         else {
             panic!("{err:?}");

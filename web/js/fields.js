@@ -2,6 +2,7 @@
 // address, and the checks and plain-words messages that go next to it.
 
 import { parseView } from "./view.js";
+import { parseChanges } from "./tune.js";
 
 /** Every setting in the address, with its control and its kind. */
 export const FIELDS = [
@@ -32,6 +33,7 @@ export const FIELDS = [
   { id: "show", kind: "choice", values: ["u", "density"], label: "background" },
   { id: "play", kind: "choice", values: ["0", "1"], label: "play" },
   { id: "view", kind: "view", label: "view" },
+  { id: "tune", kind: "tune", label: "changes of h and a during the run" },
 ];
 
 export const FIELD = Object.fromEntries(FIELDS.map((f) => [f.id, f]));
@@ -109,6 +111,8 @@ export function readAddress(search, options) {
       bad = "is not a number";
     } else if (field.kind === "view" && !parseView(value)) {
       bad = "must be cx,cy,half with half above 0";
+    } else if (field.kind === "tune" && parseChanges(value) === null) {
+      bad = "must be changes k:h:a at increasing iterations k, separated by commas";
     } else if (field.kind === "seed" && !/^[0-9]+$/.test(value)) {
       bad = "must be a whole number between 0 and 2^64 − 1";
     }

@@ -62,8 +62,8 @@ export function colourScale(grid, mode, a, minimum) {
     const perUnit = a / (Math.LN10 * DENSITY_DECADES);
     for (let k = 0; k < grid.length; k++) t[k] = Math.max(0, 1 - (grid[k] - lo) * perUnit);
     const ticks = [];
-    for (let d = 0; d <= DENSITY_DECADES; d += 2) ticks.push([1 - d / DENSITY_DECADES, d === 0 ? "1" : `1e−${d}`]);
-    return { t, ticks, title: `exp(−aU) / max (log scale), a = ${+a.toPrecision(3)}` };
+    for (let d = 0; d <= DENSITY_DECADES; d++) ticks.push([1 - d / DENSITY_DECADES, d === 0 ? "1" : `1e−${d}`]);
+    return { t, ticks, title: `density exp(−aU) / max (log scale), a = ${+a.toPrecision(3)}` };
   }
   const scale = 1 / Math.log1p(Math.max(hi - minimum, 1e-12));
   for (let k = 0; k < grid.length; k++) t[k] = Math.min(1, Math.max(0, Math.log1p(grid[k] - minimum) * scale));
@@ -93,6 +93,13 @@ export function drawLandscape(canvas, frame, dpr, scale, w, h, minimisers) {
   for (let j = 0; j < h; j++) {
     for (let i = 0; i < w; i++) {
       const k = j * w + i;
+      if (Number.isNaN(t[k])) {
+        // Where U is not finite (a visitor's formula): grey hatching.
+        const grey = (i + j) % 8 < 2 ? 150 : 90;
+        data.fill(grey, 4 * k, 4 * k + 3);
+        data[4 * k + 3] = 255;
+        continue;
+      }
       const level = Math.floor(t[k] * LEVELS);
       // Neighbours on both sides: a contour is placed the same way under
       // any mirror of the landscape.
@@ -158,7 +165,8 @@ export function drawColourBar(canvas, scale) {
   const ctx = canvas.getContext("2d");
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.clearRect(0, 0, w, h);
-  const bar = { left: 8, top: 8, width: 14, height: h - 16 };
+  // The title runs up the left edge, the ticks' labels right of the bar.
+  const bar = { left: 15, top: 8, width: 10, height: h - 16 };
   for (let y = 0; y < bar.height; y++) {
     ctx.fillStyle = viridisCss(1 - y / (bar.height - 1));
     ctx.fillRect(bar.left, bar.top + y, bar.width, 1);
@@ -168,22 +176,32 @@ export function drawColourBar(canvas, scale) {
   ctx.fillStyle = colour;
   ctx.lineWidth = 1;
   ctx.strokeRect(bar.left - 0.5, bar.top - 0.5, bar.width + 1, bar.height + 1);
-  ctx.font = "11px system-ui, sans-serif";
+  ctx.font = "10px system-ui, sans-serif";
   ctx.textAlign = "left";
   ctx.textBaseline = "middle";
-  let last = Infinity;
+  ctx.save();
+  ctx.translate(7, bar.top + bar.height / 2);
+  ctx.rotate(-Math.PI / 2);
+  ctx.textAlign = "center";
+  ctx.fillText(scale.title, 0, 0, bar.height);
+  ctx.restore();
+  const drawn = [];
   for (const [t, text] of scale.ticks) {
     const y = Math.round(bar.top + (1 - t) * bar.height) + 0.5;
-    // Labels closer than a line of text would overlap: keep the first.
-    if (last - y < 12) continue;
-    last = y;
+    // Labels closer than a line of text to one drawn would overlap: keep
+    // the first (ticks come in either order: up in U, down in density).
+    if (drawn.some((d) => Math.abs(d.y - y) < 12)) continue;
+    drawn.push({ y, text });
     ctx.beginPath();
     ctx.moveTo(bar.left + bar.width, y);
     ctx.lineTo(bar.left + bar.width + 4, y);
     ctx.stroke();
-    ctx.fillText(text, bar.left + bar.width + 6, y);
+    ctx.fillText(text, bar.left + bar.width + 6, y, w - (bar.left + bar.width + 7));
   }
   canvas.setAttribute("aria-label", `colour bar: ${scale.title}, ticks ${scale.ticks.map((k) => k[1]).join(", ")}`);
+  // For the tests: what the bar shows.
+  canvas.dataset.title = scale.title;
+  canvas.dataset.ticks = drawn.map((d) => d.text).join(", ");
 }
 
 function label(ctx, text, x, y, align, baseline) {

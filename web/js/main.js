@@ -10,12 +10,13 @@ import { drawHistogram, drawLinePlot, drawSchedule, exactMarginals, formatCount,
 import { describe, drawPhaseInset, drawPositionInset, readNextStep } from "./anatomy.js";
 import { COMPARE_HINT, SAMPLER_HINTS } from "./words.js";
 import { FORMULA_DEFAULT, customLandscape } from "./custom.js";
-import { formatView, pan, parseView, sameView, zoomAbout } from "./view.js";
+import { SLIDERS, advanceWithChanges, formatChanges, fromSlider, parseChanges, record, toSlider } from "./tune.js";
+import { ZOOM_STEP, formatView, keyView, pan, parseView, sameView, zoomAbout } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
 
 /** Controls whose change restarts the run from the seed. */
-const RUN_INPUTS = ["potential", "formula", "fcx", "fcy", "fhalf", "sampler", "compare", "descent", "h", "chains", "a", "aLow", "aHigh", "K", "cx", "cy", "spread", "seed", "stopSteps", "stopTarget", "group"];
+const RUN_INPUTS = ["potential", "formula", "fcx", "fcy", "fhalf", "sampler", "compare", "descent", "chains", "aLow", "aHigh", "K", "cx", "cy", "spread", "seed", "stopSteps", "stopTarget", "group"];
 /** Controls that only change the display or the pace. */
 const VIEW_INPUTS = ["spf", "eps"];
 const SAMPLERS = ["hrla", "ula", "ola"];
@@ -60,6 +61,8 @@ const state = {
   /** U on the plot area's pixels, and on the marginals' grid. */
   grid: null,
   marginalGrid: null,
+  /** The last formula typed that could be read: drawn while the field holds one that cannot. */
+  readableFormula: null,
   /** The a the background and the exact marginals were computed at. */
   shownA: NaN,
   marginals: null,
@@ -76,6 +79,11 @@ const state = {
   anatomyChain: 0,
   /** What the a(t) plot shows: { points, marker } (see drawSchedule). */
   schedulePlot: null,
+  /** The h and a (as typed) the run started with, and the changes made to them since, by iteration (see tune.js). */
+  base: { h: "", a: "" },
+  changes: [],
+  /** Changes from the address, for the run the address starts. */
+  pendingChanges: null,
   /** The clock of the time budget: replaceable by a test's clock. */
   now: () => performance.now(),
   lastFrame: { asked: 0, done: 0, ended: false },
@@ -308,8 +316,22 @@ function clearRuns() {
   state.runs = [];
 }
 
-/** Starts the run(s) the controls describe, from the seed. */
-function restart() {
+/**
+ * Starts the run(s) the controls describe, from the seed. With `replay`,
+ * the same run again: from the h and a it started with, their changes
+ * applied at the same iterations; without, from the values shown, with no
+ * changes.
+ */
+function restart(replay = false) {
+  if (replay) {
+    $("h").value = state.base.h;
+    $("a").value = state.base.a;
+  } else {
+    state.changes = state.pendingChanges ?? [];
+    state.pendingChanges = null;
+  }
+  state.base = { h: $("h").value, a: $("a").value };
+  syncSliders();
   clearRuns();
   clearErrors();
   state.pending = 0;
@@ -361,6 +383,8 @@ function restart() {
   } else if (n > state.runs[0].n) {
     $("err-group").textContent = `only ${state.runs[0].n} chains: one group of ${state.runs[0].n}`;
   }
+  // Each run takes the recorded changes of h and a from the first.
+  for (const run of state.runs) run.applied = 0;
   if (state.anatomyChain >= (state.runs[0]?.n ?? 0)) state.anatomyChain = 0;
   syncControls();
   writeUrl();
@@ -391,17 +415,79 @@ function showFailure(run, e) {
   }
 }
 
-/** Advances every live run by k steps; false once none can go on. */
+/** Advances every live run by k steps, each recorded change of h and a at its iteration; false once none can go on. */
 function advanceRuns(k) {
   for (const run of state.runs) {
     if (!run.live) continue;
     try {
-      run.advance(k);
+      advanceWithChanges(run, k, state.changes, retuneRun);
     } catch (e) {
       showFailure(run, e);
     }
   }
   return anyLive();
+}
+
+// ---- h and a on the running chains (see tune.js). ----
+
+/** Applies one recorded change to a run, and shows its values. */
+function retuneRun(run, change) {
+  // Descent's steps are its own: it keeps the h it started with, in a replay too.
+  if (!run.descent) run.opt.retune(change.h, annealing() ? null : change.a);
+  run.rebind();
+  $("h").value = String(change.h);
+  if (change.a !== null) $("a").value = String(change.a);
+  syncSliders();
+}
+
+const annealing = () => radio("schedule") === "linear";
+
+/** The sliders where the fields say. */
+function syncSliders() {
+  for (const [id, { slider }] of Object.entries(SLIDERS)) {
+    const at = toSlider(parseNumber(text(id)));
+    if (at !== null) $(slider).value = at;
+  }
+}
+
+/**
+ * h or a changed: the running chains take the new value from where they
+ * are, and the change is recorded at this iteration. Before the first
+ * step, or with no run going on, the run starts afresh instead.
+ */
+function tune(id) {
+  forgetAddressProblem(id);
+  const runs = state.runs.filter((r) => !r.descent && r.live);
+  const at = runs[0]?.iteration ?? 0;
+  if (runs.length === 0 || at === 0 || runs.some((r) => r.iteration !== at)) {
+    restart();
+    return;
+  }
+  $(`err-${id}`).textContent = "";
+  $(id).removeAttribute("aria-invalid");
+  const h = parseNumber(text("h"));
+  const a = annealing() ? null : parseNumber(text("a"));
+  const change = { k: at, h, a };
+  try {
+    runs[0].opt.retune(h, a);
+  } catch (e) {
+    // Refused: the run goes on as it was, the field says why.
+    fieldError(fieldOf(e) ?? id, plain(e.message));
+    return;
+  }
+  try {
+    for (const run of runs.slice(1)) run.opt.retune(h, a);
+  } catch {
+    // Another sampler refuses what the first took: that run cannot go on as it was.
+    restart();
+    return;
+  }
+  for (const run of state.runs) run.rebind();
+  state.changes = record(state.changes, change);
+  for (const run of state.runs) run.applied = state.changes.length;
+  syncSliders();
+  writeUrl();
+  render();
 }
 
 /** Up to `wanted` steps within the frame's time budget; returns the steps done. */
@@ -584,24 +670,50 @@ function refreshBackground(force) {
   const h = Math.min(MAX_PIXELS, Math.round(frame.height * state.dpr));
   const land = state.land;
   if (!state.grid || state.grid.w !== w || state.grid.h !== h) {
-    try {
-      state.grid = { w, h, u: sim.potentialGrid(land.arg, frame.x0, frame.x1, frame.y0, frame.y1, w, h) };
-      state.marginalGrid = sim.potentialGrid(land.arg, frame.x0, frame.x1, frame.y0, frame.y1, MARGINAL_GRID, MARGINAL_GRID);
-    } catch {
-      // A formula refused on its box: nothing to draw (restart() says why).
-      state.grid = null;
-      state.marginals = null;
-      for (const id of ["landscape", "colorbar"]) $(id).getContext("2d").clearRect(0, 0, $(id).width, $(id).height);
-      return;
-    }
+    const grid = landscapeGrid(land, frame, w, h);
+    if (!grid) return;
+    state.grid = { w, h, u: grid.u, undefinedCells: grid.undefinedCells };
+    state.marginalGrid = grid.undefinedCells ? null : landscapeGrid(land, frame, MARGINAL_GRID, MARGINAL_GRID)?.u;
   }
-  const minimum = land.name === "formula" ? state.grid.u.reduce((m, u) => Math.min(m, u), Infinity) : sim.globalMinimum(land.arg);
+  const minimum = land.name === "formula" ? lowestFinite(state.grid.u) : sim.globalMinimum(land.arg);
+  $("potential-undefined").hidden = !state.grid.undefinedCells;
   if (force || mode === "density") {
     state.scale = colourScale(state.grid.u, mode, a, minimum);
     drawLandscape($("landscape"), frame, state.dpr, state.scale, w, h, land.minimisers);
     drawColourBar($("colorbar"), state.scale);
   }
-  state.marginals = exactMarginals(state.marginalGrid, MARGINAL_GRID, MARGINAL_GRID, a, frame.x1 - frame.x0, frame.y1 - frame.y0);
+  // Where a formula is not finite there is no law to draw beside the chains.
+  state.marginals = state.marginalGrid && exactMarginals(state.marginalGrid, MARGINAL_GRID, MARGINAL_GRID, a, frame.x1 - frame.x0, frame.y1 - frame.y0);
+}
+
+/**
+ * U over the frame on a w × h grid: { u, undefinedCells }. A formula is
+ * drawn wherever it is finite, its undefined cells left dark, so that a
+ * refused formula (or one seen beyond its box) still shows where it is
+ * defined; null only when a formula cannot be read at all.
+ */
+function landscapeGrid(land, frame, w, h) {
+  if (land.name !== "formula") return { u: sim.potentialGrid(land.arg, frame.x0, frame.x1, frame.y0, frame.y1, w, h), undefinedCells: 0 };
+  let u;
+  try {
+    u = sim.formulaGrid(land.arg.formula, frame.x0, frame.x1, frame.y0, frame.y1, w, h);
+    state.readableFormula = land.arg.formula;
+  } catch {
+    // Not a formula (the caret beside the field says why): the last one
+    // that could be read stays in the picture.
+    if (state.readableFormula === null) return null;
+    u = sim.formulaGrid(state.readableFormula, frame.x0, frame.x1, frame.y0, frame.y1, w, h);
+  }
+  let undefinedCells = 0;
+  for (const v of u) if (Number.isNaN(v)) undefinedCells++;
+  return { u, undefinedCells };
+}
+
+/** The lowest finite value of a grid. */
+function lowestFinite(u) {
+  let m = Infinity;
+  for (const v of u) if (v < m) m = v;
+  return m;
 }
 
 function render() {
@@ -713,13 +825,17 @@ function readouts(runs, eps) {
   setOutput("out-lost", `${lost.diverged + lost.ranAway} of ${r.n}`, lost.diverged + lost.ranAway);
   $("lost-box").title =
     `Chains lost: ${lost.diverged} diverged (their position overflowed: frozen), ${lost.ranAway} ran away beyond |x| = ${formatRadius(r.escape)} ` +
-    `(${ESCAPE_HALF_WIDTHS} times the view's half-width); they no longer count`;
+    `(${ESCAPE_HALF_WIDTHS} times the view's half-width); they count as failures in P`;
   const outside = r.outside(f.x0, f.x1, f.y0, f.y1);
   setOutput("out-outside", `${outside} of ${r.n}`, outside);
   const p = r.fractionWithin(eps);
   setOutput(
     "out-prob",
-    Number.isFinite(p) ? `${p.toFixed(2)}: ${r.groupsWithin(eps)} of ${r.groups} groups of ${r.groupSize}` : "–",
+    r.belowMinimum(eps) !== null
+      ? "none: U went below U*"
+      : Number.isFinite(p)
+        ? `${p.toFixed(2)}: ${r.groupsWithin(eps)} of ${r.groups} groups of ${r.groupSize}`
+        : "–",
     p,
   );
   const { asked, done, ended } = state.lastFrame;
@@ -732,11 +848,13 @@ function readouts(runs, eps) {
     if (run.failure) continue;
     const who = runs.length > 1 ? `${LABEL[run.sampler]}: ` : "";
     const l = run.lost();
-    if (l.diverged + l.ranAway > 0) {
+    const below = run.descent ? null : run.belowMinimum(eps);
+    if (below !== null) lines.push(["warn", unboundedAdvice(run, below, who)]);
+    else if (l.diverged + l.ranAway > 0) {
       const parts = [];
       if (l.diverged) parts.push(`${l.diverged} diverged (their position overflowed)`);
       if (l.ranAway) parts.push(`${l.ranAway} ran away beyond |x| = ${formatRadius(run.escape)}`);
-      lines.push(["warn", `${who}${parts.join(" and ")}, of ${run.n} chains: they no longer count. A smaller step h avoids this.`]);
+      lines.push(["warn", `${who}${parts.join(" and ")}, of ${run.n} chains: they count as failures. A smaller step h avoids this.`]);
     }
     const out = run.outside(f.x0, f.x1, f.y0, f.y1);
     if (out > 0) lines.push(["warn", `${who}${out} of ${run.n} chains are outside the picture (the farthest at |x| = ${run.reach().toPrecision(3)}).`]);
@@ -778,11 +896,27 @@ function readouts(runs, eps) {
       setOutput(`cmp-best-${run.sampler}`, q[S.BestValue].toExponential(3), q[S.BestValue]);
       setOutput(`cmp-at-${run.sampler}`, String(q[S.BestIteration]), q[S.BestIteration]);
       const pr = run.fractionWithin(eps);
-      setOutput(`cmp-prob-${run.sampler}`, Number.isFinite(pr) ? pr.toFixed(2) : "–", pr);
+      setOutput(`cmp-prob-${run.sampler}`, Number.isFinite(pr) ? pr.toFixed(2) : "none", pr);
       const l = run.lost();
       setOutput(`cmp-lost-${run.sampler}`, String(l.diverged + l.ranAway), l.diverged + l.ranAway);
     }
   }
+}
+
+/** What the status says of a run whose chains went below U*: why, and what can help. */
+function unboundedAdvice(run, below, who) {
+  const l = run.lost();
+  const down = run.ranDownhill();
+  const away = down > 0 ? `${down} of ${run.n} chains ran away downhill (to U = ${below.toPrecision(3)})` : `chains went down to U = ${below.toPrecision(3)}`;
+  const fix =
+    state.land.name === "formula"
+      ? "give U a floor (add a term that grows, such as (x^2 + y^2)^2 / 1000) or choose a box that holds its minimum"
+      : "choose another landscape";
+  return (
+    `${who}${away}, below U* = ${+run.minimum.toPrecision(6)}: U looks unbounded below${state.land.name === "formula" ? " beyond the box" : ""}, so no success can be scored` +
+    `${l.diverged + l.ranAway > 0 ? ` and the ${l.diverged + l.ranAway} lost chains count as failures` : ""}. ` +
+    `No step h or temperature a holds chains on it: ${fix}.`
+  );
 }
 
 /** An escape radius in a few characters. */
@@ -837,6 +971,8 @@ function describeLandscape() {
 function syncControls() {
   const linear = radio("schedule") === "linear";
   $("a").disabled = linear;
+  $("a-slider").disabled = linear;
+  $("a-slider").title = linear ? "Annealing sets a at every step (a_low to a_high over K steps): change those, which restarts the run" : "";
   for (const id of ["aLow", "aHigh", "K"]) $(id).disabled = !linear;
   const compare = $("compare").checked;
   $("hint-sampler").textContent = compare ? COMPARE_HINT : SAMPLER_HINTS[$("sampler").value];
@@ -876,13 +1012,19 @@ function setPlaying(on) {
 function writeUrl() {
   const q = new URLSearchParams();
   for (const f of FIELDS) {
-    if (f.id === "play" || f.id === "view") continue;
+    if (f.id === "play" || f.id === "view" || f.id === "tune") continue;
     if (f.kind === "choice") q.set(f.id, radio(f.id));
     else if (f.kind === "flag") q.set(f.id, $(f.id).checked ? "1" : "0");
     else q.set(f.id, $(f.id).value);
   }
   if (!state.playing) q.set("play", "0");
   if (!sameView(state.view, state.land.view)) q.set("view", formatView(state.view));
+  if (state.changes.length > 0) {
+    // The run starts from the base values; the changes come at their iterations.
+    q.set("h", state.base.h);
+    q.set("a", state.base.a);
+    q.set("tune", formatChanges(state.changes));
+  }
   history.replaceState(null, "", `?${q}`);
 }
 
@@ -898,6 +1040,7 @@ function readUrl() {
       if (id !== "play") $(`${id}-${value}`).checked = true;
     } else if (f.kind === "flag") $(id).checked = value === "1";
     else if (f.kind === "view") state.pendingView = parseView(value);
+    else if (f.kind === "tune") state.pendingChanges = parseChanges(value);
     else if (id !== "potential") $(id).value = value;
   }
   if (values.play === "0") state.playing = false;
@@ -932,32 +1075,67 @@ function wireView() {
     },
     { passive: false },
   );
+  // Pointers down on the picture, by id: one pans (mouse, pen or finger),
+  // two pinch (zoom about their midpoint, pan with it).
+  const pointers = new Map();
+  const gesture = () => {
+    const [p, q] = [...pointers.values()];
+    const mid = q ? [(p.x + q.x) / 2, (p.y + q.y) / 2] : [p.x, p.y];
+    return { mid, at: pointAt(...mid), spread: q ? Math.hypot(p.x - q.x, p.y - q.y) : 0, view: state.view, moved: false };
+  };
   canvas.addEventListener("pointerdown", (e) => {
-    // A touch that moves scrolls the page: only a mouse or pen pans.
-    state.drag = { x: e.clientX, y: e.clientY, view: state.view, moved: false, pans: e.pointerType !== "touch" };
-    if (state.drag.pans) canvas.setPointerCapture?.(e.pointerId);
+    pointers.set(e.pointerId, { x: e.clientX, y: e.clientY });
+    state.drag = pointers.size <= 2 ? gesture() : null;
+    // A second finger makes a pinch, never a click.
+    if (state.drag && pointers.size === 2) state.drag.moved = true;
+    try {
+      canvas.setPointerCapture(e.pointerId);
+    } catch {
+      // A pointer the browser no longer tracks: the gesture goes on uncaptured.
+    }
   });
   canvas.addEventListener("pointermove", (e) => {
+    if (!pointers.has(e.pointerId)) return;
+    pointers.set(e.pointerId, { x: e.clientX, y: e.clientY });
     const d = state.drag;
     if (!d) return;
-    const dx = e.clientX - d.x;
-    const dy = e.clientY - d.y;
+    const now = gesture();
+    const dx = now.mid[0] - d.mid[0];
+    const dy = now.mid[1] - d.mid[1];
     // A few pixels of jitter are still a click (which picks a chain).
     if (!d.moved && Math.hypot(dx, dy) < 4) return;
     d.moved = true;
-    if (!d.pans) return;
-    const perPixel = (2 * d.view.half) / state.frame.width;
-    setView(pan(d.view, [dx * perPixel, -dy * perPixel]));
+    if (!(d.spread > 0 && now.spread > 0)) {
+      const perPixel = (2 * d.view.half) / state.frame.width;
+      setView(pan(d.view, [dx * perPixel, -dy * perPixel]));
+      return;
+    }
+    // A pinch: the point first under the fingers' midpoint stays under it, at the scale their spread gives.
+    const { half } = zoomAbout(d.view, [d.view.cx, d.view.cy], now.spread / d.spread, state.land.view);
+    const box = canvas.getBoundingClientRect();
+    const f = state.frame;
+    const perPixel = (2 * half) / f.width;
+    const centre = [box.left + f.left + f.width / 2, box.top + f.top + f.height / 2];
+    setView({ cx: d.at[0] - (now.mid[0] - centre[0]) * perPixel, cy: d.at[1] + (now.mid[1] - centre[1]) * perPixel, half });
   });
   const end = (e) => {
     const d = state.drag;
-    state.drag = null;
+    pointers.delete(e.pointerId);
+    // The fingers left go on from where the view is.
+    state.drag = pointers.size > 0 ? { ...gesture(), moved: true } : null;
     if (d && !d.moved && e.type === "pointerup") pickChain(e);
   };
   canvas.addEventListener("pointerup", end);
   canvas.addEventListener("pointercancel", end);
-  $("zoom-in").addEventListener("click", () => setView(zoomAbout(state.view, [state.view.cx, state.view.cy], 1.5, state.land.view)));
-  $("zoom-out").addEventListener("click", () => setView(zoomAbout(state.view, [state.view.cx, state.view.cy], 1 / 1.5, state.land.view)));
+  canvas.addEventListener("keydown", (e) => {
+    if (e.ctrlKey || e.metaKey || e.altKey) return;
+    const view = keyView(state.view, e.key, state.land.view);
+    if (!view) return;
+    e.preventDefault();
+    setView(view);
+  });
+  $("zoom-in").addEventListener("click", () => setView(zoomAbout(state.view, [state.view.cx, state.view.cy], ZOOM_STEP, state.land.view)));
+  $("zoom-out").addEventListener("click", () => setView(zoomAbout(state.view, [state.view.cx, state.view.cy], 1 / ZOOM_STEP, state.land.view)));
   $("zoom-home").addEventListener("click", () => setView(state.land.view));
 }
 
@@ -1038,6 +1216,15 @@ function wire() {
       restart();
     });
   }
+  for (const [id, { slider }] of Object.entries(SLIDERS)) {
+    $(id).addEventListener("change", () => tune(id));
+    // The number follows the slider as it moves; the chains take it when it is let go.
+    $(slider).addEventListener("input", () => ($(id).value = String(fromSlider($(slider).value))));
+    $(slider).addEventListener("change", () => {
+      $(id).value = String(fromSlider($(slider).value));
+      tune(id);
+    });
+  }
   for (const el of document.getElementsByName("schedule")) {
     el.addEventListener("change", () => {
       forgetAddressProblem("schedule");
@@ -1067,7 +1254,7 @@ function wire() {
   $("controls").addEventListener("submit", (e) => e.preventDefault());
   $("play").addEventListener("click", () => setPlaying(!state.playing));
   $("step").addEventListener("click", stepOnce);
-  $("reset").addEventListener("click", restart);
+  $("reset").addEventListener("click", () => restart(true));
   wireView();
   $("copy-link").addEventListener("click", copyLink);
   $("random-seed").addEventListener("click", () => {
@@ -1092,7 +1279,7 @@ function wire() {
     } else if (e.key === "s") {
       stepOnce();
     } else if (e.key === "r") {
-      restart();
+      restart(true);
     }
   });
   // A button is pressed by space on key up: on the transport buttons that

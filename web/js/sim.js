@@ -7,6 +7,7 @@ import init, {
   Descent,
   Optimizer,
   Summary,
+  formulaPicture,
   global_minimiser,
   global_minimum,
   max_chains,
@@ -32,6 +33,8 @@ export const globalMinimum = (potential) => global_minimum(potential);
 export const globalMinimiser = (potential) => global_minimiser(potential);
 /** The kernel's U on a grid (see the wrapper's potential_grid). */
 export const potentialGrid = (name, x0, x1, y0, y1, nx, ny) => potential_grid(name, x0, x1, y0, y1, nx, ny);
+/** A formula's U on a grid laid out as potentialGrid's, NaN where it is not finite. */
+export const formulaGrid = (text, x0, x1, y0, y1, nx, ny) => formulaPicture(text, x0, x1, y0, y1, nx, ny);
 /** Throws the wrapper's Error when it refuses `settings`; creates and frees a run otherwise. */
 export function probe(settings) {
   new Optimizer(settings).free();
@@ -75,6 +78,8 @@ export class Run {
     this.iters = new Float64Array(HISTORY);
     this.best = new Float64Array(HISTORY);
     this.groupBest = new Float64Array(HISTORY * Math.max(1, this.groups));
+    /** The lowest U of any chain not diverged (run away included), per history point. */
+    this.lowest = new Float64Array(HISTORY);
     this.count = 0;
     this.every = 1;
     this.snapshots = 0;
@@ -157,9 +162,13 @@ export class Run {
     this.opt.free();
   }
 
-  /** Fraction of groups whose current best chain has U - U* <= eps, at history point i. */
+  /**
+   * Fraction of groups whose current best chain has U - U* <= eps, at
+   * history point i; NaN when a chain was below U* by more than eps then
+   * (U* is no minimum: no success can be scored against it).
+   */
   fractionWithin(eps, i = this.count - 1) {
-    if (this.groups === 0 || i < 0) return NaN;
+    if (this.groups === 0 || i < 0 || this.lowest[i] < this.minimum - Math.max(eps, 0)) return NaN;
     return this.groupsWithin(eps, i) / this.groups;
   }
 
@@ -191,6 +200,25 @@ export class Run {
       else if (this.isLost(c)) ranAway++;
     }
     return { diverged, ranAway };
+  }
+
+  /**
+   * The lowest U of any chain not diverged (run away included), when it is
+   * below U* by more than eps: then U* (a formula's lowest value on its
+   * box) is not the landscape's minimum, U looks unbounded below, and no
+   * success can be scored against it. null otherwise.
+   */
+  belowMinimum(eps) {
+    let low = Infinity;
+    for (let c = 0; c < this.n; c++) if (this.u[c] < low) low = this.u[c];
+    return low < this.minimum - Math.max(eps, 0) ? low : null;
+  }
+
+  /** How many of the chains that ran away went downhill, below U*. */
+  ranDownhill() {
+    let n = 0;
+    for (let c = 0; c < this.n; c++) if (this.isLost(c) && this.u[c] < this.minimum) n++;
+    return n;
   }
 
   /** Chains not lost whose position is outside the box [x0, x1] x [y0, y1]. */
@@ -228,6 +256,7 @@ export class Run {
       for (let i = 0; i < HISTORY / 2; i++) {
         this.iters[i] = this.iters[2 * i];
         this.best[i] = this.best[2 * i];
+        this.lowest[i] = this.lowest[2 * i];
         this.groupBest.copyWithin(i * g, 2 * i * g, (2 * i + 1) * g);
       }
       this.count = HISTORY / 2;
@@ -236,11 +265,15 @@ export class Run {
     const i = this.count++;
     this.iters[i] = this.s[Summary.Iteration];
     this.best[i] = this.s[Summary.BestValue];
+    let low = Infinity;
+    for (const u of this.u) if (u < low) low = u;
+    this.lowest[i] = low;
     for (let g = 0; g < this.groups; g++) {
       let m = Infinity;
       for (let c = g * this.groupSize; c < (g + 1) * this.groupSize; c++) {
-        // A diverged chain's value is not finite: it is never within eps.
-        if (this.u[c] < m) m = this.u[c];
+        // A lost chain (diverged, or run away however low its U) is a
+        // failure: it is never within eps.
+        if (this.u[c] < m && !this.isLost(c)) m = this.u[c];
       }
       this.groupBest[i * this.groups + g] = m;
     }

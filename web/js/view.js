@@ -1,6 +1,7 @@
 // The view of the landscape as a visitor moves it: a square { cx, cy, half }
-// zoomed about a point (the wheel's cursor, or the centre for the buttons),
-// panned by a drag, kept within a range of the landscape's own view, and
+// zoomed about a point (the wheel's cursor, a pinch's centre, or the centre
+// for the buttons and keys), panned by a drag (mouse, pen or one finger) or
+// the arrow keys, kept within a range of the landscape's own view, and
 // written in the address as "cx,cy,half".
 
 /** Zoom range relative to the landscape's own view. */
@@ -17,6 +18,42 @@ export function zoomAbout(view, [x, y], factor, home) {
 /** `view` moved so that the landscape shifts by [dx, dy] in its own units. */
 export function pan(view, [dx, dy]) {
   return { cx: view.cx - dx, cy: view.cy - dy, half: view.half };
+}
+
+/** What an arrow key pans, as a share of the view's width. */
+const KEY_PAN = 0.1;
+/** What + and − zoom by, as the buttons do. */
+export const ZOOM_STEP = 1.5;
+
+/**
+ * The view after a key pressed on the picture: the arrows pan (the view
+ * moves the arrow's way), + and − zoom about the centre, 0 goes home;
+ * null for any other key.
+ */
+export function keyView(view, key, home) {
+  const d = 2 * view.half * KEY_PAN;
+  const centre = [view.cx, view.cy];
+  switch (key) {
+    case "ArrowLeft":
+      return pan(view, [d, 0]);
+    case "ArrowRight":
+      return pan(view, [-d, 0]);
+    case "ArrowUp":
+      return pan(view, [0, -d]);
+    case "ArrowDown":
+      return pan(view, [0, d]);
+    case "+":
+    case "=":
+      return zoomAbout(view, centre, ZOOM_STEP, home);
+    case "-":
+    case "_":
+      return zoomAbout(view, centre, 1 / ZOOM_STEP, home);
+    case "0":
+    case "Home":
+      return { ...home };
+    default:
+      return null;
+  }
 }
 
 function clampHalf(half, home) {

@@ -182,9 +182,9 @@ test("changing a control restarts the run from the seed", async () => {
   assert.equal(await readout("out-iteration"), 0);
   assert.match(h.page.url(), /sampler=ula/);
   await advance(100);
-  await setControl("h", 0.02);
+  await setControl("chains", 128);
   assert.equal(await readout("out-iteration"), 0);
-  assert.match(h.page.url(), /h=0\.02/);
+  assert.match(h.page.url(), /chains=128/);
   // The pace is not a run setting: no restart, but a bad value is named.
   await advance(100);
   await setControl("spf", 0);
