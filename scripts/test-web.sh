@@ -6,6 +6,8 @@
 # as scripts/test.sh arranges; without it, a WARNING says what was skipped).
 # Installs what is missing: the rustup target, wasm-bindgen-cli, chromium,
 # playwright-core (npm ci from the committed lock file).
+# The page tests run on the committed web/pkg/, after web/tests/pkg.test.mjs
+# has checked it against a fresh build (in target/web-tests/pkg-web/).
 # Artefacts: build outputs in target/web-tests/, screenshots (desktop,
 # phone, compare mode, each landscape) in target/web-screenshots/.
 set -euo pipefail
@@ -20,9 +22,13 @@ case "$TARGET_DIR" in /*) HRLA_WEB_SHOTS="$TARGET_DIR/web-screenshots" ;; esac
 
 ensure_wasm_target
 ensure_wasm_bindgen
-build_wasm "$HRLA_WEB_OUT/pkg-node"
-wasm="$TARGET_DIR/wasm32-unknown-unknown/release/hrla_wasm.wasm"
-echo "hrla_wasm_bg.wasm: $(wc -c <web/pkg/hrla_wasm_bg.wasm) bytes, $(gzip -9c web/pkg/hrla_wasm_bg.wasm | wc -c) gzipped"
+# A fresh build beside the committed web/pkg/, not over it: pkg.test.mjs
+# asserts that the two are the same bytes, and the page tests then run on
+# the committed package, the one serve.sh serves.
+build_wasm_into "$HRLA_WEB_OUT/pkg-web" "$HRLA_WEB_OUT/pkg-node"
+for f in hrla_wasm_bg.wasm hrla_wasm.js; do
+  echo "web/pkg/$f: $(wc -c <"web/pkg/$f") bytes, $(gzip -9c "web/pkg/$f" | wc -c) gzip -9"
+done
 
 # The native side of the bit-identity test.
 cargo run --quiet -p hrla-wasm --example trace -- wasm/tests/trace-cases.txt \
@@ -66,7 +72,10 @@ firmware_warning() {
     "HRLA_FIRMWARE_OUT=$TARGET_DIR/firmware-check scripts/test-web.sh" >&2
 }
 firmware_warning
+# A stale web/pkg/ fails every page test in its own way: say the one cause
+# first and stop.
+node --test web/tests/pkg.test.mjs
 status=0
-node --test web/tests/*.test.mjs wasm/tests/*.test.mjs || status=$?
+node --test $(ls web/tests/*.test.mjs | grep -vx web/tests/pkg.test.mjs) wasm/tests/*.test.mjs || status=$?
 firmware_warning
 exit "$status"

@@ -1,5 +1,5 @@
-# Sourced by serve.sh and test-web.sh: installs what the wasm build needs
-# (skipping what is present) and builds it.
+# Sourced by serve.sh, build-pkg.sh and test-web.sh: installs what the wasm
+# build needs (skipping what is present) and builds it.
 
 # Where cargo puts its output (honours CARGO_TARGET_DIR, like cargo).
 TARGET_DIR=${CARGO_TARGET_DIR:-target}
@@ -33,17 +33,50 @@ ensure_wasm_bindgen() {
   cargo install wasm-bindgen-cli --version "$want"
 }
 
-# build_wasm: release build, then wasm-bindgen --target web into web/pkg/.
-# With an argument DIR, also a --target nodejs build into DIR.
-build_wasm() {
-  cargo build --release --target wasm32-unknown-unknown -p hrla-wasm
+# The flags of every wasm32 build here, set whole so that no RUSTFLAGS of
+# the caller changes the bytes: the committed web/pkg/ must be what any
+# checkout builds. Workspace paths reach the wasm (panic locations) relative
+# already; the registry's are absolute under CARGO_HOME, which differs
+# between machines, so they are remapped to a fixed prefix. Encoded (fields
+# separated by 0x1f) so that a CARGO_HOME with spaces stays one argument.
+wasm_cargo() {
+  local home=${CARGO_HOME:-$HOME/.cargo}
+  CARGO_ENCODED_RUSTFLAGS="--remap-path-prefix=$home=/cargo" cargo "$@"
+}
+
+# build_wasm_into WEB_DIR [NODE_DIR]: release build of hrla-wasm, then
+# wasm-bindgen --target web into WEB_DIR (and --target nodejs into NODE_DIR).
+build_wasm_into() {
+  wasm_cargo build --release --target wasm32-unknown-unknown -p hrla-wasm
   local wasm="$TARGET_DIR/wasm32-unknown-unknown/release/hrla_wasm.wasm"
+  rm -rf "$1"
   # The name section only serves debuggers: a third of the file.
   wasm-bindgen --target web --remove-name-section --remove-producers-section \
-    --out-dir web/pkg "$wasm"
-  if [ -n "${1:-}" ]; then
-    wasm-bindgen --target nodejs --out-dir "$1" "$wasm"
+    --out-dir "$1" "$wasm"
+  if [ -n "${2:-}" ]; then
+    wasm-bindgen --target nodejs --out-dir "$2" "$wasm"
   fi
+}
+
+# build_wasm [NODE_DIR]: web/pkg/ rebuilt from the sources, with the stamp
+# that lets serve.sh serve it without Rust (scripts/pkg-stamp.mjs); with
+# NODE_DIR, also a --target nodejs build there.
+build_wasm() {
+  # Hashed before the build: a source edited during it leaves a stamp that
+  # does not match, so the next serve.sh rebuilds rather than serving a
+  # package older than its stamp.
+  local sources
+  sources=$(node scripts/pkg-stamp.mjs sources)
+  # Built beside web/pkg/ and swapped in whole: a failed build leaves the
+  # old package, and no file of an older build lingers.
+  build_wasm_into web/.pkg-new "${1:-}"
+  node scripts/pkg-stamp.mjs write web/.pkg-new "$sources"
+  rm -rf web/pkg
+  mv web/.pkg-new web/pkg
+  local f
+  for f in web/pkg/hrla_wasm_bg.wasm web/pkg/hrla_wasm.js; do
+    echo "$f: $(wc -c <"$f") bytes, $(gzip -9c "$f" | wc -c) gzip -9"
+  done
 }
 
 # build_embedded_wasm DIR [FEATURES]: the firmware example's computation
@@ -51,7 +84,7 @@ build_wasm() {
 # Bound before the next build overwrites the .wasm (the file name does not
 # depend on the features).
 build_embedded_wasm() {
-  cargo build --quiet --release --target wasm32-unknown-unknown -p hrla-embedded-wasm \
+  wasm_cargo build --quiet --release --target wasm32-unknown-unknown -p hrla-embedded-wasm \
     ${2:+--features "$2"}
   wasm-bindgen --target nodejs --out-dir "$1" \
     "$TARGET_DIR/wasm32-unknown-unknown/release/hrla_embedded_wasm.wasm"

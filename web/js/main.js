@@ -1314,7 +1314,8 @@ async function main() {
   } catch (e) {
     fatal(
       `The WebAssembly kernel could not be loaded (${e.message}). Run scripts/serve.sh in the repository ` +
-        "(it builds the module into web/pkg/ and serves the page), then open the address it prints.",
+        "(it serves the page and its module, web/pkg/, rebuilding the module if its sources have changed), " +
+        "then open the address it prints.",
     );
     return;
   }

@@ -4,7 +4,7 @@
 // the frame's time budget cuts), in compare mode (also with descent beside)
 // and on a typed formula. A measurement for the README, not a test.
 //
-//   node web/tests/measure.mjs        (after scripts/serve.sh or test-web.sh built web/pkg)
+//   node web/tests/measure.mjs        (on the committed web/pkg/)
 import { join } from "node:path";
 import { startServer } from "../../scripts/static-server.mjs";
 import { launch, ROOT } from "./browser.mjs";
