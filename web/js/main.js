@@ -8,6 +8,7 @@ import { stepWithin } from "./pace.js";
 import { Frame, RUN_COLOURS, colourScale, drawChains, drawColourBar, drawLandscape } from "./landscape.js";
 import { drawHistogram, drawLinePlot, drawSchedule, exactMarginals, formatCount, histogram } from "./plots.js";
 import { describe, drawPhaseInset, drawPositionInset, readNextStep } from "./anatomy.js";
+import { STAGES, drawStepView, held, sharedReach, stageAt } from "./step-view.js";
 import { COMPARE_HINT, SAMPLER_HINTS } from "./words.js";
 import { FORMULA_DEFAULT, customLandscape } from "./custom.js";
 import { formatView, pan, parseView, sameView, zoomAbout } from "./view.js";
@@ -74,6 +75,8 @@ const state = {
   anatomy: null,
   /** The chain whose step is laid bare. */
   anatomyChain: 0,
+  /** The loupe on the picture: { since (state.now() at the step), hold (a stage index, or null: by the clock), geometry }. */
+  stepView: null,
   /** What the a(t) plot shows: { points, marker } (see drawSchedule). */
   schedulePlot: null,
   /** The clock of the time budget: replaceable by a test's clock. */
@@ -314,6 +317,7 @@ function restart() {
   clearErrors();
   state.pending = 0;
   state.anatomy = null;
+  state.stepView = null;
   const land = landscapeOf($("potential").value);
   if (JSON.stringify(land.arg) !== JSON.stringify(state.land.arg) || !state.grid) {
     state.view = state.pendingView ?? land.view;
@@ -439,6 +443,7 @@ function tick() {
     resetMeter();
   }
   render();
+  if (state.stepView && !state.stepView.settled) drawStepViewNow();
   requestAnimationFrame(tick);
 }
 
@@ -487,6 +492,39 @@ function stepOnce() {
   };
   buildAnatomy();
   render();
+  // Reduced motion: the finished step at once, no build-up.
+  const still = matchMedia("(prefers-reduced-motion: reduce)").matches;
+  state.stepView = { since: state.now(), hold: still ? STAGES.length - 1 : null, settled: false, geometry: null };
+  drawStepViewNow();
+}
+
+/** Draws the loupe at its stage (held, or by the time since the step); returns its geometry. */
+function drawStepViewNow() {
+  const canvas = $("step-overlay");
+  const v = state.stepView;
+  const parts = state.anatomy?.parts ?? [];
+  if (!v || parts.length === 0 || !state.frame) {
+    canvas.getContext("2d").clearRect(0, 0, canvas.width, canvas.height);
+    canvas.dataset.stage = "";
+    canvas.dataset.settled = "false";
+    return null;
+  }
+  const shown = v.hold === null ? stageAt(state.now() - v.since) : held(v.hold);
+  const labelled = parts.map((p) => ({ ...p, label: LABEL[p.sampler], hasVelocity: p.sampler !== "ola" }));
+  v.geometry = drawStepView(canvas, state.frame, state.dpr, labelled, shown);
+  v.settled = shown.settled;
+  canvas.dataset.stage = STAGES[shown.stage];
+  canvas.dataset.settled = String(shown.settled);
+  canvas.dataset.magnification = String(v.geometry.magnification);
+  canvas.setAttribute("aria-label", `The step of chain ${state.anatomy.chain}, magnified ×${Math.round(v.geometry.magnification)}: ${STAGES.slice(0, shown.stage + 1).join(", ")}`);
+  return v.geometry;
+}
+
+/** Holds the loupe at stage `name` (one of STAGES), for the tests; returns its geometry. */
+function holdStage(name) {
+  if (!state.stepView) return null;
+  state.stepView.hold = STAGES.indexOf(name);
+  return drawStepViewNow();
 }
 
 /** The anatomy panel's canvases and words, one column per run. */
@@ -497,7 +535,7 @@ function buildAnatomy() {
   if (!a || a.parts.length === 0) return;
   $("anatomy-intro").textContent =
     `Step ${a.iteration - 1} → ${a.iteration} of chain ${a.chain} (ringed in the picture), at a = ${+a.parts[0].law.a.toPrecision(4)}, ` +
-    "magnified. Click a chain in the picture to follow another one; Step (s) takes the next step.";
+    `magnified${a.parts.length > 1 ? ", all at one magnification" : ""}. Click a chain in the picture to follow another one; Step (s) takes the next step.`;
   for (const part of a.parts) {
     const column = document.createElement("div");
     column.className = "anatomy-run";
@@ -527,8 +565,10 @@ function drawAnatomy() {
   const a = state.anatomy;
   if (!a) return [];
   const columns = $("anatomy-runs").children;
+  // One magnification for every sampler: their steps' sizes compare.
+  const reach = sharedReach(a.parts);
   return a.parts.map((part, k) => {
-    const geometry = drawPositionInset(columns[k].querySelector("canvas.position"), part.law, part.draw);
+    const geometry = drawPositionInset(columns[k].querySelector("canvas.position"), part.law, part.draw, reach);
     drawPhaseInset(columns[k].querySelector("canvas.phase"), part.law, [part.draw[0], part.drawY[0]]);
     const zoom = geometry.scale / (state.frame.width / (state.frame.x1 - state.frame.x0));
     columns[k].querySelector(".zoom").textContent = `magnified ×${formatCount(Math.round(zoom))}`;
@@ -543,6 +583,8 @@ function syncAnatomy() {
   if (!current && !$("anatomy").hidden) {
     $("anatomy").hidden = true;
     state.anatomy = null;
+    state.stepView = null;
+    drawStepViewNow();
   }
 }
 
@@ -802,13 +844,14 @@ function layout(force = false) {
   if (!force && state.frame && state.frame.size === size && state.dpr === dpr) return;
   state.dpr = dpr;
   state.frame = new Frame(size, state.view);
-  for (const id of ["landscape", "particles"]) {
+  for (const id of ["landscape", "particles", "step-overlay"]) {
     $(id).width = Math.round(size * dpr);
     $(id).height = Math.round(size * dpr);
   }
   refreshBackground(true);
   render();
   drawAnatomy();
+  drawStepViewNow();
 }
 
 function describeLandscape() {
@@ -1141,7 +1184,7 @@ async function main() {
   wire();
   restart();
   // For the browser tests: the runs, the budget's clock, the anatomy's geometry.
-  window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now), anatomySpans: drawAnatomy };
+  window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now), anatomySpans: drawAnatomy, holdStage };
   document.body.dataset.ready = "true";
   requestAnimationFrame(tick);
   // The WebGPU section (its own runs; the page's above are unchanged).
