@@ -4,8 +4,9 @@
 
 import { LANDSCAPES, MEASURED, PAPER_AND_MEASUREMENT } from "./landscapes.js";
 import { FIELDS, fieldOf, parseNumber, plain, readAddress } from "./fields.js";
-import { stepWithin } from "./pace.js";
-import { Frame, RUN_COLOURS, colourScale, drawChains, drawColourBar, drawLandscape } from "./landscape.js";
+import { DrawBudget, stepWithin } from "./pace.js";
+import { Frame, RUN_COLOURS, colourScale, drawColourBar, drawLandscape } from "./landscape.js";
+import { drawChains } from "./chains.js";
 import { drawHistogram, drawLinePlot, drawSchedule, exactMarginals, formatCount, histogram } from "./plots.js";
 import { describe, drawPhaseInset, drawPositionInset, readNextStep } from "./anatomy.js";
 import { STAGES, drawStepView, held, sharedReach, stageAt } from "./step-view.js";
@@ -82,6 +83,10 @@ const state = {
   /** The clock of the time budget: replaceable by a test's clock. */
   now: () => performance.now(),
   lastFrame: { asked: 0, done: 0, ended: false },
+  /** The trails' segments per frame, adapted to the frame rate (on state.now, a test's clock included). */
+  drawBudget: new DrawBudget(() => state.now()),
+  /** What the last frame drew of the trails: { ages, segments, cap }. */
+  lastDraw: null,
   meter: { since: performance.now(), frames: 0, steps: 0 },
 };
 
@@ -442,6 +447,7 @@ function tick() {
     setOutput("out-rate", formatCount(Math.round(m.steps / dt)), m.steps / dt);
     resetMeter();
   }
+  state.drawBudget.frame();
   render();
   if (state.stepView && !state.stepView.settled) drawStepViewNow();
   requestAnimationFrame(tick);
@@ -670,13 +676,16 @@ function render() {
   const lead = runs[0];
   const c = state.anatomyChain;
   const mark = state.anatomy && !lead.isLost(c) ? [lead.x[2 * c], lead.x[2 * c + 1]] : null;
-  drawChains(
+  const cap = state.drawBudget.cap;
+  const drawn = drawChains(
     $("particles"),
     frame,
     state.dpr,
     runs.map((r, k) => ({ trails: r.trails, x: r.x, n: r.n, best: [r.s[S.BestX0], r.s[S.BestX1]], colour: colours[k], square: r.descent })),
     mark,
+    cap,
   );
+  state.lastDraw = { ...drawn, cap };
   const lineColours = runs.length > 1 ? colours : ["#ff5a36"];
   drawLinePlot(
     $("plot-best"),
