@@ -87,6 +87,8 @@ const state = {
   drawBudget: new DrawBudget(() => state.now()),
   /** What the last frame drew of the trails: { ages, segments, cap }. */
   lastDraw: null,
+  /** What the chains' canvas shows (see render): unchanged, it is not redrawn. */
+  chainsKey: null,
   meter: { since: performance.now(), frames: 0, steps: 0 },
 };
 
@@ -676,16 +678,23 @@ function render() {
   const lead = runs[0];
   const c = state.anatomyChain;
   const mark = state.anatomy && !lead.isLost(c) ? [lead.x[2 * c], lead.x[2 * c + 1]] : null;
-  const cap = state.drawBudget.cap;
-  const drawn = drawChains(
-    $("particles"),
-    frame,
-    state.dpr,
-    runs.map((r, k) => ({ trails: r.trails, x: r.x, n: r.n, best: [r.s[S.BestX0], r.s[S.BestX1]], colour: colours[k], square: r.descent })),
-    mark,
-    cap,
-  );
-  state.lastDraw = { ...drawn, cap };
+  // The budget bounds the frames that move the chains; a still picture is
+  // drawn whole, once, and not again until something in it changes.
+  const moving = anyLive() && (state.playing || state.pending > 0);
+  const cap = moving ? state.drawBudget.cap : Infinity;
+  const key = JSON.stringify([frame.size, frame.view, state.dpr, runs.map((r) => r.iteration), colours, mark, cap]);
+  if (state.chainsKey !== key) {
+    state.chainsKey = key;
+    const drawn = drawChains(
+      $("particles"),
+      frame,
+      state.dpr,
+      runs.map((r, k) => ({ trails: r.trails, x: r.x, n: r.n, best: [r.s[S.BestX0], r.s[S.BestX1]], colour: colours[k], square: r.descent })),
+      mark,
+      cap,
+    );
+    state.lastDraw = { ...drawn, cap };
+  }
   const lineColours = runs.length > 1 ? colours : ["#ff5a36"];
   drawLinePlot(
     $("plot-best"),
@@ -857,6 +866,8 @@ function layout(force = false) {
     $(id).width = Math.round(size * dpr);
     $(id).height = Math.round(size * dpr);
   }
+  // Resized, the chains' canvas is blank.
+  state.chainsKey = null;
   refreshBackground(true);
   render();
   drawAnatomy();
