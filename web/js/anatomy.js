@@ -83,15 +83,18 @@ export function dot(ctx, x, y, r, fill, stroke = "#000") {
   ctx.fill();
 }
 
-export function tag(ctx, text, x, y, colour) {
+/** A label right of (x, y), or left of it where it would pass `right` (a box's edge). */
+export function tag(ctx, text, x, y, colour, right = Infinity) {
   ctx.font = "11px system-ui, sans-serif";
-  ctx.textAlign = "left";
+  const left = x + 5 + ctx.measureText(text).width > right;
+  ctx.textAlign = left ? "right" : "left";
   ctx.textBaseline = "bottom";
   ctx.lineWidth = 3;
   ctx.strokeStyle = "rgba(0, 0, 0, 0.8)";
-  ctx.strokeText(text, x + 5, y - 3);
+  const at = left ? x - 5 : x + 5;
+  ctx.strokeText(text, at, y - 3);
   ctx.fillStyle = colour;
-  ctx.fillText(text, x + 5, y - 3);
+  ctx.fillText(text, at, y - 3);
 }
 
 /**
@@ -148,7 +151,7 @@ export function drawPositionInset(canvas, law, draw, reach = reachOf(law, draw))
   ctx.stroke();
   ctx.setLineDash([]);
   dot(ctx, px(law.x[0]), py(law.x[1]), 4.5, "#ffffff");
-  tag(ctx, "x", px(law.x[0]), py(law.x[1]), "#ffffff");
+  tag(ctx, "x", px(law.x[0]), py(law.x[1]), "#ffffff", w);
   ctx.strokeStyle = COLOURS.mean;
   ctx.lineWidth = 2;
   ctx.beginPath();
@@ -157,9 +160,9 @@ export function drawPositionInset(canvas, law, draw, reach = reachOf(law, draw))
   ctx.moveTo(px(mid[0]), py(mid[1]) - 6);
   ctx.lineTo(px(mid[0]), py(mid[1]) + 6);
   ctx.stroke();
-  tag(ctx, "mean", px(mid[0]), py(mid[1]), COLOURS.mean);
+  tag(ctx, "mean", px(mid[0]), py(mid[1]), COLOURS.mean, w);
   dot(ctx, px(draw[0]), py(draw[1]), 4.5, COLOURS.draw);
-  tag(ctx, "draw", px(draw[0]), py(draw[1]), COLOURS.draw);
+  tag(ctx, "draw", px(draw[0]), py(draw[1]), COLOURS.draw, w);
   // A scale bar of a round length.
   const unit = 10 ** Math.floor(Math.log10(reach));
   const bar = unit * scale;
@@ -232,10 +235,10 @@ export function drawPhaseInset(canvas, law, draw) {
   ctx.stroke();
   ctx.setLineDash([]);
   dot(ctx, px(start[0]), py(start[1]), 4, "#ffffff");
-  tag(ctx, "(x₁, y₁)", px(start[0]), py(start[1]), "#ffffff");
+  tag(ctx, "(x₁, y₁)", px(start[0]), py(start[1]), "#ffffff", w);
   dot(ctx, px(mean[0]), py(mean[1]), 3, COLOURS.mean);
   dot(ctx, px(draw[0]), py(draw[1]), 4, COLOURS.draw);
-  tag(ctx, "draw", px(draw[0]), py(draw[1]), COLOURS.draw);
+  tag(ctx, "draw", px(draw[0]), py(draw[1]), COLOURS.draw, w);
   ctx.font = "10px system-ui, sans-serif";
   ctx.fillStyle = "#9aa3b2";
   ctx.textAlign = "right";

@@ -138,7 +138,7 @@ function drawLoupe(ctx, box, anchor, part, scale, magnification, { stage, progre
     }
   }
   dot(ctx, start[0], start[1], 4, "#ffffff");
-  tag(ctx, "x", start[0], start[1], "#ffffff");
+  tag(ctx, "x", start[0], start[1], "#ffffff", bx + side);
   if (amount(0) > 0) {
     const tip = along(start, pushed, amount(0));
     arrow(ctx, start[0], start[1], tip[0], tip[1], COLOURS.gradient);
@@ -157,7 +157,7 @@ function drawLoupe(ctx, box, anchor, part, scale, magnification, { stage, progre
     ctx.moveTo(mean[0], mean[1] - 6);
     ctx.lineTo(mean[0], mean[1] + 6);
     ctx.stroke();
-    tag(ctx, "mean", mean[0], mean[1], COLOURS.mean);
+    tag(ctx, "mean", mean[0], mean[1], COLOURS.mean, bx + side);
     ctx.globalAlpha = 1;
   }
   if (amount(4) > 0) {
@@ -172,7 +172,7 @@ function drawLoupe(ctx, box, anchor, part, scale, magnification, { stage, progre
     ctx.setLineDash([]);
     if (amount(4) === 1) {
       dot(ctx, drawn[0], drawn[1], 4.5, COLOURS.draw);
-      tag(ctx, "draw", drawn[0], drawn[1], COLOURS.draw);
+      tag(ctx, "draw", drawn[0], drawn[1], COLOURS.draw, bx + side);
     }
   }
   // Title and caption, on bands of their own.
