@@ -83,15 +83,14 @@ export function dot(ctx, x, y, r, fill, stroke = "#000") {
   ctx.fill();
 }
 
-/** A label right of (x, y), or left of it where it would pass `right` (a box's edge). */
+/** A label above and right of (x, y), moved left where it would pass `right` (a box's edge). */
 export function tag(ctx, text, x, y, colour, right = Infinity) {
   ctx.font = "11px system-ui, sans-serif";
-  const left = x + 5 + ctx.measureText(text).width > right;
-  ctx.textAlign = left ? "right" : "left";
+  const at = Math.min(x + 5, right - 3 - ctx.measureText(text).width);
+  ctx.textAlign = "left";
   ctx.textBaseline = "bottom";
   ctx.lineWidth = 3;
   ctx.strokeStyle = "rgba(0, 0, 0, 0.8)";
-  const at = left ? x - 5 : x + 5;
   ctx.strokeText(text, at, y - 3);
   ctx.fillStyle = colour;
   ctx.fillText(text, at, y - 3);

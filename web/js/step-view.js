@@ -6,7 +6,7 @@
 // the step to a stage, and a caller may hold any stage (the tests do;
 // reduced motion holds the last).
 
-import { COLOURS, arrow, dot, num, reachOf, tag } from "./anatomy.js";
+import { COLOURS, arrow, dot, num, reachOf, tag as label } from "./anatomy.js";
 
 /** The stages, in the order the loupe builds them. */
 export const STAGES = ["gradient", "momentum", "mean", "gaussian", "draw"];
@@ -125,6 +125,19 @@ function drawLoupe(ctx, box, anchor, part, scale, magnification, { stage, progre
   const drawn = [px(draw[0]), py(draw[1])];
   const along = (a, b, t) => [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
   const sd = Math.sqrt(law.moments[0].varX);
+  // Points closer than a label's height share one label: the latest
+  // stage's (a step far smaller than the loupe, ULA's at one
+  // magnification, would otherwise be a knot of words).
+  const shown = [];
+  const labels = [
+    ["draw", drawn, COLOURS.draw, amount(4) === 1],
+    ["mean", mean, COLOURS.mean, amount(2) > 0],
+    ["x", start, "#ffffff", true],
+  ].filter(([, p, , on]) => on && !shown.some((q) => Math.hypot(p[0] - q[0], p[1] - q[1]) < 12) && shown.push(p));
+  const tag = (text) => {
+    const l = labels.find((k) => k[0] === text);
+    if (l) label(ctx, text, l[1][0], l[1][1], l[2], bx + side);
+  };
   if (amount(3) > 0) {
     for (const k of [2, 1]) {
       ctx.beginPath();
@@ -138,7 +151,7 @@ function drawLoupe(ctx, box, anchor, part, scale, magnification, { stage, progre
     }
   }
   dot(ctx, start[0], start[1], 4, "#ffffff");
-  tag(ctx, "x", start[0], start[1], "#ffffff", bx + side);
+  tag("x");
   if (amount(0) > 0) {
     const tip = along(start, pushed, amount(0));
     arrow(ctx, start[0], start[1], tip[0], tip[1], COLOURS.gradient);
@@ -157,7 +170,7 @@ function drawLoupe(ctx, box, anchor, part, scale, magnification, { stage, progre
     ctx.moveTo(mean[0], mean[1] - 6);
     ctx.lineTo(mean[0], mean[1] + 6);
     ctx.stroke();
-    tag(ctx, "mean", mean[0], mean[1], COLOURS.mean, bx + side);
+    tag("mean");
     ctx.globalAlpha = 1;
   }
   if (amount(4) > 0) {
@@ -172,8 +185,17 @@ function drawLoupe(ctx, box, anchor, part, scale, magnification, { stage, progre
     ctx.setLineDash([]);
     if (amount(4) === 1) {
       dot(ctx, drawn[0], drawn[1], 4.5, COLOURS.draw);
-      tag(ctx, "draw", drawn[0], drawn[1], COLOURS.draw, bx + side);
+      tag("draw");
     }
+  }
+  // A step that the shared magnification leaves a few pixels wide says so.
+  const own = reachOf(law, draw) * scale;
+  if (own < 8) {
+    ctx.font = "10px system-ui, sans-serif";
+    ctx.textAlign = "center";
+    ctx.textBaseline = "bottom";
+    ctx.fillStyle = "#9aa3b2";
+    ctx.fillText(`the whole step: ${own < 1 ? "under a pixel" : `${own.toFixed(0)} px`} here`, cx, by + side - 20);
   }
   // Title and caption, on bands of their own.
   ctx.fillStyle = "rgba(12, 14, 18, 0.85)";
