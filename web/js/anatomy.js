@@ -11,7 +11,7 @@ const N = { A: 0, X: 1, Y: 3, G: 5, M: 7, PUSH_G: 17, PUSH_Y: 19 };
 /** Offsets within one coordinate's moments. */
 const M = { MEAN_X: 0, MEAN_Y: 1, VAR_X: 2, COV: 3, VAR_Y: 4 };
 
-const COLOURS = { gradient: "#ff9f43", velocity: "#4fd1ff", mean: "#ffd166", gauss: "rgba(255, 209, 102, 0.16)", draw: "#ff5a36" };
+export const COLOURS = { gradient: "#ff9f43", velocity: "#4fd1ff", mean: "#ffd166", gauss: "rgba(255, 209, 102, 0.16)", draw: "#ff5a36" };
 
 /** The wrapper's flat `nextStep` array as named parts. */
 export function readNextStep(a) {
@@ -33,7 +33,7 @@ export function readNextStep(a) {
 }
 
 /** A number in at most 8 characters. */
-function num(v) {
+export function num(v) {
   if (v === 0) return "0";
   const a = Math.abs(v);
   return a >= 1e4 || a < 1e-3 ? v.toExponential(2) : String(+v.toPrecision(3));
@@ -53,7 +53,7 @@ function fit(canvas) {
   return [w, h];
 }
 
-function arrow(ctx, x0, y0, x1, y1, colour) {
+export function arrow(ctx, x0, y0, x1, y1, colour) {
   const len = Math.hypot(x1 - x0, y1 - y0);
   ctx.strokeStyle = colour;
   ctx.fillStyle = colour;
@@ -73,7 +73,7 @@ function arrow(ctx, x0, y0, x1, y1, colour) {
   ctx.fill();
 }
 
-function dot(ctx, x, y, r, fill, stroke = "#000") {
+export function dot(ctx, x, y, r, fill, stroke = "#000") {
   ctx.beginPath();
   ctx.arc(x, y, r, 0, 2 * Math.PI);
   ctx.lineWidth = 1.5;
@@ -83,26 +83,42 @@ function dot(ctx, x, y, r, fill, stroke = "#000") {
   ctx.fill();
 }
 
-function tag(ctx, text, x, y, colour) {
+/** A label above and right of (x, y), moved left where it would pass `right` (a box's edge). */
+export function tag(ctx, text, x, y, colour, right = Infinity) {
   ctx.font = "11px system-ui, sans-serif";
+  const at = Math.min(x + 5, right - 3 - ctx.measureText(text).width);
   ctx.textAlign = "left";
   ctx.textBaseline = "bottom";
   ctx.lineWidth = 3;
   ctx.strokeStyle = "rgba(0, 0, 0, 0.8)";
-  ctx.strokeText(text, x + 5, y - 3);
+  ctx.strokeText(text, at, y - 3);
   ctx.fillStyle = colour;
-  ctx.fillText(text, x + 5, y - 3);
+  ctx.fillText(text, at, y - 3);
+}
+
+/**
+ * How far the step's parts lie from its mean (start, gradient's push,
+ * draw, 2.2 σ of the Gaussian): the radius a picture of the step must
+ * hold. In compare mode the largest of the samplers' sets one
+ * magnification for all, so that their sizes can be compared.
+ */
+export function reachOf(law, draw) {
+  const mid = law.mean;
+  const pushed = [law.x[0] + law.pushG[0], law.x[1] + law.pushG[1]];
+  const far = (p) => Math.hypot(p[0] - mid[0], p[1] - mid[1]);
+  return Math.max(far(law.x), far(pushed), far(draw), 2.2 * Math.sqrt(law.moments[0].varX), 1e-300);
 }
 
 /**
  * The position plane around the step, magnified so that it fills the inset:
  * the start x, the gradient's push, the velocity's push, the mean, the
  * Gaussian's 1σ and 2σ circles (the position's covariance is σ² I: the
- * coordinates are independent given the state), and the draw. Returns the
+ * coordinates are independent given the state), and the draw, with `reach`
+ * units from the mean filling the inset. Returns the
  * geometry, for the readers of the page: { scale (px per unit), moved (px
  * from start to draw), sigmaPx }.
  */
-export function drawPositionInset(canvas, law, draw) {
+export function drawPositionInset(canvas, law, draw, reach = reachOf(law, draw)) {
   const [w, h] = fit(canvas);
   const ctx = canvas.getContext("2d");
   ctx.fillStyle = "#0c0e12";
@@ -110,8 +126,6 @@ export function drawPositionInset(canvas, law, draw) {
   const sd = Math.sqrt(law.moments[0].varX);
   const mid = law.mean;
   const pushed = [law.x[0] + law.pushG[0], law.x[1] + law.pushG[1]];
-  const far = (p) => Math.hypot(p[0] - mid[0], p[1] - mid[1]);
-  const reach = Math.max(far(law.x), far(pushed), far(draw), 2.2 * sd, 1e-300);
   const scale = (Math.min(w, h) / 2 - 16) / reach;
   const px = (v) => w / 2 + (v - mid[0]) * scale;
   const py = (v) => h / 2 - (v - mid[1]) * scale;
@@ -136,7 +150,7 @@ export function drawPositionInset(canvas, law, draw) {
   ctx.stroke();
   ctx.setLineDash([]);
   dot(ctx, px(law.x[0]), py(law.x[1]), 4.5, "#ffffff");
-  tag(ctx, "x", px(law.x[0]), py(law.x[1]), "#ffffff");
+  tag(ctx, "x", px(law.x[0]), py(law.x[1]), "#ffffff", w);
   ctx.strokeStyle = COLOURS.mean;
   ctx.lineWidth = 2;
   ctx.beginPath();
@@ -145,9 +159,9 @@ export function drawPositionInset(canvas, law, draw) {
   ctx.moveTo(px(mid[0]), py(mid[1]) - 6);
   ctx.lineTo(px(mid[0]), py(mid[1]) + 6);
   ctx.stroke();
-  tag(ctx, "mean", px(mid[0]), py(mid[1]), COLOURS.mean);
+  tag(ctx, "mean", px(mid[0]), py(mid[1]), COLOURS.mean, w);
   dot(ctx, px(draw[0]), py(draw[1]), 4.5, COLOURS.draw);
-  tag(ctx, "draw", px(draw[0]), py(draw[1]), COLOURS.draw);
+  tag(ctx, "draw", px(draw[0]), py(draw[1]), COLOURS.draw, w);
   // A scale bar of a round length.
   const unit = 10 ** Math.floor(Math.log10(reach));
   const bar = unit * scale;
@@ -220,10 +234,10 @@ export function drawPhaseInset(canvas, law, draw) {
   ctx.stroke();
   ctx.setLineDash([]);
   dot(ctx, px(start[0]), py(start[1]), 4, "#ffffff");
-  tag(ctx, "(x₁, y₁)", px(start[0]), py(start[1]), "#ffffff");
+  tag(ctx, "(x₁, y₁)", px(start[0]), py(start[1]), "#ffffff", w);
   dot(ctx, px(mean[0]), py(mean[1]), 3, COLOURS.mean);
   dot(ctx, px(draw[0]), py(draw[1]), 4, COLOURS.draw);
-  tag(ctx, "draw", px(draw[0]), py(draw[1]), COLOURS.draw);
+  tag(ctx, "draw", px(draw[0]), py(draw[1]), COLOURS.draw, w);
   ctx.font = "10px system-ui, sans-serif";
   ctx.fillStyle = "#9aa3b2";
   ctx.textAlign = "right";
@@ -232,6 +246,9 @@ export function drawPhaseInset(canvas, law, draw) {
   ctx.textAlign = "left";
   ctx.textBaseline = "top";
   ctx.fillText("y₁ ↑", w / 2 + 4, 3);
+  // Its shape (the tilt) is what this inset shows; sizes compare in the position inset above.
+  ctx.textBaseline = "bottom";
+  ctx.fillText("axes scaled to this law", 4, h - 2);
 }
 
 /** The correlation of the new x₁ and y₁ under the step's law (0 without a velocity). */
@@ -249,9 +266,15 @@ export function describe(sampler, law, draw) {
     sampler === "ola"
       ? "<b>momentum</b>: none, OLA has no velocity."
       : `<b>momentum</b>: the velocity y = ${vec(law.y)} carries the mean by ${vec(law.pushY)} (blue).`;
+  // The words say only what the (x₁, y₁) picture below shows: a tilt of
+  // its ellipse, or none worth the name.
+  const shape =
+    Math.abs(rho) < 0.1
+      ? `nearly uncorrelated (ρ = ${num(rho)}): the ellipse below barely tilts`
+      : `correlated, ρ = ${num(rho)}: the ellipse below tilts`;
   const gauss = {
-    hrla: `<b>the exact Gaussian</b> around it, σ = ${num(sd)} per coordinate; in the (x₁, y₁) plane below, position and velocity are correlated, ρ = ${num(rho)} (it grows in proportion to h): the closed-form covariance of HRLA's exact step, which no Euler scheme has.`,
-    ula: `<b>the exact Gaussian</b> around it, σ = ${num(sd)} per coordinate, all of it through the velocity (ρ = ${num(rho)} below): ULA has no noise of its own on the position.`,
+    hrla: `<b>the exact Gaussian</b> around it, σ = ${num(sd)} per coordinate, with noise of its own on the position; in the (x₁, y₁) plane, position and velocity are ${shape}.`,
+    ula: `<b>the exact Gaussian</b> around it, σ = ${num(sd)} per coordinate, all of it through the velocity: ULA has no noise of its own on the position; in the (x₁, y₁) plane, position and velocity are ${shape}.`,
     ola: `<b>Euler's Gaussian</b> around it, σ = √(2h/a) = ${num(sd)} per coordinate, nothing on a velocity.`,
   }[sampler];
   return [

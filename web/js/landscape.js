@@ -1,8 +1,7 @@
 // The landscape panel: the background (U on a log colour scale, or the
 // density exp(-a U) at the current a, also on a log scale) with contour
 // lines, axes, the global minimisers and a colour bar, drawn when the view,
-// the size or a changes; and the chains, their trails and the running
-// best, redrawn every frame.
+// the size or a changes. The chains over it are chains.js's.
 
 import { VIRIDIS, viridisCss } from "./colormap.js";
 
@@ -250,98 +249,4 @@ function drawAxes(ctx, frame, color) {
   for (const v of ys) ctx.fillText(String(v), frame.left - 6, frame.py(v));
   label(ctx, "x₁", frame.left + frame.width - 4, frame.top + frame.height - 3, "right", "bottom");
   label(ctx, "x₂", frame.left + 5, frame.top + 4, "left", "top");
-}
-
-/**
- * For each run: its trails (oldest faintest; consecutive trail points are
- * TRAIL_STRIDE steps apart, so a trail is the chain's path), its chains,
- * and its running best, circled. `runs` is [{ trails, x, n, best: [x0, x1],
- * colour, square }], the first drawn last, on top (HRLA's in compare
- * mode); `square` draws the chains as squares (gradient descent's).
- * `mark`, when given, is a point [x1, x2] ringed (the chain whose step is
- * laid bare).
- */
-export function drawChains(canvas, frame, dpr, runs, mark = null) {
-  const ctx = canvas.getContext("2d");
-  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
-  ctx.clearRect(0, 0, frame.size, frame.size);
-  ctx.save();
-  ctx.beginPath();
-  ctx.rect(frame.left, frame.top, frame.width, frame.height);
-  ctx.clip();
-  for (const run of [...runs].reverse()) {
-    const { trails, n } = run;
-    ctx.strokeStyle = run.colour;
-    ctx.lineWidth = 1;
-    // Descent's restarts jump across the picture: no trails for it.
-    const ages = run.square ? 0 : trails.count - 1;
-    for (let age = ages; age >= 1; age--) {
-      const older = trails.snapshot(age);
-      const newer = trails.snapshot(age - 1);
-      ctx.globalAlpha = 0.5 * (1 - (age - 1) / ages);
-      ctx.beginPath();
-      for (let c = 0; c < n; c++) {
-        const ax = older[2 * c];
-        const bx = newer[2 * c];
-        if (!(Number.isFinite(ax) && Number.isFinite(bx))) continue;
-        ctx.moveTo(frame.px(ax), frame.py(older[2 * c + 1]));
-        ctx.lineTo(frame.px(bx), frame.py(newer[2 * c + 1]));
-      }
-      ctx.stroke();
-    }
-    ctx.globalAlpha = 1;
-    ctx.fillStyle = run.colour;
-    ctx.strokeStyle = "rgba(0, 0, 0, 0.5)";
-    // Every outline, then every fill over them: a dense cluster is a light
-    // patch with one dark rim, not a knot of outlines. The fill hides the
-    // inner half of each outline, hence the doubled width.
-    ctx.lineWidth = 1.5;
-    ctx.beginPath();
-    for (let c = 0; c < n; c++) {
-      const x = run.x[2 * c];
-      const y = run.x[2 * c + 1];
-      if (!(Number.isFinite(x) && Number.isFinite(y))) continue;
-      const px = frame.px(x);
-      const py = frame.py(y);
-      if (run.square) {
-        ctx.rect(px - 2.2, py - 2.2, 4.4, 4.4);
-      } else {
-        ctx.moveTo(px + 2.5, py);
-        ctx.arc(px, py, 2.5, 0, 2 * Math.PI);
-      }
-    }
-    ctx.stroke();
-    ctx.fill();
-  }
-  for (const run of [...runs].reverse()) {
-    const px = frame.px(run.best[0]);
-    const py = frame.py(run.best[1]);
-    for (const [colour, width] of [
-      ["#000", 3],
-      [runs.length > 1 ? run.colour : "#ff5a36", 1.6],
-    ]) {
-      ctx.lineWidth = width;
-      ctx.strokeStyle = colour;
-      ctx.beginPath();
-      ctx.arc(px, py, 8, 0, 2 * Math.PI);
-      ctx.stroke();
-    }
-  }
-  if (mark) {
-    const px = frame.px(mark[0]);
-    const py = frame.py(mark[1]);
-    ctx.setLineDash([3, 3]);
-    for (const [colour, width] of [
-      ["#000", 3],
-      ["#ffd166", 1.5],
-    ]) {
-      ctx.lineWidth = width;
-      ctx.strokeStyle = colour;
-      ctx.beginPath();
-      ctx.arc(px, py, 12, 0, 2 * Math.PI);
-      ctx.stroke();
-    }
-    ctx.setLineDash([]);
-  }
-  ctx.restore();
 }

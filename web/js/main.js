@@ -4,10 +4,12 @@
 
 import { LANDSCAPES, MEASURED, PAPER_AND_MEASUREMENT } from "./landscapes.js";
 import { FIELDS, fieldOf, parseNumber, plain, readAddress } from "./fields.js";
-import { stepWithin } from "./pace.js";
-import { Frame, RUN_COLOURS, colourScale, drawChains, drawColourBar, drawLandscape } from "./landscape.js";
+import { DrawBudget, stepWithin } from "./pace.js";
+import { Frame, RUN_COLOURS, colourScale, drawColourBar, drawLandscape } from "./landscape.js";
+import { drawChains } from "./chains.js";
 import { drawHistogram, drawLinePlot, drawSchedule, exactMarginals, formatCount, histogram } from "./plots.js";
 import { describe, drawPhaseInset, drawPositionInset, readNextStep } from "./anatomy.js";
+import { STAGES, drawStepView, held, sharedReach, stageAt } from "./step-view.js";
 import { COMPARE_HINT, SAMPLER_HINTS } from "./words.js";
 import { FORMULA_DEFAULT, customLandscape } from "./custom.js";
 import { SLIDERS, advanceWithChanges, formatChanges, fromSlider, parseChanges, record, toSlider } from "./tune.js";
@@ -77,6 +79,8 @@ const state = {
   anatomy: null,
   /** The chain whose step is laid bare. */
   anatomyChain: 0,
+  /** The loupe on the picture: { since (state.now() at the step), hold (a stage index, or null: by the clock), geometry }. */
+  stepView: null,
   /** What the a(t) plot shows: { points, marker } (see drawSchedule). */
   schedulePlot: null,
   /** The h and a (as typed) the run started with, and the changes made to them since, by iteration (see tune.js). */
@@ -87,6 +91,12 @@ const state = {
   /** The clock of the time budget: replaceable by a test's clock. */
   now: () => performance.now(),
   lastFrame: { asked: 0, done: 0, ended: false },
+  /** The trails' segments per frame, adapted to the frame rate (on state.now, a test's clock included). */
+  drawBudget: new DrawBudget(() => state.now()),
+  /** What the last frame drew of the trails: { ages, segments, cap }. */
+  lastDraw: null,
+  /** What the chains' canvas shows (see render): unchanged, it is not redrawn. */
+  chainsKey: null,
   meter: { since: performance.now(), frames: 0, steps: 0 },
 };
 
@@ -336,6 +346,7 @@ function restart(replay = false) {
   clearErrors();
   state.pending = 0;
   state.anatomy = null;
+  state.stepView = null;
   const land = landscapeOf($("potential").value);
   if (JSON.stringify(land.arg) !== JSON.stringify(state.land.arg) || !state.grid) {
     state.view = state.pendingView ?? land.view;
@@ -524,7 +535,9 @@ function tick() {
     setOutput("out-rate", formatCount(Math.round(m.steps / dt)), m.steps / dt);
     resetMeter();
   }
+  state.drawBudget.frame();
   render();
+  if (state.stepView && !state.stepView.settled) drawStepViewNow();
   requestAnimationFrame(tick);
 }
 
@@ -573,6 +586,39 @@ function stepOnce() {
   };
   buildAnatomy();
   render();
+  // Reduced motion: the finished step at once, no build-up.
+  const still = matchMedia("(prefers-reduced-motion: reduce)").matches;
+  state.stepView = { since: state.now(), hold: still ? STAGES.length - 1 : null, settled: false, geometry: null };
+  drawStepViewNow();
+}
+
+/** Draws the loupe at its stage (held, or by the time since the step); returns its geometry. */
+function drawStepViewNow() {
+  const canvas = $("step-overlay");
+  const v = state.stepView;
+  const parts = state.anatomy?.parts ?? [];
+  if (!v || parts.length === 0 || !state.frame) {
+    canvas.getContext("2d").clearRect(0, 0, canvas.width, canvas.height);
+    canvas.dataset.stage = "";
+    canvas.dataset.settled = "false";
+    return null;
+  }
+  const shown = v.hold === null ? stageAt(state.now() - v.since) : held(v.hold);
+  const labelled = parts.map((p) => ({ ...p, label: LABEL[p.sampler], hasVelocity: p.sampler !== "ola" }));
+  v.geometry = drawStepView(canvas, state.frame, state.dpr, labelled, shown);
+  v.settled = shown.settled;
+  canvas.dataset.stage = STAGES[shown.stage];
+  canvas.dataset.settled = String(shown.settled);
+  canvas.dataset.magnification = String(v.geometry.magnification);
+  canvas.setAttribute("aria-label", `The step of chain ${state.anatomy.chain}, magnified ×${Math.round(v.geometry.magnification)}: ${STAGES.slice(0, shown.stage + 1).join(", ")}`);
+  return v.geometry;
+}
+
+/** Holds the loupe at stage `name` (one of STAGES), for the tests; returns its geometry. */
+function holdStage(name) {
+  if (!state.stepView) return null;
+  state.stepView.hold = STAGES.indexOf(name);
+  return drawStepViewNow();
 }
 
 /** The anatomy panel's canvases and words, one column per run. */
@@ -583,7 +629,7 @@ function buildAnatomy() {
   if (!a || a.parts.length === 0) return;
   $("anatomy-intro").textContent =
     `Step ${a.iteration - 1} → ${a.iteration} of chain ${a.chain} (ringed in the picture), at a = ${+a.parts[0].law.a.toPrecision(4)}, ` +
-    "magnified. Click a chain in the picture to follow another one; Step (s) takes the next step.";
+    `magnified${a.parts.length > 1 ? ", all at one magnification" : ""}. Click a chain in the picture to follow another one; Step (s) takes the next step.`;
   for (const part of a.parts) {
     const column = document.createElement("div");
     column.className = "anatomy-run";
@@ -613,8 +659,10 @@ function drawAnatomy() {
   const a = state.anatomy;
   if (!a) return [];
   const columns = $("anatomy-runs").children;
+  // One magnification for every sampler: their steps' sizes compare.
+  const reach = sharedReach(a.parts);
   return a.parts.map((part, k) => {
-    const geometry = drawPositionInset(columns[k].querySelector("canvas.position"), part.law, part.draw);
+    const geometry = drawPositionInset(columns[k].querySelector("canvas.position"), part.law, part.draw, reach);
     drawPhaseInset(columns[k].querySelector("canvas.phase"), part.law, [part.draw[0], part.drawY[0]]);
     const zoom = geometry.scale / (state.frame.width / (state.frame.x1 - state.frame.x0));
     columns[k].querySelector(".zoom").textContent = `magnified ×${formatCount(Math.round(zoom))}`;
@@ -629,6 +677,8 @@ function syncAnatomy() {
   if (!current && !$("anatomy").hidden) {
     $("anatomy").hidden = true;
     state.anatomy = null;
+    state.stepView = null;
+    drawStepViewNow();
   }
 }
 
@@ -740,13 +790,23 @@ function render() {
   const lead = runs[0];
   const c = state.anatomyChain;
   const mark = state.anatomy && !lead.isLost(c) ? [lead.x[2 * c], lead.x[2 * c + 1]] : null;
-  drawChains(
-    $("particles"),
-    frame,
-    state.dpr,
-    runs.map((r, k) => ({ trails: r.trails, x: r.x, n: r.n, best: [r.s[S.BestX0], r.s[S.BestX1]], colour: colours[k], square: r.descent })),
-    mark,
-  );
+  // The budget bounds the frames that move the chains; a still picture is
+  // drawn whole, once, and not again until something in it changes.
+  const moving = anyLive() && (state.playing || state.pending > 0);
+  const cap = moving ? state.drawBudget.cap : Infinity;
+  const key = JSON.stringify([frame.size, frame.view, state.dpr, runs.map((r) => r.iteration), colours, mark, cap]);
+  if (state.chainsKey !== key) {
+    state.chainsKey = key;
+    const drawn = drawChains(
+      $("particles"),
+      frame,
+      state.dpr,
+      runs.map((r, k) => ({ trails: r.trails, x: r.x, n: r.n, best: [r.s[S.BestX0], r.s[S.BestX1]], colour: colours[k], square: r.descent })),
+      mark,
+      cap,
+    );
+    state.lastDraw = { ...drawn, cap };
+  }
   const lineColours = runs.length > 1 ? colours : ["#ff5a36"];
   drawLinePlot(
     $("plot-best"),
@@ -936,13 +996,16 @@ function layout(force = false) {
   if (!force && state.frame && state.frame.size === size && state.dpr === dpr) return;
   state.dpr = dpr;
   state.frame = new Frame(size, state.view);
-  for (const id of ["landscape", "particles"]) {
+  for (const id of ["landscape", "particles", "step-overlay"]) {
     $(id).width = Math.round(size * dpr);
     $(id).height = Math.round(size * dpr);
   }
+  // Resized, the chains' canvas is blank.
+  state.chainsKey = null;
   refreshBackground(true);
   render();
   drawAnatomy();
+  drawStepViewNow();
 }
 
 function describeLandscape() {
@@ -1329,7 +1392,7 @@ async function main() {
   wire();
   restart();
   // For the browser tests: the runs, the budget's clock, the anatomy's geometry.
-  window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now), anatomySpans: drawAnatomy };
+  window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now), anatomySpans: drawAnatomy, holdStage };
   document.body.dataset.ready = "true";
   requestAnimationFrame(tick);
   // The WebGPU section (its own runs; the page's above are unchanged).

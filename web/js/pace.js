@@ -34,3 +34,49 @@ export function stepWithin(wanted, advance, now, budgetMs = FRAME_BUDGET_MS) {
   }
   return { done, capped: done < wanted };
 }
+
+/** A frame slower than this (ms since the last) asks for less drawing; 60 frames/s is 16.7. */
+export const SLOW_FRAME_MS = 21;
+/** A frame at most this slow lets the drawing grow back. */
+export const FAST_FRAME_MS = 18;
+
+/**
+ * The drawing's budget, in trail segments per frame. Canvas drawing is
+ * recorded when called and rasterised later, so a clock around the calls
+ * would not see its cost; the time from one frame to the next does. A
+ * slow frame halves the cap (down to `min`), a fast one grows it by a
+ * tenth (up to `max`), so the trails shorten exactly as much as this
+ * machine needs to keep its frame rate, and grow back when it can. The
+ * chains' dots are never cut: positions are always all drawn.
+ */
+export class DrawBudget {
+  constructor(now, { min = 2048, max = 1 << 20, start = 8192 } = {}) {
+    this.now = now;
+    this.min = min;
+    this.max = max;
+    this.cap = start;
+    this.last = null;
+  }
+
+  /** Called once per frame, before drawing: adapts the cap to the last frame's length; returns it. */
+  frame() {
+    const t = this.now();
+    if (this.last !== null) {
+      const dt = t - this.last;
+      if (dt > SLOW_FRAME_MS) this.cap = Math.max(this.min, Math.floor(this.cap / 2));
+      else if (dt <= FAST_FRAME_MS) this.cap = Math.min(this.max, Math.ceil(this.cap * 1.1));
+    }
+    this.last = t;
+    return this.cap;
+  }
+}
+
+/**
+ * How many trail segments back (ages) each chain's trail is drawn with at
+ * most `cap` segments in all over `chains` chains, of the `available` ages
+ * kept: the newest first, at least one when any is kept.
+ */
+export function trailAges(available, chains, cap) {
+  if (available <= 0 || chains <= 0) return 0;
+  return Math.max(1, Math.min(available, Math.floor(cap / chains)));
+}

@@ -47,7 +47,7 @@ test("Step shows the kernel's law of chain 0's next step and the draw the run to
   // The words carry the same numbers.
   const words = await h.page.textContent("#anatomy-runs");
   assert.match(words, /gradient, frozen/);
-  assert.match(words, /closed-form covariance/);
+  assert.match(words, /noise of its own on the position/);
   assert.ok(words.includes(String(+want.law.a.toPrecision(3))) || words.includes("a = 4"));
   assert.match(await h.page.textContent("#anatomy-intro"), /Step 2 → 3 of chain 0/);
   // Moving the run on by other means hides the panel: it would be stale.

@@ -2,7 +2,8 @@
 // and steps per second, as the page's own meters show them, at the
 // defaults, at 1024 chains (also with 100 000 steps asked per frame, which
 // the frame's time budget cuts), in compare mode (also with descent beside)
-// and on a typed formula. A measurement for the README, not a test.
+// and on a typed formula; and the time between frames at 256 and 1024
+// chains. A measurement for the README, not a test.
 //
 //   node web/tests/measure.mjs        (on the committed web/pkg/)
 import { join } from "node:path";
@@ -41,6 +42,38 @@ for (const [name, query] of CASES) {
   }
   const chains = await page.evaluate(() => window.hrlaDemo.state.runs.reduce((s, r) => s + r.n, 0));
   console.log(`${name} | ${fps.toFixed(1)} | ${Math.round(rate)} | ${((rate * chains) / 1e6).toFixed(2)}M`);
+}
+// Frame times while playing at the defaults' 2 steps per frame: the time
+// between animation frames (rendering included, which the page's own
+// meters do not separate), mean, median and 95th percentile over 180
+// frames, with the trails' length the drawing budget allowed.
+for (const chains of [256, 1024]) {
+  await page.goto(`${base}?chains=${chains}`);
+  await page.waitForSelector("body[data-ready=true]");
+  await page.waitForTimeout(3000);
+  const stamps = await page.evaluate(
+    () =>
+      new Promise((done) => {
+        const t = [];
+        const next = (ts) => {
+          t.push(ts);
+          if (t.length < 181) requestAnimationFrame(next);
+          else done(t);
+        };
+        requestAnimationFrame(next);
+      }),
+  );
+  const dt = stamps
+    .slice(1)
+    .map((v, i) => v - stamps[i])
+    .sort((a, b) => a - b);
+  const mean = dt.reduce((s, v) => s + v, 0) / dt.length;
+  const drawn = await page.evaluate(() => window.hrlaDemo.state.lastDraw);
+  const trails = drawn ? `, trails ${drawn.ages} segments long` : "";
+  console.log(
+    `${chains} chains, frame time: mean ${mean.toFixed(1)} ms, median ${dt[dt.length >> 1].toFixed(1)}, ` +
+      `95th percentile ${dt[Math.floor(0.95 * dt.length)].toFixed(1)}${trails}`,
+  );
 }
 // How long a click on Pause waits at the heaviest setting: the time from
 // the click until the next frame has been drawn.
