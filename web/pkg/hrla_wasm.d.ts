@@ -106,6 +106,13 @@ export class Optimizer {
      */
     potential(): string;
     /**
+     * Sets the step `h` and the inverse temperature `a` of the next steps
+     * without a restart (see [`Optimizer::retune`]); `a` `undefined` or
+     * `null` keeps the temperature (an annealing run takes no `a`).
+     * Throws an `Error` with `field` `"h"` or `"a"` on a value refused.
+     */
+    retune(h: any, a: any): void;
+    /**
      * The seed of this run (a BigInt).
      */
     seed(): bigint;
@@ -182,6 +189,15 @@ export enum Summary {
  * `h` or `a`.
  */
 export function coefficients(sampler: string, h: number, a: number): Float64Array;
+
+/**
+ * A visitor's formula `U` on a grid laid out as [`potential_grid`]'s, NaN
+ * where it is not finite ([`formula_picture`]): the picture of a formula
+ * the page refuses on its box, or sees beyond it. Throws an `Error` with
+ * `field` `"formula"` (with a `column`) when the formula cannot be read,
+ * and as [`potential_grid`] on the bounds and counts.
+ */
+export function formulaPicture(formula: string, x0: any, x1: any, y0: any, y1: any, nx: any, ny: any): Float64Array;
 
 /**
  * A global minimiser `x*` of the landscape `potential` (one of them when
@@ -313,6 +329,7 @@ export interface InitOutput {
     readonly descent_termination: (a: number) => [number, number];
     readonly descent_values_ptr: (a: number) => number;
     readonly descent_velocities_ptr: (a: number) => number;
+    readonly formulaPicture: (a: number, b: number, c: any, d: any, e: any, f: any, g: any, h: any) => [number, number, number, number];
     readonly global_minimiser: (a: any) => [number, number, number, number];
     readonly global_minimum: (a: any) => [number, number, number];
     readonly gpu_coef_offset: () => number;
@@ -331,6 +348,7 @@ export interface InitOutput {
     readonly optimizer_nextStep: (a: number, b: any) => [number, number, number, number];
     readonly optimizer_positions_ptr: (a: number) => number;
     readonly optimizer_potential: (a: number) => [number, number];
+    readonly optimizer_retune: (a: number, b: any, c: any) => [number, number];
     readonly optimizer_seed: (a: number) => bigint;
     readonly optimizer_summary_ptr: (a: number) => number;
     readonly optimizer_termination: (a: number) => [number, number];

@@ -230,6 +230,20 @@ export class Optimizer {
         }
     }
     /**
+     * Sets the step `h` and the inverse temperature `a` of the next steps
+     * without a restart (see [`Optimizer::retune`]); `a` `undefined` or
+     * `null` keeps the temperature (an annealing run takes no `a`).
+     * Throws an `Error` with `field` `"h"` or `"a"` on a value refused.
+     * @param {any} h
+     * @param {any} a
+     */
+    retune(h, a) {
+        const ret = wasm.optimizer_retune(this.__wbg_ptr, h, a);
+        if (ret[1]) {
+            throw takeFromExternrefTable0(ret[0]);
+        }
+    }
+    /**
      * The seed of this run (a BigInt).
      * @returns {bigint}
      */
@@ -348,6 +362,33 @@ export function coefficients(sampler, h, a) {
     var v4 = getArrayF64FromWasm0(ret[0], ret[1]).slice();
     wasm.__wbindgen_free(ret[0], ret[1] * 8, 8);
     return v4;
+}
+
+/**
+ * A visitor's formula `U` on a grid laid out as [`potential_grid`]'s, NaN
+ * where it is not finite ([`formula_picture`]): the picture of a formula
+ * the page refuses on its box, or sees beyond it. Throws an `Error` with
+ * `field` `"formula"` (with a `column`) when the formula cannot be read,
+ * and as [`potential_grid`] on the bounds and counts.
+ * @param {string} formula
+ * @param {any} x0
+ * @param {any} x1
+ * @param {any} y0
+ * @param {any} y1
+ * @param {any} nx
+ * @param {any} ny
+ * @returns {Float64Array}
+ */
+export function formulaPicture(formula, x0, x1, y0, y1, nx, ny) {
+    const ptr0 = passStringToWasm0(formula, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+    const len0 = WASM_VECTOR_LEN;
+    const ret = wasm.formulaPicture(ptr0, len0, x0, x1, y0, y1, nx, ny);
+    if (ret[3]) {
+        throw takeFromExternrefTable0(ret[2]);
+    }
+    var v2 = getArrayF64FromWasm0(ret[0], ret[1]).slice();
+    wasm.__wbindgen_free(ret[0], ret[1] * 8, 8);
+    return v2;
 }
 
 /**
