@@ -11,6 +11,8 @@ import { describe, drawPhaseInset, drawPositionInset, readNextStep } from "./ana
 import { COMPARE_HINT, SAMPLER_HINTS } from "./words.js";
 import { FORMULA_DEFAULT, customLandscape } from "./custom.js";
 import { formatView, pan, parseView, sameView, zoomAbout } from "./view.js";
+import { ddimParams, setUpDdim, withoutDdim } from "./ddim.js";
+import { setUpPresets } from "./presets.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -883,11 +885,12 @@ function writeUrl() {
   }
   if (!state.playing) q.set("play", "0");
   if (!sameView(state.view, state.land.view)) q.set("view", formatView(state.view));
+  for (const [k, v] of ddimParams()) q.set(k, v);
   history.replaceState(null, "", `?${q}`);
 }
 
 function readUrl() {
-  const { values, problems } = readAddress(location.search, options);
+  const { values, problems } = readAddress(withoutDdim(location.search), options);
   state.addressProblems = problems;
   // A landscape brings its own start, temperature and step first; the
   // address's other values then override them.
@@ -1144,6 +1147,8 @@ async function main() {
   window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now), anatomySpans: drawAnatomy };
   document.body.dataset.ready = "true";
   requestAnimationFrame(tick);
+  await setUpDdim({ paused: !state.playing });
+  setUpPresets();
   // The WebGPU section (its own runs; the page's above are unchanged).
   const gpu = await import("./gpu-section.js");
   await gpu.setUpGpuSection({
