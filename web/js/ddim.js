@@ -222,8 +222,9 @@ function draw() {
   // curves grow across a fixed frame.
   const last = best[0].count > 0 ? best[0].ys[best[0].count - 1] : 1;
   const anchor = (y) => ({ xs: [K], ys: [y], count: 1, color: "rgba(0, 0, 0, 0)" });
-  drawLinePlot($("ddim-prob"), [...prob, anchor(0)], { log: false, yMin: 0, yMax: 1, yTicks: [0, 0.5, 1] });
-  drawLinePlot($("ddim-best"), [...best, anchor(last)], { log: true });
+  // HRLA drawn last, on top, as in the picture above.
+  drawLinePlot($("ddim-prob"), [...prob.reverse(), anchor(0)], { log: false, yMin: 0, yMax: 1, yTicks: [0, 0.5, 1] });
+  drawLinePlot($("ddim-best"), [...best.reverse(), anchor(last)], { log: true });
   syncTransport();
 }
 
