@@ -55,6 +55,7 @@
 
 mod descent;
 mod error;
+mod experiment;
 mod formula;
 mod gpu;
 mod landscape;
@@ -69,6 +70,7 @@ use wasm_bindgen::prelude::*;
 
 pub use descent::Descent;
 pub use error::{Error, Given};
+pub use experiment::{Experiment, ExperimentSettings, ROW, SAMPLERS};
 pub use formula::{Formula, FormulaError, FormulaErrorKind, MAX_FORMULA_DEPTH, MAX_FORMULA_LEN};
 pub use landscape::{
     Custom, CustomError, GridError, Landscape, MAX_GRID, UnknownLandscape, formula_picture,

@@ -14,6 +14,8 @@ import { COMPARE_HINT, SAMPLER_HINTS } from "./words.js";
 import { FORMULA_DEFAULT, customLandscape } from "./custom.js";
 import { SLIDERS, advanceWithChanges, formatChanges, fromSlider, parseChanges, record, toSlider } from "./tune.js";
 import { ZOOM_STEP, formatView, keyView, pan, parseView, sameView, zoomAbout } from "./view.js";
+import { ddimParams, setUpDdim, withoutDdim } from "./ddim.js";
+import { setUpPresets } from "./presets.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -1088,11 +1090,12 @@ function writeUrl() {
     q.set("a", state.base.a);
     q.set("tune", formatChanges(state.changes));
   }
+  for (const [k, v] of ddimParams()) q.set(k, v);
   history.replaceState(null, "", `?${q}`);
 }
 
 function readUrl() {
-  const { values, problems } = readAddress(location.search, options);
+  const { values, problems } = readAddress(withoutDdim(location.search), options);
   state.addressProblems = problems;
   // A landscape brings its own start, temperature and step first; the
   // address's other values then override them.
@@ -1395,6 +1398,8 @@ async function main() {
   window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now), anatomySpans: drawAnatomy, holdStage };
   document.body.dataset.ready = "true";
   requestAnimationFrame(tick);
+  await setUpDdim({ paused: !state.playing });
+  setUpPresets();
   // The WebGPU section (its own runs; the page's above are unchanged).
   const gpu = await import("./gpu-section.js");
   await gpu.setUpGpuSection({
