@@ -55,6 +55,51 @@ export class Descent {
 }
 
 /**
+ * HRLA, ULA and OLA side by side on `d`-dimensional Rastrigin, with the
+ * record JavaScript views.
+ */
+export class Experiment {
+    free(): void;
+    [Symbol.dispose](): void;
+    /**
+     * Up to `steps` more steps of every run (a whole number from 0 to
+     * `K`, else an `Error` with `field` `"steps"`), never past `K`;
+     * returns the steps done.
+     */
+    advance(steps: any): number;
+    /**
+     * Iterates done, `k`.
+     */
+    iteration(): number;
+    /**
+     * The comparison of a settings object `{ d, runs, chains, a, h, eps,
+     * steps, seed }` (each optional: the paper's E2 panel `a = 4, eps =
+     * 2` in `d = 10`, `M = 100`, `N = 10`, `h = 0.01`, `K = 14000`, seed
+     * 2025); throws an `Error` with a `field` when one is refused.
+     */
+    constructor(settings: any);
+    /**
+     * Address of the record: `(iteration() + 1) * rowLength()` f64, row
+     * `k` holding the hits of HRLA, ULA, OLA at iterate `k`, then their
+     * mean running bests. Its address never changes; its valid length
+     * grows with `iteration()`.
+     */
+    record_ptr(): number;
+    /**
+     * Numbers per row of the record.
+     */
+    static rowLength(): number;
+    /**
+     * Runs per sampler, `M`.
+     */
+    runs(): number;
+    /**
+     * The run's length `K`.
+     */
+    steps(): number;
+}
+
+/**
  * One run of Algorithm 1 on a 2-D landscape, with its chains and the
  * buffers that JavaScript views.
  */
@@ -317,6 +362,7 @@ export type InitInput = RequestInfo | URL | Response | BufferSource | WebAssembl
 export interface InitOutput {
     readonly memory: WebAssembly.Memory;
     readonly __wbg_descent_free: (a: number, b: number) => void;
+    readonly __wbg_experiment_free: (a: number, b: number) => void;
     readonly __wbg_optimizer_free: (a: number, b: number) => void;
     readonly coefficients: (a: number, b: number, c: number, d: number) => [number, number, number, number];
     readonly descent_advance: (a: number, b: any) => [number, number, number];
@@ -329,6 +375,13 @@ export interface InitOutput {
     readonly descent_termination: (a: number) => [number, number];
     readonly descent_values_ptr: (a: number) => number;
     readonly descent_velocities_ptr: (a: number) => number;
+    readonly experiment_advance: (a: number, b: any) => [number, number, number];
+    readonly experiment_iteration: (a: number) => number;
+    readonly experiment_new_js: (a: any) => [number, number, number];
+    readonly experiment_record_ptr: (a: number) => number;
+    readonly experiment_rowLength: () => number;
+    readonly experiment_runs: (a: number) => number;
+    readonly experiment_steps: (a: number) => number;
     readonly formulaPicture: (a: number, b: number, c: any, d: any, e: any, f: any, g: any, h: any) => [number, number, number, number];
     readonly global_minimiser: (a: any) => [number, number, number, number];
     readonly global_minimum: (a: any) => [number, number, number];

@@ -118,6 +118,97 @@ export class Descent {
 if (Symbol.dispose) Descent.prototype[Symbol.dispose] = Descent.prototype.free;
 
 /**
+ * HRLA, ULA and OLA side by side on `d`-dimensional Rastrigin, with the
+ * record JavaScript views.
+ */
+export class Experiment {
+    __destroy_into_raw() {
+        const ptr = this.__wbg_ptr;
+        this.__wbg_ptr = 0;
+        ExperimentFinalization.unregister(this);
+        return ptr;
+    }
+    free() {
+        const ptr = this.__destroy_into_raw();
+        wasm.__wbg_experiment_free(ptr, 0);
+    }
+    /**
+     * Up to `steps` more steps of every run (a whole number from 0 to
+     * `K`, else an `Error` with `field` `"steps"`), never past `K`;
+     * returns the steps done.
+     * @param {any} steps
+     * @returns {number}
+     */
+    advance(steps) {
+        const ret = wasm.experiment_advance(this.__wbg_ptr, steps);
+        if (ret[2]) {
+            throw takeFromExternrefTable0(ret[1]);
+        }
+        return ret[0];
+    }
+    /**
+     * Iterates done, `k`.
+     * @returns {number}
+     */
+    iteration() {
+        const ret = wasm.experiment_iteration(this.__wbg_ptr);
+        return ret;
+    }
+    /**
+     * The comparison of a settings object `{ d, runs, chains, a, h, eps,
+     * steps, seed }` (each optional: the paper's E2 panel `a = 4, eps =
+     * 2` in `d = 10`, `M = 100`, `N = 10`, `h = 0.01`, `K = 14000`, seed
+     * 2025); throws an `Error` with a `field` when one is refused.
+     * @param {any} settings
+     */
+    constructor(settings) {
+        const ret = wasm.experiment_new_js(settings);
+        if (ret[2]) {
+            throw takeFromExternrefTable0(ret[1]);
+        }
+        this.__wbg_ptr = ret[0];
+        ExperimentFinalization.register(this, this.__wbg_ptr, this);
+        return this;
+    }
+    /**
+     * Address of the record: `(iteration() + 1) * rowLength()` f64, row
+     * `k` holding the hits of HRLA, ULA, OLA at iterate `k`, then their
+     * mean running bests. Its address never changes; its valid length
+     * grows with `iteration()`.
+     * @returns {number}
+     */
+    record_ptr() {
+        const ret = wasm.experiment_record_ptr(this.__wbg_ptr);
+        return ret >>> 0;
+    }
+    /**
+     * Numbers per row of the record.
+     * @returns {number}
+     */
+    static rowLength() {
+        const ret = wasm.experiment_rowLength();
+        return ret >>> 0;
+    }
+    /**
+     * Runs per sampler, `M`.
+     * @returns {number}
+     */
+    runs() {
+        const ret = wasm.experiment_runs(this.__wbg_ptr);
+        return ret >>> 0;
+    }
+    /**
+     * The run's length `K`.
+     * @returns {number}
+     */
+    steps() {
+        const ret = wasm.experiment_steps(this.__wbg_ptr);
+        return ret;
+    }
+}
+if (Symbol.dispose) Experiment.prototype[Symbol.dispose] = Experiment.prototype.free;
+
+/**
  * One run of Algorithm 1 on a 2-D landscape, with its chains and the
  * buffers that JavaScript views.
  */
@@ -801,6 +892,9 @@ function __wbg_get_imports() {
 const DescentFinalization = (typeof FinalizationRegistry === 'undefined')
     ? { register: () => {}, unregister: () => {} }
     : new FinalizationRegistry(ptr => wasm.__wbg_descent_free(ptr, 1));
+const ExperimentFinalization = (typeof FinalizationRegistry === 'undefined')
+    ? { register: () => {}, unregister: () => {} }
+    : new FinalizationRegistry(ptr => wasm.__wbg_experiment_free(ptr, 1));
 const OptimizerFinalization = (typeof FinalizationRegistry === 'undefined')
     ? { register: () => {}, unregister: () => {} }
     : new FinalizationRegistry(ptr => wasm.__wbg_optimizer_free(ptr, 1));

@@ -2,6 +2,7 @@
 /* eslint-disable */
 export const memory: WebAssembly.Memory;
 export const __wbg_descent_free: (a: number, b: number) => void;
+export const __wbg_experiment_free: (a: number, b: number) => void;
 export const __wbg_optimizer_free: (a: number, b: number) => void;
 export const coefficients: (a: number, b: number, c: number, d: number) => [number, number, number, number];
 export const descent_advance: (a: number, b: any) => [number, number, number];
@@ -14,6 +15,13 @@ export const descent_summary_ptr: (a: number) => number;
 export const descent_termination: (a: number) => [number, number];
 export const descent_values_ptr: (a: number) => number;
 export const descent_velocities_ptr: (a: number) => number;
+export const experiment_advance: (a: number, b: any) => [number, number, number];
+export const experiment_iteration: (a: number) => number;
+export const experiment_new_js: (a: any) => [number, number, number];
+export const experiment_record_ptr: (a: number) => number;
+export const experiment_rowLength: () => number;
+export const experiment_runs: (a: number) => number;
+export const experiment_steps: (a: number) => number;
 export const formulaPicture: (a: number, b: number, c: any, d: any, e: any, f: any, g: any, h: any) => [number, number, number, number];
 export const global_minimiser: (a: any) => [number, number, number, number];
 export const global_minimum: (a: any) => [number, number, number];
