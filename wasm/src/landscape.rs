@@ -413,12 +413,18 @@ impl fmt::Display for GridError {
                 let part = if single {
                     at.clone()
                 } else {
+                    // A line of such points (1/x) reads as the line.
+                    let span = |name: &str, lo: f64, hi: f64| {
+                        if lo == hi {
+                            format!("{name} = {}", n(lo))
+                        } else {
+                            format!("{name} from {} to {}", n(lo), n(hi))
+                        }
+                    };
                     format!(
-                        "the part with x from {} to {} and y from {} to {}",
-                        n(region[0]),
-                        n(region[1]),
-                        n(region[2]),
-                        n(region[3])
+                        "the part with {} and {}",
+                        span("x", region[0], region[1]),
+                        span("y", region[2], region[3])
                     )
                 };
                 if value.is_finite() {
