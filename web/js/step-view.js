@@ -195,7 +195,7 @@ function drawLoupe(ctx, box, anchor, part, scale, magnification, { stage, progre
     ctx.textAlign = "center";
     ctx.textBaseline = "bottom";
     ctx.fillStyle = "#9aa3b2";
-    ctx.fillText(`the whole step: ${own < 1 ? "under a pixel" : `${own.toFixed(0)} px`} here`, cx, by + side - 20);
+    ctx.fillText(`whole step: ${own < 1 ? "< 1 px" : `${own.toFixed(0)} px`}`, cx, by + side - 20);
   }
   // Title and caption, on bands of their own.
   ctx.fillStyle = "rgba(12, 14, 18, 0.85)";
