@@ -583,16 +583,31 @@ pub fn potential_grid(
 ) -> Result<Vec<f64>, JsValue> {
     let grid = || -> Result<Vec<f64>, Error> {
         let landscape = landscape(name)?;
-        let max = MAX_GRID as u64;
-        // Counts up to MAX_GRID fit a usize on every target.
-        let [nx, ny] =
-            [(nx, "nx"), (ny, "ny")].map(|(v, n)| read::count(v, n, 1, max).map(|c| c as usize));
-        let (nx, ny) = (nx?, ny?);
-        let [x0, x1, y0, y1] =
-            [(x0, "x0"), (x1, "x1"), (y0, "y0"), (y1, "y1")].map(|(v, n)| read::number(v, n));
-        Ok(landscape.grid(x0?, x1?, y0?, y1?, nx, ny)?)
+        let ([x0, x1, y0, y1], nx, ny) = grid_layout([x0, x1, y0, y1], [nx, ny])?;
+        Ok(landscape.grid(x0, x1, y0, y1, nx, ny)?)
     };
     grid().map_err(|e| e.to_js())
+}
+
+/// Reads a grid's box and counts as [`potential_grid`] takes them: the
+/// counts first, then the bounds.
+fn grid_layout(
+    bounds: [&JsValue; 4],
+    counts: [&JsValue; 2],
+) -> Result<([f64; 4], usize, usize), Error> {
+    let max = MAX_GRID as u64;
+    // Counts up to MAX_GRID fit a usize on every target.
+    let [nx, ny] = [(counts[0], "nx"), (counts[1], "ny")]
+        .map(|(v, n)| read::count(v, n, 1, max).map(|c| c as usize));
+    let (nx, ny) = (nx?, ny?);
+    let [x0, x1, y0, y1] = [
+        (bounds[0], "x0"),
+        (bounds[1], "x1"),
+        (bounds[2], "y0"),
+        (bounds[3], "y1"),
+    ]
+    .map(|(v, n)| read::number(v, n));
+    Ok(([x0?, x1?, y0?, y1?], nx, ny))
 }
 
 /// A visitor's formula `U` on a grid laid out as [`potential_grid`]'s, NaN
@@ -611,12 +626,8 @@ pub fn formula_picture_js(
     ny: &JsValue,
 ) -> Result<Vec<f64>, JsValue> {
     let grid = || -> Result<Vec<f64>, Error> {
-        let max = MAX_GRID as u64;
-        let [nx, ny] =
-            [(nx, "nx"), (ny, "ny")].map(|(v, n)| read::count(v, n, 1, max).map(|c| c as usize));
-        let [x0, x1, y0, y1] =
-            [(x0, "x0"), (x1, "x1"), (y0, "y0"), (y1, "y1")].map(|(v, n)| read::number(v, n));
-        Ok(formula_picture(formula, [x0?, x1?, y0?, y1?], nx?, ny?)?)
+        let (bounds, nx, ny) = grid_layout([x0, x1, y0, y1], [nx, ny])?;
+        Ok(formula_picture(formula, bounds, nx, ny)?)
     };
     grid().map_err(|e| e.to_js())
 }
