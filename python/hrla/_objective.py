@@ -196,9 +196,21 @@ class Mapper:
             self.map = map
         elif workers == -1 or workers > 1:
             self.pool = multiprocessing.Pool(os.cpu_count() if workers == -1 else workers)
-            self.map = self.pool.map
+            self.map = self._pool_map
         else:
             raise ValueError(f"workers must be >= 1, -1 (every CPU) or a map-like callable, got {workers}")
+
+    def _pool_map(self, function: Callable[[Any], Any], points: Iterable[Any]) -> List[Any]:
+        """The pool's map, waking the main thread every 50 ms: the operating
+        system may deliver Ctrl-C's SIGINT to one of the pool's threads,
+        and a main thread blocked without a timeout would then never run
+        Python's handler (with a worker that hangs, the run would hang)."""
+        pending = self.pool.map_async(function, points)
+        while True:
+            try:
+                return pending.get(0.05)
+            except multiprocessing.TimeoutError:
+                continue
 
     def close(self) -> None:
         if self.pool is not None:
