@@ -208,9 +208,10 @@ class Mapper:
         pending = self.pool.map_async(function, points)
         while True:
             try:
-                return pending.get(0.05)
+                answers: List[Any] = pending.get(0.05)
             except multiprocessing.TimeoutError:
                 continue
+            return answers
 
     def close(self) -> None:
         if self.pool is not None:
