@@ -5,7 +5,8 @@
 // the numbers the project's reproduction measured for the same setting.
 //
 // Its settings live in the address under `dd_*` keys (the page's own
-// reader is given the address without them), so a link replays the same
+// reader is given the address without them, and its one writer asks
+// `ddimParams` for them), so a link replays the same
 // curves bit for bit. It steps only while its section is on screen and
 // playing, or when "+ steps" asks for an exact count; and then within a
 // share of the frame budget.
@@ -86,13 +87,6 @@ export function withoutDdim(search) {
 /** This view's settings that differ from their defaults, as address pairs. */
 export function ddimParams() {
   return DDIM_FIELDS.filter((f) => current[f.id] !== f.value).map((f) => [f.key, current[f.id]]);
-}
-
-/** Rewrites the address's `dd_*` keys, keeping the page's. */
-function writeAddress() {
-  const q = new URLSearchParams(withoutDdim(location.search));
-  for (const [k, v] of ddimParams()) q.set(k, v);
-  history.replaceState(null, "", `?${q}`);
 }
 
 /** The settings object of the kernel's `Experiment`, or the field at fault. */
@@ -280,8 +274,12 @@ function frame() {
   draw();
 }
 
-/** Wires the section; `paused`: the page was opened paused, so this view is too. */
-export async function setUpDdim({ paused }) {
+/**
+ * Wires the section; `paused`: the page was opened paused, so this view is
+ * too; `writeAddress`: the page's one writer of the address, called when a
+ * setting here changes (it asks `ddimParams` for this view's keys).
+ */
+export async function setUpDdim({ paused, writeAddress }) {
   x.kernel = await import("../pkg/hrla_wasm.js");
   window.hrlaDdim = x;
   for (const f of DDIM_FIELDS) {

@@ -1398,7 +1398,7 @@ async function main() {
   window.hrlaDemo = { state, stepWithin, setClock: (now) => (state.now = now), anatomySpans: drawAnatomy, holdStage };
   document.body.dataset.ready = "true";
   requestAnimationFrame(tick);
-  await setUpDdim({ paused: !state.playing });
+  await setUpDdim({ paused: !state.playing, writeAddress: writeUrl });
   setUpPresets();
   // The WebGPU section (its own runs; the page's above are unchanged).
   const gpu = await import("./gpu-section.js");
