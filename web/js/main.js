@@ -1141,8 +1141,10 @@ function wireView() {
     },
     { passive: false },
   );
-  // Pointers down on the picture, by id: one pans (mouse, pen or finger),
-  // two pinch (zoom about their midpoint, pan with it).
+  // Pointers down on the picture, by id: one pans (mouse, pen, or a finger
+  // swiping sideways: an upward or downward swipe scrolls the page, so a
+  // phone's visitor is never trapped on the picture), two pinch (zoom
+  // about their midpoint, pan with it).
   const pointers = new Map();
   const gesture = () => {
     const [p, q] = [...pointers.values()];
@@ -1187,6 +1189,10 @@ function wireView() {
   const end = (e) => {
     const d = state.drag;
     pointers.delete(e.pointerId);
+    // A lone finger's swipe that the browser took to scroll the page (an
+    // upward or downward one: touch-action pan-y) is not a pan: the view
+    // goes back to where the swipe found it.
+    if (d && e.type === "pointercancel" && pointers.size === 0 && d.spread === 0) setView(d.view);
     // The fingers left go on from where the view is.
     state.drag = pointers.size > 0 ? { ...gesture(), moved: true } : null;
     if (d && !d.moved && e.type === "pointerup") pickChain(e);

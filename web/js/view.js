@@ -1,6 +1,6 @@
 // The view of the landscape as a visitor moves it: a square { cx, cy, half }
 // zoomed about a point (the wheel's cursor, a pinch's centre, or the centre
-// for the buttons and keys), panned by a drag (mouse, pen or one finger) or
+// for the buttons and keys), panned by a drag (mouse, pen, a sideways swipe or two fingers) or
 // the arrow keys, kept within a range of the landscape's own view, and
 // written in the address as "cx,cy,half".
 

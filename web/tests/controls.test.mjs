@@ -1,7 +1,8 @@
 // The picture's controls beyond the mouse: the arrow keys pan it and + and
-// − zoom it when it has the focus, one finger drags it and two pinch it on
-// a touch screen; and the colour bar says what its colours mean, with a
-// title and labelled ticks in both backgrounds.
+// − zoom it when it has the focus; on a touch screen one finger drags it
+// sideways (an upward swipe scrolls the page) and two pinch it; and the
+// colour bar says what its colours mean, with a title and labelled ticks
+// in both backgrounds.
 import assert from "node:assert/strict";
 import { test } from "node:test";
 import { h, noProblems, openPaused, readout, setUp } from "./harness.mjs";
@@ -54,8 +55,9 @@ function touch(type, id, x, y) {
 
 test("on a touch screen one finger drags the picture and two pinch it", async () => {
   await openPaused();
-  // The browser leaves the gestures on the picture to the page.
-  assert.equal(await h.page.$eval("#particles", (c) => getComputedStyle(c).touchAction), "none");
+  // The browser keeps the upward and downward swipes (it scrolls the page
+  // with them) and leaves the others on the picture to the page.
+  assert.equal(await h.page.$eval("#particles", (c) => getComputedStyle(c).touchAction), "pan-y");
   const box = await h.page.locator("#particles").boundingBox();
   const perPixel = await h.page.evaluate(() => 10 / window.hrlaDemo.state.frame.width);
   const [x, y] = [box.x + 150, box.y + 150];
@@ -77,6 +79,52 @@ test("on a touch screen one finger drags the picture and two pinch it", async ()
   assert.ok(Math.abs(v.half - 2.5) < 1e-9, `after a pinch: ${JSON.stringify(v)}`);
   // A pinch picks no chain, and nothing stepped.
   assert.equal(await readout("out-iteration"), 0);
+});
+
+test("a real finger's upward swipe on the picture scrolls the page and leaves the view; a sideways one pans it", async () => {
+  await openPaused();
+  // Touches through the browser's own input pipeline (not synthetic
+  // pointer events), so its gesture handling decides as on a phone.
+  const cdp = await h.browser.context.newCDPSession(h.page);
+  await cdp.send("Emulation.setTouchEmulationEnabled", { enabled: true, maxTouchPoints: 5 });
+  const swipe = async ([x0, y0], [x1, y1]) => {
+    await cdp.send("Input.dispatchTouchEvent", { type: "touchStart", touchPoints: [{ x: x0, y: y0 }] });
+    for (let i = 1; i <= 10; i++) {
+      const at = { x: x0 + ((x1 - x0) * i) / 10, y: y0 + ((y1 - y0) * i) / 10 };
+      await cdp.send("Input.dispatchTouchEvent", { type: "touchMove", touchPoints: [at] });
+    }
+    await cdp.send("Input.dispatchTouchEvent", { type: "touchEnd", touchPoints: [] });
+  };
+  const centre = async () => {
+    const box = await h.page.locator("#particles").boundingBox();
+    return [box.x + box.width / 2, box.y + box.height / 2];
+  };
+  try {
+    await h.page.locator("#particles").scrollIntoViewIfNeeded();
+    const home = await view();
+    const top = await h.page.evaluate(() => scrollY);
+    const [x, y] = await centre();
+    await swipe([x, y + 100], [x, y - 100]);
+    // The page scrolls, and the few pixels the picture moved before the
+    // browser took the swipe are undone.
+    await h.page.waitForFunction(
+      ([top, home]) => {
+        const v = window.hrlaDemo.state.view;
+        return scrollY > top && v.cx === home.cx && v.cy === home.cy && v.half === home.half;
+      },
+      [top, home],
+    );
+    const scrolled = await h.page.evaluate(() => scrollY);
+    const [x2, y2] = await centre();
+    await swipe([x2 + 80, y2], [x2 - 80, y2]);
+    await h.page.waitForFunction((cx) => window.hrlaDemo.state.view.cx > cx, home.cx);
+    assert.equal(await h.page.evaluate(() => scrollY), scrolled);
+    assert.equal((await view()).cy, home.cy);
+    assert.equal(await readout("out-iteration"), 0);
+  } finally {
+    await cdp.send("Emulation.setTouchEmulationEnabled", { enabled: false });
+    await cdp.detach();
+  }
 });
 
 test("no console error, failed request or request leaving 127.0.0.1", () => noProblems());
