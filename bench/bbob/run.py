@@ -31,7 +31,8 @@ gradient; finite differences, where a solver takes them, are calls too):
 Extra solvers, run only when named: ``ensemble`` (bench/bbob/ensemble.py,
 a gradient-free ensemble Langevin prototype, ``ensemble.minimize(fun,
 [(-5, 5)] * d, maxfun=B, rng=seed)``) and its ablations ``ensemble-od``,
-``-iso``, ``-norestart``, ``-raw``, ``-noaldi``, ``-n2``, ``-nhalf``
+``-iso``, ``-norestart``, ``-raw``, ``-noaldi``, ``-n2``, ``-nhalf``,
+``-n2raw``
 (ENSEMBLE below).
 
 Counting (the same wrapper for every solver): each call of ``fun`` is one
@@ -138,6 +139,7 @@ ENSEMBLE = {
     "ensemble-noaldi": {"aldi": False},
     "ensemble-n2": {"pop_factor": 2.0},  # twice the initial population
     "ensemble-nhalf": {"pop_factor": 0.5},
+    "ensemble-n2raw": {"pop_factor": 2.0, "values": "raw"},
 }
 
 
