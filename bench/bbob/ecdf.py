@@ -3,6 +3,7 @@
 plots of docs/bbob/.
 
     python bench/bbob/ecdf.py [--store target/bbob/runs.jsonl] [--docs docs/bbob]
+                              [--base docs/bbob/runs.csv] [--solvers a,b,...]
 
 Targets: the 51 values ``10^(2 - 0.2 k)``, k = 0..50, on ``f - f_opt``. A
 run's runtime to a target is the number of calls after which its best
@@ -348,13 +349,20 @@ def main(argv=None):
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--store", default="target/bbob/runs.jsonl")
     ap.add_argument("--docs", default="docs/bbob")
+    ap.add_argument("--base", default=None,
+                    help="the committed runs to merge (default DOCS/runs.csv); e.g. --docs /tmp/x "
+                         "--base docs/bbob/runs.csv writes the tables elsewhere")
+    ap.add_argument("--solvers", default=None, help="only these solvers (comma-separated; default all)")
     args = ap.parse_args(argv)
 
     docs = Path(args.docs)
     docs.mkdir(parents=True, exist_ok=True)
-    runs = load_csv(docs / "runs.csv")
+    runs = load_csv(Path(args.base) if args.base else docs / "runs.csv")
     fresh = load_store(Path(args.store))
     runs.update(fresh)
+    if args.solvers:
+        keep = set(args.solvers.split(","))
+        runs = {k: v for k, v in runs.items() if k[0] in keep}
     if not runs:
         raise SystemExit(f"ecdf.py: no runs in {args.store} or {docs / 'runs.csv'}")
     print(f"ecdf.py: {len(fresh)} runs from {args.store}, {len(runs) - len(fresh)} from {docs / 'runs.csv'}",

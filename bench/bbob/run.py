@@ -28,6 +28,13 @@ gradient; finite differences, where a solver takes them, are calls too):
                           polish=True): its defaults, until its tolerance
                           stops it or the cap does
 
+Extra solvers, run only when named: ``ensemble`` (bench/bbob/ensemble.py,
+a gradient-free ensemble Langevin prototype, ``ensemble.minimize(fun,
+[(-5, 5)] * d, maxfun=B, rng=seed)``) and its ablations ``ensemble-od``,
+``-iso``, ``-norestart``, ``-raw``, ``-noaldi``, ``-n2``, ``-nhalf``,
+``-n2raw``
+(ENSEMBLE below).
+
 Counting (the same wrapper for every solver): each call of ``fun`` is one
 evaluation; the attempt of call B + 1 raises a private exception that ends
 the solver and is caught here. The wrapper keeps the calls at which the
@@ -58,6 +65,8 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 SOLVERS = ["hrla", "ipop-cma-es", "dual-annealing", "differential-evolution"]
 BOX = (-5.0, 5.0)
@@ -119,12 +128,37 @@ def run_differential_evolution(fun, d, budget, seed):
     differential_evolution(fun, [BOX] * d, maxiter=10**9, rng=seed, polish=True)
 
 
+# The ensemble Langevin prototype (bench/bbob/ensemble.py) and its
+# ablations: extra solvers, never run by default.
+ENSEMBLE = {
+    "ensemble": {},
+    "ensemble-od": {"order": 1},  # overdamped (ALDI / EKS) step
+    "ensemble-iso": {"precondition": False},  # scale only, no covariance
+    "ensemble-norestart": {"restarts": False},
+    "ensemble-raw": {"values": "raw"},  # U itself, not its rank scores
+    "ensemble-noaldi": {"aldi": False},
+    "ensemble-n2": {"pop_factor": 2.0},  # twice the initial population
+    "ensemble-nhalf": {"pop_factor": 0.5},
+    "ensemble-n2raw": {"pop_factor": 2.0, "values": "raw"},
+}
+
+
+def run_ensemble(options):
+    def runner(fun, d, budget, seed):
+        import ensemble
+
+        ensemble.minimize(fun, [BOX] * d, maxfun=budget, rng=seed, **options)
+
+    return runner
+
+
 RUNNERS = {
     "hrla": run_hrla,
     "ipop-cma-es": run_ipop_cma_es,
     "dual-annealing": run_dual_annealing,
     "differential-evolution": run_differential_evolution,
 }
+RUNNERS.update({name: run_ensemble(opts) for name, opts in ENSEMBLE.items()})
 
 
 def versions():
@@ -136,9 +170,11 @@ def versions():
         hv = getattr(hrla, "__version__", "?")
     except ImportError:
         hv = "not installed"
-    return {"hrla": f"hrla {hv}", "ipop-cma-es": f"cma {cma.__version__}",
-            "dual-annealing": f"scipy {scipy.__version__}",
-            "differential-evolution": f"scipy {scipy.__version__}"}
+    out = {"hrla": f"hrla {hv}", "ipop-cma-es": f"cma {cma.__version__}",
+           "dual-annealing": f"scipy {scipy.__version__}",
+           "differential-evolution": f"scipy {scipy.__version__}"}
+    out.update({name: f"ensemble.py {opts or 'defaults'}" for name, opts in ENSEMBLE.items()})
+    return out
 
 
 def seed_of(d, f, i):
