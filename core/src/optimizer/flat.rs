@@ -29,7 +29,7 @@ use super::store::{Best, IntoStore, Origin, Origins, Searches, Starts, Steps, St
 use super::stream::chain_seed;
 use super::sweep::{Context, LOCKSTEP_F64_FROM, START_TRIES, Sweep, Verdict, judge};
 use crate::domain::SliceDomain;
-use crate::error::{Error, floor};
+use crate::error::{Error, check_lengths, floor};
 use crate::float::Float;
 use crate::lanes;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
@@ -151,19 +151,11 @@ where
         if d == 0 {
             return Err(Error::Zero { name: "dimension" });
         }
-        for (name, expected, got) in [
+        check_lengths([
             ("floats", Self::floats(n, d), floats.as_ref().len()),
             ("iterations", n, iterations.as_ref().len()),
             ("diverged", n, diverged.as_ref().len()),
-        ] {
-            if got != expected {
-                return Err(Error::Length {
-                    name,
-                    expected,
-                    got,
-                });
-            }
-        }
+        ])?;
         Ok(Self {
             d,
             floats,
