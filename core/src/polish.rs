@@ -12,7 +12,7 @@
 //! [`Lbfgs`] value, which the caller owns: `2 M + 3` arrays of `D` floats.
 
 use crate::domain::{Domain, SliceDomain, Unbounded};
-use crate::error::{Error, finite, floor};
+use crate::error::{Error, check_lengths, finite, floor};
 use crate::float::Float;
 use crate::potential::traits::{Potential, SlicePotential};
 
@@ -323,13 +323,7 @@ impl<F: Float, const D: usize, const M: usize> Quencher<F> for Lbfgs<F, D, M> {
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
-        if x.len() != D {
-            return Err(Error::Length {
-                name: "x",
-                expected: D,
-                got: x.len(),
-            });
-        }
+        check_lengths([("x", D, x.len())])?;
         let mut alpha = [F::ZERO; M];
         let mut grad = [F::ZERO; D];
         let mut memory = Memory {
@@ -485,14 +479,7 @@ impl<F: Float> Quencher<F> for LbfgsIn<'_, F> {
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
-        let d = self.d;
-        if x.len() != d {
-            return Err(Error::Length {
-                name: "x",
-                expected: d,
-                got: x.len(),
-            });
-        }
+        check_lengths([("x", self.d, x.len())])?;
         let (mut memory, _) = self.split();
         memory.minimize_in(potential, domain, x, settings, scale)
     }
