@@ -67,32 +67,25 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from counting import BudgetExhausted, Counted, int_list  # noqa: E402
 
 SOLVERS = ["hrla", "ipop-cma-es", "dual-annealing", "differential-evolution"]
 BOX = (-5.0, 5.0)
 
 
-class _BudgetExhausted(Exception):
-    """Raised at the attempt of call B + 1."""
-
-
-class Recorded:
+class Recorded(Counted):
     """A bbob problem as ``fun(x) -> float``: counts calls, stops past the
     budget, keeps the improvements of the best ``f - f_opt``."""
 
     def __init__(self, problem, f_opt, budget):
-        self.problem = problem
+        super().__init__(problem, budget)
         self.f_opt = float(f_opt)
-        self.budget = int(budget)
-        self.calls = 0
         self.best = math.inf
         self.improvements = []
 
     def __call__(self, x, *args):
-        if self.calls >= self.budget:
-            raise _BudgetExhausted
-        self.calls += 1
-        f = float(self.problem(np.asarray(x, dtype=float).ravel()))
+        f = self.evaluate(x)
         delta = f - self.f_opt
         if delta < self.best:
             self.best = delta
@@ -192,7 +185,7 @@ def run_one(problem, f_opt, solver, budget, seed, version):
         try:
             RUNNERS[solver](fun, d, budget, seed)
             returned = fun.calls
-        except _BudgetExhausted:
+        except BudgetExhausted:
             pass
         except Exception as e:  # a solver failing: keep what it found, say so
             note = f"{type(e).__name__}: {e}"
@@ -201,18 +194,6 @@ def run_one(problem, f_opt, solver, budget, seed, version):
             "budget": budget, "seed": seed, "calls": fun.calls, "returned": returned,
             "best": fun.best, "wall_s": round(wall, 3), "version": version, "note": note,
             "improvements": fun.improvements}
-
-
-def int_list(text):
-    out = []
-    for part in text.split(","):
-        part = part.strip()
-        if "-" in part[1:]:
-            a, b = part.split("-", 1)
-            out.extend(range(int(a), int(b) + 1))
-        elif part:
-            out.append(int(part))
-    return out
 
 
 def read_store(path):

@@ -60,7 +60,10 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+import counting  # noqa: E402
 import problems  # noqa: E402
+from counting import BudgetExhausted, int_list  # noqa: E402
 
 COLUMNS = ["problem", "d", "method", "seed", "cap", "reached", "evals_to_target", "evaluations", "best",
            "wall_seconds", "note"]
@@ -72,18 +75,12 @@ class TargetReached(Exception):
     """Raised by the call whose value reaches the target."""
 
 
-class BudgetExhausted(Exception):
-    """Raised at the attempt of call cap + 1."""
-
-
-class Counted:
+class Counted(counting.Counted):
     """``fun`` under the counting and stopping rule of the module's docstring."""
 
     def __init__(self, fun, target, cap):
-        self.fun = fun
+        super().__init__(fun, cap)
         self.target = float(target)
-        self.cap = int(cap)
-        self.count = 0
         self.best = math.inf
         self.hit = None
 
@@ -91,14 +88,11 @@ class Counted:
         if self.hit is not None:
             # A method that swallowed the exception and went on: stop again.
             raise TargetReached
-        if self.count >= self.cap:
-            raise BudgetExhausted
-        self.count += 1
-        v = float(self.fun(np.asarray(x, dtype=float).ravel()))
+        v = self.evaluate(x)
         if v < self.best:
             self.best = v
         if v <= self.target:
-            self.hit = self.count
+            self.hit = self.calls
             raise TargetReached
         return v
 
@@ -243,23 +237,11 @@ def run_one(task):
         "problem": name, "d": p.d, "method": method, "seed": seed, "cap": cap,
         "reached": int(f.hit is not None),
         "evals_to_target": "" if f.hit is None else f.hit,
-        "evaluations": f.count,
+        "evaluations": f.calls,
         "best": repr(f.best),
         "wall_seconds": f"{wall:.3f}",
         "note": note,
     }
-
-
-def _int_list(text):
-    out = []
-    for part in text.split(","):
-        part = part.strip()
-        if "-" in part[1:]:
-            a, b = part.split("-", 1)
-            out.extend(range(int(a), int(b) + 1))
-        elif part:
-            out.append(int(part))
-    return out
 
 
 def main(argv=None):
@@ -281,7 +263,7 @@ def main(argv=None):
             raise SystemExit(f"unknown method {m!r}; known: {', '.join(RUNNERS)}")
     for n in names:
         problems.make(n)
-    tasks = [(n, m, s, args.cap) for n in names for s in _int_list(args.seeds) for m in methods]
+    tasks = [(n, m, s, args.cap) for n in names for s in int_list(args.seeds) for m in methods]
 
     import cma
     import scipy

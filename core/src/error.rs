@@ -157,6 +157,38 @@ pub enum Error {
     },
 }
 
+/// `Ok` if every `(name, expected, got)` has `got == expected`; otherwise
+/// [`Error::Length`] for the first that does not.
+pub(crate) fn check_lengths(
+    lengths: impl IntoIterator<Item = (&'static str, usize, usize)>,
+) -> Result<(), Error> {
+    match lengths
+        .into_iter()
+        .find(|&(_, expected, got)| got != expected)
+    {
+        Some((name, expected, got)) => Err(Error::Length {
+            name,
+            expected,
+            got,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// `Ok` if every known (`Some`) dimension in `dimensions` is `d`;
+/// otherwise [`Error::Length`] naming the first that is not. A `None`
+/// (a box, start or potential that fits any dimension) passes.
+pub(crate) fn check_dimensions(
+    d: usize,
+    dimensions: impl IntoIterator<Item = (&'static str, Option<usize>)>,
+) -> Result<(), Error> {
+    check_lengths(
+        dimensions
+            .into_iter()
+            .filter_map(|(name, dimension)| Some((name, d, dimension?))),
+    )
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let value = |v: f64| Num(v);

@@ -12,7 +12,7 @@
 //! [`Lbfgs`] value, which the caller owns: `2 M + 3` arrays of `D` floats.
 
 use crate::domain::{Domain, SliceDomain, Unbounded};
-use crate::error::{Error, finite, floor};
+use crate::error::{Error, check_lengths, finite, floor};
 use crate::float::Float;
 use crate::potential::traits::{Potential, SlicePotential};
 
@@ -287,7 +287,7 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
         x: &mut [F; D],
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
-        self.minimize_slices(
+        self.quench(
             &Arrays::<_, D>(potential),
             &Arrays::<_, D>(domain),
             x,
@@ -295,11 +295,27 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
             Scale::ONE,
         )
     }
+}
 
-    /// [`minimize_in`](Lbfgs::minimize_in) through the slice traits, in
-    /// the units `scale`, for the code that runs at any dimension over this
-    /// storage (`x` of length `D`, which its callers guarantee).
-    pub(crate) fn minimize_slices<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+/// L-BFGS through the slice traits in the units `scale`, over either
+/// storage: the one body behind each type's public `minimize_in`, and what
+/// `Auto`'s quenches and polish call at any dimension.
+pub(crate) trait Quencher<F: Float> {
+    /// L-BFGS from `x` (of the storage's dimension, [`Error::Length`]
+    /// otherwise) within `domain` in the units `scale`, `x` ending at the
+    /// best point.
+    fn quench<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &mut [F],
+        settings: PolishSettings<F>,
+        scale: Scale<F>,
+    ) -> Result<Polished<F>, Error>;
+}
+
+impl<F: Float, const D: usize, const M: usize> Quencher<F> for Lbfgs<F, D, M> {
+    fn quench<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
@@ -307,13 +323,7 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
-        if x.len() != D {
-            return Err(Error::Length {
-                name: "x",
-                expected: D,
-                got: x.len(),
-            });
-        }
+        check_lengths([("x", D, x.len())])?;
         let mut alpha = [F::ZERO; M];
         let mut grad = [F::ZERO; D];
         let mut memory = Memory {
@@ -413,28 +423,7 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
         x: &mut [F],
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
-        self.minimize_scaled(potential, domain, x, settings, Scale::ONE)
-    }
-
-    /// [`minimize_in`](LbfgsIn::minimize_in) in the units `scale`.
-    pub(crate) fn minimize_scaled<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
-        &mut self,
-        potential: &P,
-        domain: &B,
-        x: &mut [F],
-        settings: PolishSettings<F>,
-        scale: Scale<F>,
-    ) -> Result<Polished<F>, Error> {
-        let d = self.d;
-        if x.len() != d {
-            return Err(Error::Length {
-                name: "x",
-                expected: d,
-                got: x.len(),
-            });
-        }
-        let (mut memory, _) = self.split();
-        memory.minimize_in(potential, domain, x, settings, scale)
+        self.quench(potential, domain, x, settings, Scale::ONE)
     }
 
     /// Polishes a copy of `start` (of the storage's dimension) in the
@@ -478,6 +467,21 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
             d,
         };
         (memory, point)
+    }
+}
+
+impl<F: Float> Quencher<F> for LbfgsIn<'_, F> {
+    fn quench<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+        &mut self,
+        potential: &P,
+        domain: &B,
+        x: &mut [F],
+        settings: PolishSettings<F>,
+        scale: Scale<F>,
+    ) -> Result<Polished<F>, Error> {
+        check_lengths([("x", self.d, x.len())])?;
+        let (mut memory, _) = self.split();
+        memory.minimize_in(potential, domain, x, settings, scale)
     }
 }
 

@@ -10,7 +10,7 @@ use crate::device::{Gpu, bytes_of, words};
 use crate::error::GpuError;
 use crate::potential::DevicePotential;
 use crate::precision::Precision;
-use crate::shader::{Arithmetic, Layout, Program, WORKGROUP, Ziggurat};
+use crate::shader::{Layout, Program, Settings, WORKGROUP, Ziggurat, settings_setters};
 use crate::start::Start;
 use crate::step::{DeviceKernel, StepCoefficients, StepKind};
 
@@ -74,10 +74,8 @@ pub struct EnsembleBuilder<F, S, C> {
     stride: u64,
     chains: usize,
     steps_per_dispatch: u32,
-    arithmetic: Arithmetic,
-    precision: Precision,
+    settings: Settings,
     run_seeds: Option<Vec<u64>>,
-    start_in_best: bool,
     float: core::marker::PhantomData<F>,
 }
 
@@ -100,10 +98,8 @@ where
             stride: 1,
             chains: 1024,
             steps_per_dispatch: 100,
-            arithmetic: Arithmetic::Ieee,
-            precision: Precision::F32,
+            settings: Settings::default(),
             run_seeds: None,
-            start_in_best: true,
             float: core::marker::PhantomData,
         }
     }
@@ -129,15 +125,6 @@ where
         self
     }
 
-    /// Whether iterate 0 (the start) takes part in each chain's running
-    /// best: `true` by default, as in [`hrla::Optimizer::best`]; `false`
-    /// starts every running best at `+inf`, for a running best over
-    /// `k = s, 2s, ...` only (the paper's tables).
-    pub fn start_in_best(mut self, include: bool) -> Self {
-        self.start_in_best = include;
-        self
-    }
-
     /// Records the running best only at iterates that are multiples of
     /// `stride >= 1`.
     pub fn stride(mut self, stride: u64) -> Self {
@@ -160,22 +147,7 @@ where
         self
     }
 
-    /// How the device may round products that additions take
-    /// ([`Arithmetic::Ieee`] by default: the kernel's bits where the
-    /// device rounds as IEEE 754 does).
-    pub fn arithmetic(mut self, arithmetic: Arithmetic) -> Self {
-        self.arithmetic = arithmetic;
-        self
-    }
-
-    /// The float type of the device ([`Precision::F32`] by default).
-    /// [`Precision::F64`] needs an adapter with `SHADER_F64`
-    /// ([`Gpu::supports_f64`]) and a potential without `sin`, `cos` or
-    /// `exp` (Vulkan has them in f32 only: not Ackley or Levy).
-    pub fn precision(mut self, precision: Precision) -> Self {
-        self.precision = precision;
-        self
-    }
+    settings_setters!();
 
     /// Compiles the program, seeds every chain's generator, draws the
     /// initial points on the device and evaluates the potential there.
@@ -239,20 +211,18 @@ where
             value: self.stride as usize,
             max: u32::MAX as usize,
         })?;
-        let program = Program::new(&self.potential, &self.start)?
-            .arithmetic(self.arithmetic)
-            .precision(self.precision)
-            .start_in_best(self.start_in_best);
-        if self.precision == Precision::F64 && !gpu.supports_f64() {
+        let program = Program::new(&self.potential, &self.start)?.settings(self.settings);
+        let precision = self.settings.precision;
+        if precision == Precision::F64 && !gpu.supports_f64() {
             return Err(GpuError::Unsupported(format!(
                 "f64: the adapter {} has no SHADER_F64",
                 gpu.info().name
             )));
         }
-        if !self.potential.supports(self.precision) {
+        if !self.potential.supports(precision) {
             return Err(GpuError::Unsupported(format!(
                 "{:?} in {:?}: the device has no sin, cos or exp in that type",
-                self.potential, self.precision
+                self.potential, precision
             )));
         }
         let (sampler, schedule) = (self.sampler, self.schedule);
@@ -268,7 +238,7 @@ where
             stride,
             self.steps_per_dispatch,
             first.kind(),
-            self.precision,
+            precision,
             coefficients,
         )?;
         let seeds = match &self.run_seeds {

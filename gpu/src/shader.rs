@@ -175,6 +175,66 @@ pub enum Arithmetic {
     Fused,
 }
 
+/// The settings that [`Program`] and
+/// [`EnsembleBuilder`](crate::EnsembleBuilder) share, with their defaults
+/// in one place.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Settings {
+    pub(crate) arithmetic: Arithmetic,
+    pub(crate) precision: Precision,
+    pub(crate) start_in_best: bool,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            arithmetic: Arithmetic::Ieee,
+            precision: Precision::F32,
+            start_in_best: true,
+        }
+    }
+}
+
+/// The setters of [`Settings`], for a builder that holds them as its
+/// `settings` field: [`Program`] and
+/// [`EnsembleBuilder`](crate::EnsembleBuilder) take the same settings with
+/// the same meaning, so they share one text of each setter and its
+/// documentation.
+macro_rules! settings_setters {
+    () => {
+        /// How the device may round products that additions take
+        /// ([`Arithmetic::Ieee`](crate::Arithmetic::Ieee) by default: the
+        /// kernel's bits where the device rounds as IEEE 754 does).
+        pub fn arithmetic(mut self, arithmetic: crate::Arithmetic) -> Self {
+            self.settings.arithmetic = arithmetic;
+            self
+        }
+
+        /// The float type of the device
+        /// ([`Precision::F32`](crate::Precision::F32) by default).
+        /// [`Precision::F64`](crate::Precision::F64) needs an adapter with
+        /// `SHADER_F64` ([`Gpu::supports_f64`](crate::Gpu::supports_f64))
+        /// and a potential without `sin`, `cos` or `exp` (Vulkan has them
+        /// in f32 only: not Ackley or Levy, whose program does not compile
+        /// in f64).
+        pub fn precision(mut self, precision: crate::Precision) -> Self {
+            self.settings.precision = precision;
+            self
+        }
+
+        /// Whether iterate 0 (the start) takes part in each chain's
+        /// running best: `true` by default, as in
+        /// [`hrla::Optimizer::best`]; `false` starts every running best at
+        /// `+inf`, for a running best over `k = s, 2s, ...` only (the
+        /// paper's tables).
+        pub fn start_in_best(mut self, include: bool) -> Self {
+            self.settings.start_in_best = include;
+            self
+        }
+    };
+}
+pub(crate) use settings_setters;
+
 const OU_STEP: &str = "
         let c_xy = coef(s, 0u);
         let e = coef(s, 1u);
@@ -274,9 +334,7 @@ pub struct Program<'a> {
     potential: &'a DevicePotential,
     start: &'a Start,
     step: StepKind,
-    arithmetic: Arithmetic,
-    precision: Precision,
-    start_in_best: bool,
+    settings: Settings,
     compiler: Compiler,
 }
 
@@ -308,9 +366,7 @@ impl<'a> Program<'a> {
             potential,
             start,
             step: StepKind::Ou,
-            arithmetic: Arithmetic::Ieee,
-            precision: Precision::F32,
-            start_in_best: true,
+            settings: Settings::default(),
             compiler: Compiler::Naga,
         })
     }
@@ -321,23 +377,11 @@ impl<'a> Program<'a> {
         self
     }
 
-    /// How the device may round sums and products.
-    pub fn arithmetic(mut self, arithmetic: Arithmetic) -> Self {
-        self.arithmetic = arithmetic;
-        self
-    }
+    settings_setters!();
 
-    /// The float type of the device. The program of a potential that the
-    /// device cannot evaluate in that type (Ackley or Levy in `f64`) does
-    /// not compile.
-    pub fn precision(mut self, precision: Precision) -> Self {
-        self.precision = precision;
-        self
-    }
-
-    /// Whether a chain's start counts as a point of its running best.
-    pub fn start_in_best(mut self, include: bool) -> Self {
-        self.start_in_best = include;
+    /// All the shared settings at once, as an ensemble's builder holds them.
+    pub(crate) fn settings(mut self, settings: Settings) -> Self {
+        self.settings = settings;
         self
     }
 
@@ -355,9 +399,12 @@ impl<'a> Program<'a> {
             potential,
             start,
             step,
-            arithmetic,
-            precision,
-            start_in_best,
+            settings:
+                Settings {
+                    arithmetic,
+                    precision,
+                    start_in_best,
+                },
             compiler,
         } = *self;
         let dim = start.dimension();

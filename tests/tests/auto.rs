@@ -12,6 +12,7 @@ use hrla::{
     Ackley, Auto, AutoStorage, Bounds, Chain, Error, FnPotential, Interval, Lbfgs, Parts,
     Potential, Problem, Rastrigin, Sampling, StyblinskiTang, Termination,
 };
+use hrla_tests::fixtures::AutoArrays;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 fn chains<const D: usize>(n: usize) -> Vec<Chain<f64, D>> {
@@ -356,12 +357,8 @@ where
     B: hrla::Sides<F> + ?Sized,
 {
     let m = 6;
-    let mut floats = vec![F::ZERO; AutoStorage::<F, Xoshiro256PlusPlus>::floats(n, d, m)];
-    let mut diverged = vec![false; n];
-    let mut rngs: Vec<_> = (0..n)
-        .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
-        .collect();
-    let mut storage = AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs).unwrap();
+    let mut arrays = AutoArrays::<F>::new(n, d, m);
+    let mut storage = arrays.storage();
     let mut seen = Vec::new();
     let found = auto
         .minimize_with(
@@ -754,12 +751,8 @@ fn a_start_x0_gives_the_same_bits_flat_and_const() {
                 },
             )
             .unwrap();
-        let mut floats = vec![0.0; AutoStorage::<f64, Xoshiro256PlusPlus>::floats(n, 17, m)];
-        let mut diverged = vec![false; n];
-        let mut rngs: Vec<_> = (0..n)
-            .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
-            .collect();
-        let mut storage = AutoStorage::new(17, m, &mut floats, &mut diverged, &mut rngs).unwrap();
+        let mut arrays = AutoArrays::<f64>::new(n, 17, m);
+        let mut storage = arrays.storage();
         let mut second = Vec::new();
         let got = Auto::default()
             .minimize_with(
@@ -892,12 +885,8 @@ fn a_bad_start_x0_is_a_typed_error() {
     ));
     // Flat storage of dimension 3 and an x0 of 2.
     let (n, d, m) = (4, 3, 4);
-    let mut floats = vec![0.0; AutoStorage::<f64, Xoshiro256PlusPlus>::floats(n, d, m)];
-    let mut diverged = vec![false; n];
-    let mut rngs: Vec<_> = (0..n)
-        .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
-        .collect();
-    let mut storage = AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs).unwrap();
+    let mut arrays = AutoArrays::<f64>::new(n, d, m);
+    let mut storage = arrays.storage();
     let got = Auto::default()
         .minimize_with(
             &Problem::new(&Rastrigin, &domain, 1_000)
@@ -1070,12 +1059,8 @@ fn a_callers_sides_are_checked_as_bounds_are() {
         }
     }
     let (n, d, m) = (4, 2, 4);
-    let mut floats = vec![0.0; AutoStorage::<f64, Xoshiro256PlusPlus>::floats(n, d, m)];
-    let mut diverged = vec![false; n];
-    let mut rngs: Vec<_> = (0..n)
-        .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
-        .collect();
-    let mut storage = AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs).unwrap();
+    let mut arrays = AutoArrays::<f64>::new(n, d, m);
+    let mut storage = arrays.storage();
     let calls = Cell::new(0);
     let p = FnPotential::slices(|x: &[f64], g: &mut [f64]| {
         calls.set(calls.get() + 1);

@@ -7,9 +7,8 @@
 //! `h c / s^2` and inverse temperature `a c` are the unscaled run's up to
 //! rounding. Through the const-generic chains and the flat storage alike.
 
-use hrla::rand_core::SeedableRng;
-use hrla::{Auto, AutoStorage, Chain, FnPotential, Interval, Lbfgs, Problem};
-use rand_xoshiro::Xoshiro256PlusPlus;
+use hrla::{Auto, Chain, FnPotential, Interval, Lbfgs, Problem};
+use hrla_tests::fixtures::AutoArrays;
 
 /// The factors on `U`.
 const C: [f64; 5] = [1e-14, 1e-7, 1.0, 1e7, 1e14];
@@ -102,12 +101,8 @@ fn flat(base: Base, d: usize, c: f64, s: f64, budget: u64, rounds: u64, seed: u6
     let p = FnPotential::slices(move |x: &[f64], g: &mut [f64]| scaled(base, c, s, x, g));
     let domain = Interval::new(base.lo * s, base.hi * s).unwrap();
     let (n, m) = (4, 8);
-    let mut floats = vec![0.0; AutoStorage::<f64, Xoshiro256PlusPlus>::floats(n, d, m)];
-    let mut diverged = vec![false; n];
-    let mut rngs: Vec<_> = (0..n)
-        .map(|_| Xoshiro256PlusPlus::seed_from_u64(0))
-        .collect();
-    let mut storage = AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs).unwrap();
+    let mut arrays = AutoArrays::<f64>::new(n, d, m);
+    let mut storage = arrays.storage();
     let found = Auto::default()
         .minimize(
             &Problem::new(&p, &domain, budget).seed(seed).rounds(rounds),

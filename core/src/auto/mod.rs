@@ -97,6 +97,7 @@ use crate::domain::{Interval, Sides};
 use crate::error::Error;
 use crate::float::Float;
 use crate::optimizer::{Stop, Termination};
+use crate::polish::Quencher;
 use crate::potential::BatchPotential;
 use crate::schedule::Schedule;
 
@@ -278,7 +279,7 @@ impl<F: Float> Auto<F> {
         B: Sides<F> + ?Sized,
         S: run::Chains<F> + ?Sized,
         S::Rng: Rng + SeedableRng + 'static,
-        L: run::Quencher<F> + ?Sized,
+        L: Quencher<F> + ?Sized,
         O: FnMut(&run::Seen<'_, F>) -> ControlFlow<()>,
     {
         self.validate()?;

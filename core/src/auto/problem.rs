@@ -12,7 +12,7 @@ use super::run::{self, Found, Seen};
 use super::settings::Auto;
 use super::storage::{AutoStorage, Lent};
 use crate::domain::Sides;
-use crate::error::Error;
+use crate::error::{Error, check_dimensions};
 use crate::float::Float;
 use crate::optimizer::{Chain, Stop, Termination};
 use crate::polish::{Arrays, Lbfgs};
@@ -322,21 +322,13 @@ where
         B: Sides<F> + ?Sized,
         O: FnMut(&AutoProgress<'_, F>) -> ControlFlow<()>,
     {
-        let d = self.dim();
-        for (name, dimension) in [
-            ("box sides", problem.domain.dimension()),
-            ("potential", problem.potential.batch_dimension()),
-        ] {
-            if let Some(got) = dimension
-                && got != d
-            {
-                return Err(Error::Length {
-                    name,
-                    expected: d,
-                    got,
-                });
-            }
-        }
+        check_dimensions(
+            self.dim(),
+            [
+                ("box sides", problem.domain.dimension()),
+                ("potential", problem.potential.batch_dimension()),
+            ],
+        )?;
         let Lent {
             mut chains,
             buffers,

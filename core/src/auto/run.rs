@@ -17,7 +17,7 @@ use crate::error::{Error, floor};
 use crate::float::Float;
 use crate::optimizer::{Chain, Stop as Rules, Termination, chain_seed, draw_point};
 use crate::optimizer::{Verdict, judge};
-use crate::polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished, Scale};
+use crate::polish::{PolishEnd, PolishSettings, Polished, Quencher, Scale};
 use crate::potential::{BatchPotential, SlicePotential};
 use crate::sampler::{Hrla, Kernel, OuKernel, Sampler};
 
@@ -208,57 +208,6 @@ impl<'a, F> Buffers<'a, F> {
             base,
             g0: &mut g0[..d],
         }
-    }
-}
-
-/// L-BFGS over some storage, as the run's quenches and polish use it.
-pub(super) trait Quencher<F: Float> {
-    /// L-BFGS from `x` within the box in the units `scale`, `x` ending at
-    /// the best point.
-    fn quench<P, B>(
-        &mut self,
-        potential: &P,
-        domain: &B,
-        x: &mut [F],
-        settings: PolishSettings<F>,
-        scale: Scale<F>,
-    ) -> Result<Polished<F>, Error>
-    where
-        P: SlicePotential<F> + ?Sized,
-        B: Sides<F> + ?Sized;
-}
-
-impl<F: Float, const D: usize, const M: usize> Quencher<F> for Lbfgs<F, D, M> {
-    fn quench<P, B>(
-        &mut self,
-        potential: &P,
-        domain: &B,
-        x: &mut [F],
-        settings: PolishSettings<F>,
-        scale: Scale<F>,
-    ) -> Result<Polished<F>, Error>
-    where
-        P: SlicePotential<F> + ?Sized,
-        B: Sides<F> + ?Sized,
-    {
-        self.minimize_slices(potential, domain, x, settings, scale)
-    }
-}
-
-impl<F: Float> Quencher<F> for LbfgsIn<'_, F> {
-    fn quench<P, B>(
-        &mut self,
-        potential: &P,
-        domain: &B,
-        x: &mut [F],
-        settings: PolishSettings<F>,
-        scale: Scale<F>,
-    ) -> Result<Polished<F>, Error>
-    where
-        P: SlicePotential<F> + ?Sized,
-        B: Sides<F> + ?Sized,
-    {
-        self.minimize_scaled(potential, domain, x, settings, scale)
     }
 }
 

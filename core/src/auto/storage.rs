@@ -2,7 +2,7 @@
 //! dimension known at run time.
 
 use super::run::{self, Buffers, FlatChains};
-use crate::error::Error;
+use crate::error::{Error, check_lengths};
 use crate::float::Float;
 use crate::polish::LbfgsIn;
 
@@ -59,18 +59,10 @@ impl<'a, F: Float, R> AutoStorage<'a, F, R> {
                 name: "L-BFGS memory",
             });
         }
-        for (name, expected, got) in [
+        check_lengths([
             ("floats", Self::floats(n, d, m), floats.len()),
             ("diverged", n, diverged.len()),
-        ] {
-            if got != expected {
-                return Err(Error::Length {
-                    name,
-                    expected,
-                    got,
-                });
-            }
-        }
+        ])?;
         Ok(Self {
             d,
             m,

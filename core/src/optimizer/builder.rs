@@ -6,7 +6,7 @@ use super::executor::Serial;
 use super::stop::Stop;
 use super::store::{IntoStore, Origins, RunsOn, Starts, Steps, Store};
 use crate::domain::Unbounded;
-use crate::error::Error;
+use crate::error::{Error, check_dimensions};
 use crate::float::Float;
 use crate::sampler::Sampler;
 use crate::schedule::Schedule;
@@ -227,17 +227,7 @@ impl<F: Float, P, S: Sampler<F>, C: Schedule<F>, St, B, E> Builder<F, P, S, C, S
             start: &mut self.start,
             seed: self.seed,
         };
-        for (name, dimension) in chains.check(&from) {
-            if let Some(got) = dimension
-                && got != d
-            {
-                return Err(Error::Length {
-                    name,
-                    expected: d,
-                    got,
-                });
-            }
-        }
+        check_dimensions(d, chains.check(&from))?;
         let kernel = self.sampler.at(self.schedule.inverse_temperature(0))?;
         // Redraws beyond one point per chain, within the evaluation budget.
         let mut spare = self.stop.evaluations.map_or(u64::MAX, |b| b - n as u64);

@@ -27,9 +27,9 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use super::executor::{Executor, Split};
 use super::store::{Best, IntoStore, Origin, Origins, Searches, Starts, Steps, StepsOn, Store};
 use super::stream::chain_seed;
-use super::sweep::{Context, LOCKSTEP_F64_FROM, START_TRIES, Sweep, Verdict, judge};
+use super::sweep::{Context, LOCKSTEP_F64_FROM, Sweep, Verdict, judge, settle_point};
 use crate::domain::SliceDomain;
-use crate::error::{Error, floor};
+use crate::error::{Error, check_lengths, floor};
 use crate::float::Float;
 use crate::lanes;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
@@ -151,19 +151,11 @@ where
         if d == 0 {
             return Err(Error::Zero { name: "dimension" });
         }
-        for (name, expected, got) in [
+        check_lengths([
             ("floats", Self::floats(n, d), floats.as_ref().len()),
             ("iterations", n, iterations.as_ref().len()),
             ("diverged", n, diverged.as_ref().len()),
-        ] {
-            if got != expected {
-                return Err(Error::Length {
-                    name,
-                    expected,
-                    got,
-                });
-            }
-        }
+        ])?;
         Ok(Self {
             d,
             floats,
@@ -497,41 +489,23 @@ where
         potential.values_and_gradients(d, x, grad, value, diverged);
         for c in 0..n {
             let span = c * d..(c + 1) * d;
-            let mut tries = 1;
-            loop {
-                match judge(&x[span.clone()], value[c], &grad[span.clone()], floor()) {
-                    Verdict::Feasible => break,
-                    Verdict::Unbounded => {
-                        return Err(Error::UnboundedBelow {
-                            chain: c,
-                            value: value[c].to_f64(),
-                        });
-                    }
-                    Verdict::Infeasible(what) => {
-                        if tries >= START_TRIES || *spare == 0 {
-                            return Err(Error::NonFiniteStart {
-                                chain: c,
-                                what,
-                                tries,
-                            });
-                        }
-                        *spare -= 1;
-                    }
-                }
-                let (xc, yc) = (&mut x[span.clone()], &mut y[span.clone()]);
-                start.initial_point(c, &mut rng[c], xc);
-                yc.fill(F::ZERO);
-                domain.confine(xc, yc);
-                potential.values_and_gradients(
-                    d,
-                    xc,
-                    &mut grad[span.clone()],
-                    &mut value[c..=c],
-                    &[false],
-                );
-                evaluations += 1;
-                tries += 1;
-            }
+            let (xc, yc) = (&mut x[span.clone()], &mut y[span.clone()]);
+            let rng = &mut rng[c];
+            value[c] = settle_point(
+                c,
+                xc,
+                &mut grad[span],
+                value[c],
+                spare,
+                &mut evaluations,
+                |xc, grad| {
+                    start.initial_point(c, rng, xc);
+                    yc.fill(F::ZERO);
+                    domain.confine(xc, yc);
+                    potential.values_and_gradients(d, xc, grad, &mut value[c..=c], &[false]);
+                    value[c]
+                },
+            )?;
         }
         best_x.copy_from_slice(x);
         best_value.copy_from_slice(value);

@@ -93,10 +93,7 @@ pub const START_TRIES: u32 = 100;
 
 /// Draws chain `c`'s initial point `x` with `place` (from the chain's
 /// generator) and evaluates it into `grad`, drawing again where the point
-/// is infeasible: up to [`START_TRIES`] points, each counted in
-/// `evaluations`, the redraws within `spare`. Its value, or
-/// [`Error::UnboundedBelow`] for a point below the floor,
-/// [`Error::NonFiniteStart`] when no point was feasible.
+/// is infeasible ([`settle_point`]): its value, or the error.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw_point<F, P, R>(
     c: usize,
@@ -112,12 +109,34 @@ where
     F: Float,
     P: SlicePotential<F> + ?Sized,
 {
-    let mut tries = 0;
-    loop {
+    place(rng, x);
+    let value = potential.value_and_gradient(x, grad);
+    *evaluations += 1;
+    settle_point(c, x, grad, value, spare, evaluations, |x, grad| {
         place(rng, x);
-        let value = potential.value_and_gradient(x, grad);
-        *evaluations += 1;
-        tries += 1;
+        potential.value_and_gradient(x, grad)
+    })
+}
+
+/// Judges chain `c`'s first initial point, `x` of value `value` and
+/// gradient `grad`, and while it is infeasible draws and evaluates
+/// another with `redraw` (which returns its value): up to [`START_TRIES`]
+/// points in all, each redraw counted in `evaluations` and taken from
+/// `spare`. The feasible point's value, or [`Error::UnboundedBelow`] for a
+/// point below the floor, [`Error::NonFiniteStart`] when no point was
+/// feasible. Every store's start, one chain or a batch at a time, redraws
+/// through here.
+pub(crate) fn settle_point<F: Float>(
+    c: usize,
+    x: &mut [F],
+    grad: &mut [F],
+    mut value: F,
+    spare: &mut u64,
+    evaluations: &mut u64,
+    mut redraw: impl FnMut(&mut [F], &mut [F]) -> F,
+) -> Result<F, Error> {
+    let mut tries = 1;
+    loop {
         match judge(x, value, grad, floor()) {
             Verdict::Feasible => return Ok(value),
             Verdict::Unbounded => {
@@ -137,6 +156,9 @@ where
                 *spare -= 1;
             }
         }
+        value = redraw(x, grad);
+        *evaluations += 1;
+        tries += 1;
     }
 }
 
