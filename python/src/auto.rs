@@ -2,7 +2,7 @@
 
 use std::ops::ControlFlow;
 
-use hrla::Auto;
+use hrla::{Auto, Parts};
 use hrla_dyn::auto::{self, Problem};
 use hrla_dyn::{Progress, termination_name};
 use numpy::PyArray1;
@@ -40,6 +40,9 @@ pub struct PyAuto {
     pub stall: u64,
     /// The acceptance rate each rung's step is steered to (0: fixed).
     pub accept: f64,
+    /// Whether the differential moves and the restarts of a stalled run
+    /// are on (off: the ablation "(b) no global moves" of docs/QUALITY.md).
+    pub global_moves: bool,
 }
 
 /// What `Auto.minimize` found.
@@ -75,7 +78,7 @@ pub struct PySolution {
 impl PyAuto {
     #[new]
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (*, steps = None, step_scale = None, ladder = None, quench = None, first_quench = None, jump_rate = None, stall = None, accept = None))]
+    #[pyo3(signature = (*, steps = None, step_scale = None, ladder = None, quench = None, first_quench = None, jump_rate = None, stall = None, accept = None, global_moves = None))]
     fn new(
         steps: Option<&Bound<'_, PyAny>>,
         step_scale: Option<f64>,
@@ -85,6 +88,7 @@ impl PyAuto {
         jump_rate: Option<f64>,
         stall: Option<&Bound<'_, PyAny>>,
         accept: Option<f64>,
+        global_moves: Option<bool>,
     ) -> PyResult<Self> {
         let d = Auto::<f64>::default();
         let steps = config::unsigned_opt(steps, "steps")?;
@@ -100,6 +104,7 @@ impl PyAuto {
             jump_rate: jump_rate.unwrap_or(d.jump_rate),
             stall: stall.unwrap_or(d.stall),
             accept: accept.unwrap_or(d.accept),
+            global_moves: global_moves.unwrap_or(d.parts.global_moves),
         })
     }
 
@@ -201,6 +206,10 @@ impl PyAuto {
             jump_rate: self.jump_rate,
             stall: self.stall,
             accept: self.accept,
+            parts: Parts {
+                global_moves: self.global_moves,
+                ..Parts::default()
+            },
             ..Auto::default()
         };
         // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated
