@@ -210,7 +210,6 @@ impl PyAuto {
                 global_moves: self.global_moves,
                 ..Parts::default()
             },
-            ..Auto::default()
         };
         // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated
         // (counted, so where it looks is the same on every machine), and
