@@ -103,23 +103,29 @@ test("a real finger's upward swipe on the picture scrolls the page and leaves th
     await h.page.locator("#particles").scrollIntoViewIfNeeded();
     const home = await view();
     const top = await h.page.evaluate(() => scrollY);
+    // Sideways first, while the page is still: the picture pans, the page stays.
     const [x, y] = await centre();
-    await swipe([x, y + 100], [x, y - 100]);
-    // The page scrolls, and the few pixels the picture moved before the
-    // browser took the swipe are undone.
-    await h.page.waitForFunction(
-      ([top, home]) => {
-        const v = window.hrlaDemo.state.view;
-        return scrollY > top && v.cx === home.cx && v.cy === home.cy && v.half === home.half;
-      },
-      [top, home],
-    );
-    const scrolled = await h.page.evaluate(() => scrollY);
+    await swipe([x + 80, y], [x - 80, y]);
+    // The finger lifted (no gesture left) and the view moved: the pan is whole.
+    await h.page.waitForFunction((cx) => {
+      const { state } = window.hrlaDemo;
+      return state.drag === null && state.view.cx > cx;
+    }, home.cx);
+    assert.equal(await h.page.evaluate(() => scrollY), top);
+    const panned = await view();
+    assert.equal(panned.cy, home.cy);
+    // Upward: the page scrolls (and may glide on after the finger lifts,
+    // so no scroll position is compared after this), and the few pixels
+    // the picture moved before the browser took the swipe are undone.
     const [x2, y2] = await centre();
-    await swipe([x2 + 80, y2], [x2 - 80, y2]);
-    await h.page.waitForFunction((cx) => window.hrlaDemo.state.view.cx > cx, home.cx);
-    assert.equal(await h.page.evaluate(() => scrollY), scrolled);
-    assert.equal((await view()).cy, home.cy);
+    await swipe([x2, y2 + 100], [x2, y2 - 100]);
+    await h.page.waitForFunction(
+      ([top, was]) => {
+        const v = window.hrlaDemo.state.view;
+        return scrollY > top && v.cx === was.cx && v.cy === was.cy && v.half === was.half;
+      },
+      [top, panned],
+    );
     assert.equal(await readout("out-iteration"), 0);
   } finally {
     await cdp.send("Emulation.setTouchEmulationEnabled", { enabled: false });
