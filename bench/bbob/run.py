@@ -33,8 +33,7 @@ a gradient-free ensemble Langevin prototype, ``ensemble.minimize(fun,
 [(-5, 5)] * d, maxfun=B, rng=seed)``) and its ablations ``ensemble-od``,
 ``-iso``, ``-norestart``, ``-raw``, ``-noaldi``, ``-n2``, ``-nhalf``,
 ``-n2raw``
-(ENSEMBLE below); ``hrla-no-global``, hrla's default without its global
-moves (``method=hrla.Auto(global_moves=False)``).
+(ENSEMBLE below).
 
 Counting (the same wrapper for every solver): each call of ``fun`` is one
 evaluation; the attempt of call B + 1 raises a private exception that ends
@@ -100,15 +99,6 @@ def run_hrla(fun, d, budget, seed):
     hrla.minimize(fun, [BOX] * d, maxfun=budget, rng=seed)
 
 
-def run_hrla_no_global(fun, d, budget, seed):
-    """The default without its differential moves and restarts (the
-    ablation "(b) no global moves" of docs/QUALITY.md), as a scipy user
-    would ask for it."""
-    import hrla
-
-    hrla.minimize(fun, [BOX] * d, maxfun=budget, rng=seed, method=hrla.Auto(global_moves=False))
-
-
 def run_ipop_cma_es(fun, d, budget, seed):
     import cma
 
@@ -162,7 +152,6 @@ RUNNERS = {
     "differential-evolution": run_differential_evolution,
 }
 RUNNERS.update({name: run_ensemble(opts) for name, opts in ENSEMBLE.items()})
-RUNNERS["hrla-no-global"] = run_hrla_no_global
 
 
 def versions():
@@ -178,7 +167,6 @@ def versions():
            "dual-annealing": f"scipy {scipy.__version__}",
            "differential-evolution": f"scipy {scipy.__version__}"}
     out.update({name: f"ensemble.py {opts or 'defaults'}" for name, opts in ENSEMBLE.items()})
-    out["hrla-no-global"] = f"{out['hrla']}, Auto(global_moves=False)"
     return out
 
 

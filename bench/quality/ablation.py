@@ -22,7 +22,7 @@ import statistics
 import sys
 from collections import defaultdict
 
-ABLATIONS = ["hrla-no-sampling", "hrla-jump", "hrla-fixed-step", "hrla-no-global", "hrla-no-quench"]
+ABLATIONS = ["hrla-jump", "hrla-fixed-step", "hrla-no-quench"]
 PEERS = ["dual-annealing", "basinhopping", "ipop-cma-es", "differential-evolution"]
 
 
@@ -86,8 +86,8 @@ def main(paths):
     for budget in sorted({k[0] for k in order}):
         keys = [k for k in order if k[0] == budget]
         print(f"\n### Ablations, B = {budget:,}\n")
-        print("| problem | d | default | (a) no sampling | jump for sampling | fixed step | (b) no global moves | (c) no quenches |")
-        print("|---|---:|---:|---:|---:|---:|---:|---:|")
+        print("| problem | d | default | jump for sampling | fixed step | no quenches |")
+        print("|---|---:|---:|---:|---:|---:|")
         tally = defaultdict(lambda: defaultdict(int))
         for k in keys:
             d = cell(data.get(k + ("hrla-default",)))

@@ -87,12 +87,6 @@ impl<F: Float> Scale<F> {
         resolution: F::ZERO,
     };
 
-    /// The least fall of `U` from `value` these units resolve:
-    /// `resolution` value tolerances of [`PolishSettings::new`].
-    pub(crate) fn resolved(&self, value: F) -> F {
-        self.resolution * self.tolerance(PolishSettings::<F>::new(0).value_tolerance, value)
-    }
-
     /// `value_tolerance * max(energy, |value|)`: a fall of `U` within its
     /// last bits at `value`.
     fn tolerance(&self, value_tolerance: F, value: F) -> F {

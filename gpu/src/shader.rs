@@ -233,6 +233,7 @@ macro_rules! settings_setters {
         }
     };
 }
+#[cfg(feature = "device")]
 pub(crate) use settings_setters;
 
 const OU_STEP: &str = "
@@ -380,6 +381,7 @@ impl<'a> Program<'a> {
     settings_setters!();
 
     /// All the shared settings at once, as an ensemble's builder holds them.
+    #[cfg(feature = "device")]
     pub(crate) fn settings(mut self, settings: Settings) -> Self {
         self.settings = settings;
         self

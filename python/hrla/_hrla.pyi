@@ -217,16 +217,13 @@ class Auto:
     ladder: float
     quench: int
     first_quench: int
-    jump_rate: float
     stall: int
     converged_window: int
     accept: float
-    global_moves: bool
     def __init__(self, *, steps: Optional[int] = None, step_scale: Optional[float] = None,
                  ladder: Optional[float] = None, quench: Optional[int] = None,
                  first_quench: Optional[int] = None,
-                 jump_rate: Optional[float] = None, stall: Optional[int] = None,
-                 accept: Optional[float] = None, global_moves: Optional[bool] = None) -> None: ...
+                 stall: Optional[int] = None, accept: Optional[float] = None) -> None: ...
     @staticmethod
     def chains_for(budget: int) -> int: ...
     def minimize(self, potential: PotentialLike, domain: BoxLike, budget: int, seed: Optional[int] = 0, *,

@@ -406,8 +406,7 @@ def minimize(
     ``maxfun`` is a cap, not a target: when its best has not fallen beyond
     rounding (``1e-12`` of the spread of ``f`` at the initial points, a
     tolerance in the problem's own units) over ``Auto().converged_window``
-    rounds (60: one restart of the hotter half of its chains found nothing
-    better), or over a sixth of them while every chain's basin was the
+    rounds (60: two stalls of ``Auto().stall`` rounds), or over a sixth of them while every chain's basin was the
     best's (a unimodal problem), it polishes the best and ends with
     ``termination == "Converged"``. ``converge=`` a window of rounds sets another;
     ``converge=False`` switches the rule off (the run then spends

@@ -15,8 +15,7 @@ use crate::potential;
 
 /// The default solver: Langevin basin hopping on a ladder of inverse
 /// temperatures. Each chain holds a basin; a round moves it by `steps`
-/// HRLA steps (sometimes after a differential move along two other
-/// chains' basins), quenches the end by L-BFGS and accepts by Metropolis
+/// HRLA steps, quenches the end by L-BFGS and accepts by Metropolis
 /// at its own `a`; neighbouring rungs exchange basins. `h = step_scale / L`
 /// and the ladder's centre are measured on the quenched starts, and each
 /// rung's step is then steered to accept `accept` of its proposals. The
@@ -34,15 +33,11 @@ pub struct PyAuto {
     pub quench: u64,
     /// Evaluations per quench of the initial points, at most.
     pub first_quench: u64,
-    /// Probability that a chain's round starts with a differential move.
-    pub jump_rate: f64,
-    /// Rounds without a new best before the hotter half restarts.
+    /// Rounds without a new best that make a stall (the convergence
+    /// window is two).
     pub stall: u64,
     /// The acceptance rate each rung's step is steered to (0: fixed).
     pub accept: f64,
-    /// Whether the differential moves and the restarts of a stalled run
-    /// are on (off: the ablation "(b) no global moves" of docs/QUALITY.md).
-    pub global_moves: bool,
 }
 
 /// What `Auto.minimize` found.
@@ -78,17 +73,15 @@ pub struct PySolution {
 impl PyAuto {
     #[new]
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (*, steps = None, step_scale = None, ladder = None, quench = None, first_quench = None, jump_rate = None, stall = None, accept = None, global_moves = None))]
+    #[pyo3(signature = (*, steps = None, step_scale = None, ladder = None, quench = None, first_quench = None, stall = None, accept = None))]
     fn new(
         steps: Option<&Bound<'_, PyAny>>,
         step_scale: Option<f64>,
         ladder: Option<f64>,
         quench: Option<&Bound<'_, PyAny>>,
         first_quench: Option<&Bound<'_, PyAny>>,
-        jump_rate: Option<f64>,
         stall: Option<&Bound<'_, PyAny>>,
         accept: Option<f64>,
-        global_moves: Option<bool>,
     ) -> PyResult<Self> {
         let d = Auto::<f64>::default();
         let steps = config::unsigned_opt(steps, "steps")?;
@@ -101,16 +94,13 @@ impl PyAuto {
             ladder: ladder.unwrap_or(d.ladder),
             quench: quench.unwrap_or(d.quench),
             first_quench: first_quench.unwrap_or(d.first_quench),
-            jump_rate: jump_rate.unwrap_or(d.jump_rate),
             stall: stall.unwrap_or(d.stall),
             accept: accept.unwrap_or(d.accept),
-            global_moves: global_moves.unwrap_or(d.parts.global_moves),
         })
     }
 
     /// The convergence window measured best for these settings:
-    /// `2 stall` rounds, one restart of the hotter half finding nothing
-    /// better.
+    /// two stalls, `2 stall` rounds.
     #[getter]
     fn converged_window(&self) -> u64 {
         self.stall.saturating_mul(2)
@@ -203,13 +193,9 @@ impl PyAuto {
             ladder: self.ladder,
             quench: self.quench,
             first_quench: self.first_quench,
-            jump_rate: self.jump_rate,
             stall: self.stall,
             accept: self.accept,
-            parts: Parts {
-                global_moves: self.global_moves,
-                ..Parts::default()
-            },
+            parts: Parts::default(),
         };
         // Looks for Ctrl-C every `SIGNAL_WORK` coordinates evaluated
         // (counted, so where it looks is the same on every machine), and

@@ -90,20 +90,19 @@ def test_auto_steers_its_step_by_the_acceptance_rate():
             hrla.Auto(accept=bad).minimize(hrla.Rastrigin(), box, 5_000, 3)
 
 
-def test_auto_switches_its_global_moves_off():
-    # Off, the differential moves and the restarts are gone: the rate of
-    # the moves then changes nothing, where with them on it changes the run.
-    assert hrla.Auto().global_moves is True and hrla.Auto(global_moves=False).global_moves is False
+def test_auto_stall_is_only_the_convergence_window():
+    # No part of a round restarts chains after a stall: without the
+    # convergence rule, `stall` changes nothing; with it, it sets the window.
     box = [(-5.12, 5.12)] * 4
     x = {}
-    for on in (True, False):
-        for rate in (0.1, 0.9):
-            s = hrla.Auto(global_moves=on, jump_rate=rate).minimize(hrla.Rastrigin(), box, 20_000, 5)
-            x[on, rate] = (s.value, s.evaluations, s.rounds, tuple(s.x))
-    assert x[False, 0.1] == x[False, 0.9]
-    assert x[True, 0.1] != x[True, 0.9]
+    for stall in (3, 30):
+        auto = hrla.Auto(stall=stall)
+        assert auto.converged_window == 2 * stall
+        s = auto.minimize(hrla.Rastrigin(), box, 20_000, 5)
+        x[stall] = (s.value, s.evaluations, s.rounds, tuple(s.x))
+    assert x[3] == x[30]
     with pytest.raises(TypeError):
-        hrla.Auto(global_moves="no")
+        hrla.Auto(jump_rate=0.1)
 
 
 def test_views_look_into_the_optimizer():

@@ -392,14 +392,14 @@ def test_optimizer_never_panics_and_never_claims_too_much(fun, sampler, schedule
 @pytest.mark.timeout(600)
 @campaign(1500)
 @given(fun=potentials, steps=mostly(st.none(), hostile_count), quench=mostly(st.none(), hostile_count),
-       ladder=mostly(st.none(), hostile_float), jump=mostly(st.none(), hostile_float),
+       ladder=mostly(st.none(), hostile_float),
        scale=mostly(st.none(), hostile_float), stall=mostly(st.none(), hostile_count),
        accept=mostly(st.none(), hostile_float), box=boxes,
        budget=budgets, chains=mostly(st.one_of(st.none(), st.integers(1, 40)), hostile_chains), d=dims)
-def test_auto_never_panics_and_never_claims_too_much(fun, steps, quench, ladder, jump, scale, stall, accept,
+def test_auto_never_panics_and_never_claims_too_much(fun, steps, quench, ladder, scale, stall, accept,
                                                       box, budget, chains, d):
     cases["auto"] += 1
-    auto = call(hrla.Auto, steps=steps, quench=quench, ladder=ladder, jump_rate=jump, step_scale=scale,
+    auto = call(hrla.Auto, steps=steps, quench=quench, ladder=ladder, step_scale=scale,
                 stall=stall, accept=accept)
     interval = call(hrla.Interval, *box)
     if auto is None or interval is None:

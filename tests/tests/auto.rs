@@ -143,15 +143,6 @@ fn bad_settings_are_refused() {
             })
         ));
     }
-    for jump_rate in [f64::NAN, -0.1, 1.5] {
-        assert!(matches!(
-            run(Auto { jump_rate, ..d }, 1000, 4),
-            Err(Error::NotPositive {
-                name: "jump_rate (in [0, 1])",
-                ..
-            })
-        ));
-    }
     assert!(matches!(
         run(
             Auto {
@@ -457,15 +448,11 @@ fn a_run_time_dimension_gives_the_const_bits() {
                 ..Parts::default()
             },
             Parts {
-                sampling: Sampling::Off,
+                sampling: Sampling::Differential,
                 ..Parts::default()
             },
             Parts {
                 quenches: false,
-                ..Parts::default()
-            },
-            Parts {
-                global_moves: false,
                 ..Parts::default()
             },
         ] {
@@ -520,7 +507,7 @@ fn a_run_time_dimension_gives_the_const_bits() {
         );
         cases += 3;
     }
-    assert_eq!(cases, 16);
+    assert_eq!(cases, 14);
 }
 
 /// `Auto` in the box `[-5.12 s_i, 5.12 s_i]` on `U(x) = base(z)`,
@@ -980,16 +967,17 @@ fn a_box_of_equal_sides_keeps_its_bits() {
         let h = outcome_hash(&x, value, evaluations, rounds, f64::from_bits(step));
         hashes.push((h, h));
     }
-    // Pinned with the run in the problem's units.
+    // Pinned: rounds of sampling, quench and acceptance, in the problem's
+    // units.
     assert_eq!(
         hashes,
         [
-            (0x51292e9dc1ddf80e, 0xb3bfcfff1461b92c),
-            (0x3569e9e30355c189, 0x42daa3b68656bea3),
-            (0xcfffafc36faa6c41, 0xcfffafc36faa6c41),
-            (0xc4e11431840dedce, 0x3d5164ac8a29bd38),
-            (0xcc6d70fb5fbe4ee1, 0x38e772b4599d09f4),
-            (0x8df77d4ab487f558, 0x8df77d4ab487f558),
+            (0x95088cb2fd9c65ac, 0xd4909f410fbbfcb9),
+            (0x2113e714f476218c, 0xf04a4631ebf73f29),
+            (0xadac8887801e5cac, 0xadac8887801e5cac),
+            (0xeca9cad147660717, 0xbe59abbae6a1e9c4),
+            (0x10ba109ed069dbaf, 0x425d4b87f02500c1),
+            (0x68ccb4917206d1e8, 0x68ccb4917206d1e8),
         ]
     );
 }

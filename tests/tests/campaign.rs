@@ -485,43 +485,25 @@ fn wild_auto() -> impl Strategy<Value = Auto<f64>> {
         mostly_sane64(),
         mostly_sane64(),
         prop_oneof![Just(0u64), 1..200u64, Just(u64::MAX)],
-        prop_oneof![1 => mostly_sane64(), 3 => 0.0f64..=1.0],
         prop_oneof![1 => Just(0u64), 4 => 1..100u64, 1 => Just(u64::MAX)],
         prop_oneof![
             Just(Sampling::Langevin),
             Just(Sampling::Jump),
-            Just(Sampling::Off)
+            Just(Sampling::Differential)
         ],
-        any::<(bool, bool)>(),
+        any::<bool>(),
         prop_oneof![1 => mostly_sane64(), 3 => 0.0f64..=1.0],
     )
         .prop_map(
-            |(
+            |(steps, step_scale, ladder, quench, stall, sampling, quenches, accept)| Auto {
                 steps,
                 step_scale,
                 ladder,
                 quench,
-                jump_rate,
+                first_quench: quench,
                 stall,
-                sampling,
-                (global, quenches),
                 accept,
-            )| {
-                Auto {
-                    steps,
-                    step_scale,
-                    ladder,
-                    quench,
-                    first_quench: quench,
-                    jump_rate,
-                    stall,
-                    accept,
-                    parts: Parts {
-                        sampling,
-                        global_moves: global,
-                        quenches,
-                    },
-                }
+                parts: Parts { sampling, quenches },
             },
         )
 }

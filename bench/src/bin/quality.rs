@@ -8,12 +8,12 @@
 //! ```
 //!
 //! Strategies: `hrla-default` (the kernel's [`hrla::Auto`] with
-//! `Auto::chains_for(B)` chains); its ablations `hrla-no-sampling` (a:
-//! [`hrla::Sampling::Off`]), `hrla-jump` (the sampler's gradient removed:
-//! [`hrla::Sampling::Jump`]), `hrla-fixed-step` (every rung at the
-//! measured step: `accept = 0`), `hrla-no-global` (b: no differential
-//! moves, no restarts), `hrla-no-quench` (c: no quench of the proposals),
-//! all six at once with `--strategies ablation`; `hrla-paper` (the paper's settings: h = 0.01, linear annealing
+//! `Auto::chains_for(B)` chains); its ablations `hrla-jump` (the sampler's
+//! gradient removed: [`hrla::Sampling::Jump`]), `hrla-fixed-step` (every
+//! rung at the measured step: `accept = 0`), `hrla-no-quench` (no quench
+//! of the proposals), all four at once with `--strategies ablation`;
+//! `hrla-differential` (a differential move instead of the trajectory:
+//! [`hrla::Sampling::Differential`]); `hrla-paper` (the paper's settings: h = 0.01, linear annealing
 //! 0.1 -> 4, 250 chains), `hrla-paper-polish` (the same with 5% of the
 //! budget kept for an L-BFGS polish of the best point). Every run is
 //! confined to the problem's box and starts uniform in it.
@@ -29,12 +29,10 @@ use hrla::{
 use hrla_bench::problems;
 
 /// `--strategies ablation`: the default and each ablation.
-const ABLATION: [&str; 6] = [
+const ABLATION: [&str; 4] = [
     "hrla-default",
-    "hrla-no-sampling",
     "hrla-jump",
     "hrla-fixed-step",
-    "hrla-no-global",
     "hrla-no-quench",
 ];
 
@@ -128,17 +126,15 @@ fn auto_for(strategy: &str) -> hrla::Auto<f64> {
         ladder: env("HRLA_AUTO_LADDER", d.ladder),
         quench: env("HRLA_AUTO_QUENCH", d.quench),
         first_quench: env("HRLA_AUTO_FIRST_QUENCH", d.first_quench),
-        jump_rate: env("HRLA_AUTO_JUMP", d.jump_rate),
         stall: env("HRLA_AUTO_STALL", d.stall),
         accept: env("HRLA_AUTO_ACCEPT", d.accept),
         parts: d.parts,
     };
     match strategy {
         "hrla-default" => {}
-        "hrla-no-sampling" => auto.parts.sampling = hrla::Sampling::Off,
         "hrla-jump" => auto.parts.sampling = hrla::Sampling::Jump,
+        "hrla-differential" => auto.parts.sampling = hrla::Sampling::Differential,
         "hrla-fixed-step" => auto.accept = 0.0,
-        "hrla-no-global" => auto.parts.global_moves = false,
         "hrla-no-quench" => auto.parts.quenches = false,
         _ => panic!("unknown strategy {strategy}"),
     }

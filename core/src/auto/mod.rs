@@ -4,13 +4,7 @@
 //! Every chain holds a basin: a point quenched to a local minimum, and its
 //! value. A round moves each chain by named steps:
 //!
-//! 1. **Global move** (with probability [`Auto::jump_rate`]): from its
-//!    basin, a differential move `x + γ (x_i - x_j)` along the difference
-//!    of two other chains' basins (`γ` uniform in `[0.5, 1]`). Its length
-//!    and direction come from where the chains are, not from the
-//!    coordinate axes, so the solver is rotation invariant as CMA-ES and
-//!    differential evolution are.
-//! 2. **Sampling**: [`Auto::steps`] HRLA steps at the chain's inverse
+//! 1. **Sampling**: [`Auto::steps`] HRLA steps at the chain's inverse
 //!    temperature `a_c`, from there, with the momentum `y` the chain kept
 //!    from its last trajectory. The exact OU step is stable at large `h`,
 //!    so the trajectory follows the gradient's trend across several basins.
@@ -20,19 +14,17 @@
 //!    Metropolis samplers and basin hopping steer theirs), so hot rungs
 //!    lengthen their trajectories until they reach other basins, and cold
 //!    ones shorten theirs.
-//! 3. **Quench**: L-BFGS from the trajectory's end until it converges
+//! 2. **Quench**: L-BFGS from the trajectory's end until it converges
 //!    (at most [`Auto::quench`] evaluations): the basin it fell into.
-//! 4. **Acceptance**: Metropolis on the quenched values at `a_c`: the chain
+//! 3. **Acceptance**: Metropolis on the quenched values at `a_c`: the chain
 //!    moves to the new basin with probability `min(1, exp(-a_c ΔU))`.
 //!
 //! After each round, **tempering**: adjacent rungs of the ladder swap their
 //! basins with the replica-exchange probability, so good basins flow to the
-//! cold chains and the hot ones keep exploring. When the best has not
-//! fallen for [`Auto::stall`] rounds, the hotter half **restarts** uniformly
-//! in the box. At the end the best point is **polished** by L-BFGS until it
-//! converges: the returned point is a local minimum to the float type's
-//! precision (unless the observer stopped the run, or the budget ran out
-//! within the polish).
+//! cold chains and the hot ones keep exploring. At the end the best point
+//! is **polished** by L-BFGS until it converges: the returned point is a
+//! local minimum to the float type's precision (unless the observer
+//! stopped the run, or the budget ran out within the polish).
 //!
 //! The settings are **measured** on the problem, after the initial points
 //! are quenched ([`measure`]), and every constant holds in the
@@ -76,7 +68,7 @@
 //! In a box of equal sides the unit coordinates are the box's own.
 //!
 //! The evaluation budget covers everything: initial points, probes,
-//! steps, quenches, restarts and the final polish. The constants of
+//! steps, quenches and the final polish. The constants of
 //! [`Auto::default`] were chosen on the quality benchmark
 //! (`bench/quality`, `docs/QUALITY.md`), the same for every problem;
 //! [`Auto::parts`] switches parts off for the benchmark's ablations.
@@ -222,7 +214,7 @@ impl<F: Float> Auto<F> {
 
     /// [`minimize`](Auto::minimize) with an observer: called once after
     /// the initial points, then after every HRLA step of a chain, every
-    /// quench, every restart and the final polish, with
+    /// quench and the final polish, with
     /// the best so far and whether it fell since the last call. Returning
     /// `ControlFlow::Break(())` ends the run at once with the best so far
     /// and [`Termination::Observer`]: a time limit or a cancellation

@@ -1,5 +1,5 @@
-//! The random pieces of a round: uniform numbers, directions, points in
-//! the box, differential moves and gradient-free trajectories.
+//! The random pieces of a round: uniform numbers, directions, differential
+//! moves and gradient-free trajectories.
 
 use rand_core::Rng;
 
@@ -18,11 +18,6 @@ pub(super) fn index<R: Rng + ?Sized>(rng: &mut R, n: usize) -> usize {
     (((rng.next_u64() >> 32) * n as u64) >> 32) as usize
 }
 
-/// Whether an event of probability `p` happens.
-pub(super) fn chance<F: Float, R: Rng + ?Sized>(rng: &mut R, p: F) -> bool {
-    uniform::<F, R>(rng) < p
-}
-
 /// A uniform direction into `v`: normalised standard normals (rotation
 /// invariant).
 pub(super) fn direction<F: Float, R: Rng + ?Sized>(rng: &mut R, v: &mut [F]) {
@@ -39,6 +34,19 @@ pub(super) fn direction<F: Float, R: Rng + ?Sized>(rng: &mut R, v: &mut [F]) {
     } else if let Some(v0) = v.first_mut() {
         *v0 = F::ONE;
     }
+}
+
+/// Two chains other than `c` of `n` (`n >= 3`), distinct, uniform.
+pub(super) fn pair<R: Rng + ?Sized>(rng: &mut R, c: usize, n: usize) -> (usize, usize) {
+    let i = (c + 1 + index(rng, n - 1)) % n;
+    let mut j = (c + 1 + index(rng, n - 2)) % n;
+    if j == i {
+        j = (i + 1) % n;
+        if j == c {
+            j = (j + 1) % n;
+        }
+    }
+    (i, j)
 }
 
 /// The factor `γ` of a differential move: uniform in `[0.5, 1]`.

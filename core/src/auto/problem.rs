@@ -116,9 +116,8 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
     /// rounds: by more than [`CONVERGED`](crate::CONVERGED) times the spread (interquartile
     /// range) of `U` at the initial points, a tolerance in the problem's
     /// own units, so that the rule reads the same whatever the scale of
-    /// `U`. The hotter half of the chains restarts after [`Auto::stall`]
-    /// rounds without a new best, so a window of twice that
-    /// ([`Problem::converged`]) sees one restart find nothing better. The
+    /// `U`. The default window is two stalls, `2` [`Auto::stall`] rounds
+    /// ([`Problem::converged`]). The
     /// rule also holds after a sixth of the window (at least one round)
     /// in which the best did not fall and every chain's basin was the
     /// best's (within `1e-8` of that spread): every chain, the hottest
@@ -130,7 +129,7 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
     }
 
     /// [`converge`](Problem::converge) with the window `auto` measured
-    /// best: two restarts' worth of rounds, `2 auto.stall`.
+    /// best: two stalls, `2 auto.stall` rounds.
     pub fn converged(self, auto: &Auto<F>) -> Self {
         self.converge(auto.stall.saturating_mul(2))
     }

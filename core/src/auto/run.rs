@@ -397,8 +397,6 @@ pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
     units: Units<F>,
     a0: F,
     h: F,
-    /// Rounds since the best last fell.
-    stalled: u64,
     /// The problem's target, stall and round rules.
     rules: Rules<F>,
     /// The best value when it last fell by more than the stall tolerance,
@@ -530,7 +528,6 @@ where
             },
             a0: F::ONE,
             h: F::ONE,
-            stalled: 0,
             rules: Rules::new(),
             stall_from: (F::INFINITY, 0),
             converge_from: (F::INFINITY, 0),
@@ -718,10 +715,8 @@ where
     }
 
     /// One round: every chain proposes and accepts or rejects a new basin,
-    /// then the ladder's neighbours exchange, then a stalled run restarts
-    /// its hotter half.
+    /// then the ladder's neighbours exchange.
     fn round(&mut self) -> Flow {
-        let before = self.tally.best_value;
         let n = self.chains.len();
         for c in 0..n {
             if self.tally.remaining() <= self.tally.reserve() {
@@ -732,34 +727,19 @@ where
         }
         self.tally.rounds += 1;
         self.exchange();
-        // A fall within the rounding of the quenches' ends is no progress.
-        self.stalled = if self.tally.best_value < before - self.tally.scale.resolved(before) {
-            0
-        } else {
-            self.stalled + 1
-        };
-        let auto = self.tally.auto;
-        if auto.parts.global_moves && self.stalled >= auto.stall {
-            self.stalled = 0;
-            self.restart()?;
-        }
         ControlFlow::Continue(())
     }
 
-    /// Chain `c` leaves its basin (global move, then sampling), quenches,
-    /// and accepts the new basin by Metropolis at its temperature: the
-    /// four steps of a round, each its own method.
+    /// Chain `c` leaves its basin by sampling, quenches, and accepts the
+    /// new basin by Metropolis at its temperature: the three steps of a
+    /// round, each its own method.
     fn propose(&mut self, c: usize) -> Flow {
         let a = self.rung(c);
         let Units { length, energy } = self.units;
         self.x.copy_from_slice(self.chains.x(c));
         self.y.copy_from_slice(self.chains.chain(c).y);
         self.grad.fill(F::ZERO);
-        let point = if self.global_move(c) {
-            Point::Unknown
-        } else {
-            Point::Known(self.chains.value(c))
-        };
+        let point = Point::Known(self.chains.value(c));
         let n = self.chains.len();
         let slot = if n > SLOTS { c * SLOTS / n } else { c };
         let h = measure::clamp(self.h * self.scale[slot], measure::H_RANGE);
@@ -777,43 +757,9 @@ where
         }
     }
 
-    /// Step 1, the global move: with probability [`Auto::jump_rate`] (or
-    /// always, without sampling), the proposal starts from a differential
-    /// move along two other chains' basins; whether it did.
-    fn global_move(&mut self, c: usize) -> bool {
-        let n = self.chains.len();
-        let auto = self.tally.auto;
-        let parts = auto.parts;
-        let jump = parts.global_moves
-            && n >= 3
-            && (parts.sampling == Sampling::Off
-                || moves::chance(self.chains.chain(c).rng, auto.jump_rate));
-        if jump {
-            let rng = self.chains.chain(c).rng;
-            let i = (c + 1 + moves::index(rng, n - 1)) % n;
-            let mut j = (c + 1 + moves::index(rng, n - 2)) % n;
-            if j == i {
-                j = (i + 1) % n;
-                if j == c {
-                    j = (j + 1) % n;
-                }
-            }
-            let gamma = moves::gamma(rng);
-            moves::differential(
-                self.x,
-                self.chains.x(i),
-                self.chains.x(j),
-                gamma,
-                self.tally.domain,
-                self.g0,
-            );
-        }
-        jump
-    }
-
-    /// Step 2, sampling: [`Auto::steps`] steps of `kernel` from the
+    /// Step 1, sampling: [`Auto::steps`] steps of `kernel` from the
     /// proposal's point (each evaluated, with Langevin sampling), or free
-    /// moves (jump sampling), or none.
+    /// moves (jump sampling), or a differential move.
     fn sample(
         &mut self,
         c: usize,
@@ -879,11 +825,30 @@ where
                 unit.scale_out(self.x);
                 ControlFlow::Continue(Point::Unknown)
             }
-            Sampling::Off => ControlFlow::Continue(point),
+            Sampling::Differential => {
+                let n = self.chains.len();
+                let rng = self.chains.chain(c).rng;
+                let (i, j) = match n {
+                    // A lone chain has no difference to move along.
+                    1 => return ControlFlow::Continue(point),
+                    2 => (1 - c, c),
+                    _ => moves::pair(rng, c, n),
+                };
+                let gamma = moves::gamma(rng);
+                moves::differential(
+                    self.x,
+                    self.chains.x(i),
+                    self.chains.x(j),
+                    gamma,
+                    self.tally.domain,
+                    self.g0,
+                );
+                ControlFlow::Continue(Point::Unknown)
+            }
         }
     }
 
-    /// Step 3, the quench: L-BFGS from the proposal's point to the bottom
+    /// Step 2, the quench: L-BFGS from the proposal's point to the bottom
     /// of its basin (or, without quenches, the point evaluated where its
     /// value is not known).
     fn settle(&mut self, c: usize, point: Point<F>) -> ControlFlow<Stop, Point<F>> {
@@ -906,7 +871,7 @@ where
         ControlFlow::Continue(found.map_or(Point::Rejected, Point::Known))
     }
 
-    /// Step 4, acceptance: Metropolis on the quenched values at `a`; the
+    /// Step 3, acceptance: Metropolis on the quenched values at `a`; the
     /// rung's step then follows the verdict.
     fn accept(&mut self, c: usize, a: F, slot: usize, value: F) -> Flow {
         let chain = self.chains.chain(c);
@@ -969,35 +934,6 @@ where
                 self.chains.swap(c);
             }
         }
-    }
-
-    /// The hotter half of the ladder starts again uniformly in the box.
-    fn restart(&mut self) -> Flow {
-        let domain = self.tally.domain;
-        for c in 0..self.chains.len() / 2 {
-            if self.tally.remaining() <= self.tally.reserve() {
-                break;
-            }
-            domain.uniform(self.chains.chain(c).rng, self.x);
-            let Some(mut value) = self.tally.evaluate(self.x, self.grad)? else {
-                continue;
-            };
-            if self.tally.auto.parts.quenches {
-                let Some(v) = self
-                    .tally
-                    .quench(c, self.x, self.base, self.tally.auto.quench)?
-                else {
-                    continue;
-                };
-                value = v;
-                self.grad.fill(F::ZERO);
-            }
-            let chain = self.chains.chain(c);
-            settle(chain, self.x, value);
-            self.chains.chain(c).grad.copy_from_slice(self.grad);
-            self.observe()?;
-        }
-        ControlFlow::Continue(())
     }
 
     /// The best point polished by L-BFGS until it converges, if no

@@ -15,9 +15,13 @@ pub enum Sampling {
     /// of [`Auto::steps`] gradient-free HRLA steps, evaluated once at its
     /// end. What the gradient in the sampler adds is the difference.
     Jump,
-    /// No move: the global moves alone leave the basin (every round, not
-    /// at [`Auto::jump_rate`]), and the evaluations go to more rounds.
-    Off,
+    /// No trajectory: a differential move `x + γ (x_i - x_j)` along the
+    /// difference of two other chains' basins (`γ` uniform in
+    /// `[0.5, 1]`; with two chains, along the other's difference from
+    /// this one), rotation invariant as in differential evolution. A long
+    /// jump between unrelated basins far apart, which a trajectory does
+    /// not make: Schwefel's deceptive basins (`docs/QUALITY.md`).
+    Differential,
 }
 
 /// The parts of a round (all on by default); switched off one at a time,
@@ -26,8 +30,6 @@ pub enum Sampling {
 pub struct Parts {
     /// How a chain leaves its basin.
     pub sampling: Sampling,
-    /// The differential moves and the restarts of a stalled run.
-    pub global_moves: bool,
     /// The quench of every proposal (without it, the proposal's end point
     /// is the chain's new state; the best point is still polished at the
     /// end).
@@ -38,7 +40,6 @@ impl Default for Parts {
     fn default() -> Self {
         Self {
             sampling: Sampling::Langevin,
-            global_moves: true,
             quenches: true,
         }
     }
@@ -64,9 +65,9 @@ pub struct Auto<F> {
     /// starts within a few dozen gradients) and the rounds' own quenches
     /// finish the descent.
     pub first_quench: u64,
-    /// Probability that a chain's round starts with a differential move.
-    pub jump_rate: F,
-    /// Rounds without a new best before the hotter half restarts.
+    /// Rounds without a new best that make a stall: the default convergence
+    /// rule ([`Problem::converged`](crate::Problem::converged)) ends a run
+    /// after two.
     pub stall: u64,
     /// The parts of a round: all on, except in ablations.
     pub parts: Parts,
@@ -82,8 +83,8 @@ pub struct Auto<F> {
 impl<F: Float> Default for Auto<F> {
     /// 10 HRLA steps per round from `h = 2 / L`, steered to accept half
     /// the proposals, a ladder of `±3.5` in `ln a`, quenches (the initial
-    /// points' too) of up to 1000 evaluations, differential moves in 10% of the rounds, restarts
-    /// after 30 rounds without a new best.
+    /// points' too) of up to 1000 evaluations, and a stall of 30 rounds
+    /// without a new best.
     fn default() -> Self {
         Self {
             steps: 10,
@@ -91,7 +92,6 @@ impl<F: Float> Default for Auto<F> {
             ladder: F::from_f64(3.5),
             quench: 1000,
             first_quench: 1000,
-            jump_rate: F::from_f64(0.1),
             stall: 30,
             parts: Parts::default(),
             accept: F::HALF,
@@ -114,7 +114,7 @@ impl<F: Float> Auto<F> {
         if self.stall == 0 {
             return Err(Error::Zero { name: "stall" });
         }
-        if self.steps == 0 && self.parts.sampling != Sampling::Off {
+        if self.steps == 0 && self.parts.sampling != Sampling::Differential {
             return Err(Error::Zero { name: "steps" });
         }
         // A jump's steps cost no evaluation: the budget would not bound them.
@@ -143,12 +143,6 @@ impl<F: Float> Auto<F> {
             return Err(Error::NotPositive {
                 name: "accept (in [0, 1])",
                 value: self.accept.to_f64(),
-            });
-        }
-        if !(self.jump_rate >= F::ZERO && self.jump_rate <= F::ONE) {
-            return Err(Error::NotPositive {
-                name: "jump_rate (in [0, 1])",
-                value: self.jump_rate.to_f64(),
             });
         }
         Ok(())

@@ -109,13 +109,13 @@ where
     F: Float,
     P: SlicePotential<F> + ?Sized,
 {
-    place(rng, x);
-    let value = potential.value_and_gradient(x, grad);
-    *evaluations += 1;
-    settle_point(c, x, grad, value, spare, evaluations, |x, grad| {
+    let mut draw = |x: &mut [F], grad: &mut [F]| {
         place(rng, x);
         potential.value_and_gradient(x, grad)
-    })
+    };
+    let value = draw(x, grad);
+    *evaluations += 1;
+    settle_point(c, x, grad, value, spare, evaluations, draw)
 }
 
 /// Judges chain `c`'s first initial point, `x` of value `value` and
