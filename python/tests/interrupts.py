@@ -22,6 +22,11 @@ import numpy as np
 
 import hrla
 
+# A process started with SIGINT ignored (a background job of a
+# non-interactive shell inherits it so) would never see the signal: Python
+# installs its handler only where SIGINT is not ignored at start-up.
+signal.signal(signal.SIGINT, signal.default_int_handler)
+
 DELAY = 0.3  # seconds before the SIGINT; any value gives the same verdict
 
 
