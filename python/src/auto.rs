@@ -124,7 +124,7 @@ impl PyAuto {
     ///
     /// `observer(rounds, evaluations, best_value)`, when given, is called
     /// as the run goes (a Python potential's run: after every step of the
-    /// chains, quench and restart; a built-in's: at every new round and
+    /// chains, quench and the polish; a built-in's: at every new round and
     /// every new best); a true answer ends the run, whose termination is
     /// then `"Observer"`, and an exception ends it with that exception.
     /// With `with_x=True` it gets the best point too, a copy:
