@@ -109,13 +109,16 @@ where
     F: Float,
     P: SlicePotential<F> + ?Sized,
 {
-    let mut draw = |x: &mut [F], grad: &mut [F]| {
+    // Written out here and in the redraw: one closure, called once and then
+    // handed to `settle_point`, costs the Cortex-M4F f64 firmware 464 to
+    // 752 bytes of flash (measured), over its 32 KiB budget.
+    place(rng, x);
+    let value = potential.value_and_gradient(x, grad);
+    *evaluations += 1;
+    settle_point(c, x, grad, value, spare, evaluations, |x, grad| {
         place(rng, x);
         potential.value_and_gradient(x, grad)
-    };
-    let value = draw(x, grad);
-    *evaluations += 1;
-    settle_point(c, x, grad, value, spare, evaluations, draw)
+    })
 }
 
 /// Judges chain `c`'s first initial point, `x` of value `value` and
