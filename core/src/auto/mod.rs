@@ -71,7 +71,8 @@
 //! steps, quenches and the final polish. The constants of
 //! [`Auto::default`] were chosen on the quality benchmark
 //! (`bench/quality`, `docs/QUALITY.md`), the same for every problem;
-//! [`Auto::parts`] switches parts off for the benchmark's ablations.
+//! [`Auto::parts`] switches parts off for the benchmark's ablations and
+//! chooses how a chain leaves its basin ([`Sampling`]).
 
 mod measure;
 mod moves;

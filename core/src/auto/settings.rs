@@ -24,8 +24,10 @@ pub enum Sampling {
     Differential,
 }
 
-/// The parts of a round (all on by default); switched off one at a time,
-/// they are the quality benchmark's ablations.
+/// The parts of a round. The default is Langevin sampling with quenches;
+/// switched off one at a time they are the quality benchmark's ablations,
+/// and [`Sampling::Differential`] is a user's option for deceptive
+/// separable problems (Schwefel's; `docs/QUALITY.md`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Parts {
     /// How a chain leaves its basin.
@@ -69,7 +71,8 @@ pub struct Auto<F> {
     /// rule ([`Problem::converged`](crate::Problem::converged)) ends a run
     /// after two.
     pub stall: u64,
-    /// The parts of a round: all on, except in ablations.
+    /// The parts of a round: Langevin sampling and quenches by default;
+    /// see [`Parts`] for the alternatives.
     pub parts: Parts,
     /// The acceptance rate each rung's step is steered to: after each
     /// proposal of a rung, its step is multiplied by `exp(0.3 (1 - accept))`
