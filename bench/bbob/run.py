@@ -33,7 +33,8 @@ a gradient-free ensemble Langevin prototype, ``ensemble.minimize(fun,
 [(-5, 5)] * d, maxfun=B, rng=seed)``) and its ablations ``ensemble-od``,
 ``-iso``, ``-norestart``, ``-raw``, ``-noaldi``, ``-n2``, ``-nhalf``,
 ``-n2raw``
-(ENSEMBLE below).
+(ENSEMBLE below); ``portfolio``: hrla's default to ``100 d`` calls, then
+``ensemble-n2`` with the calls left (``portfolio-300``: hrla to ``300 d``).
 
 Counting (the same wrapper for every solver): each call of ``fun`` is one
 evaluation; the attempt of call B + 1 raises a private exception that ends
@@ -145,6 +146,24 @@ def run_ensemble(options):
     return runner
 
 
+def run_portfolio(share):
+    """hrla's default for the first ``share d`` calls (its lead at 100 d),
+    then the ensemble prototype with twice its initial population for the
+    rest (its lead from 1000 d): a sequential portfolio, measured as one
+    solver."""
+
+    def runner(fun, d, budget, seed):
+        import ensemble
+        import hrla
+
+        hrla.minimize(fun, [BOX] * d, maxfun=min(budget, share * d), rng=seed)
+        left = budget - fun.calls
+        if left > 0:
+            ensemble.minimize(fun, [BOX] * d, maxfun=left, rng=seed, pop_factor=2.0)
+
+    return runner
+
+
 RUNNERS = {
     "hrla": run_hrla,
     "ipop-cma-es": run_ipop_cma_es,
@@ -152,6 +171,8 @@ RUNNERS = {
     "differential-evolution": run_differential_evolution,
 }
 RUNNERS.update({name: run_ensemble(opts) for name, opts in ENSEMBLE.items()})
+RUNNERS["portfolio"] = run_portfolio(100)
+RUNNERS["portfolio-300"] = run_portfolio(300)
 
 
 def versions():
@@ -167,6 +188,8 @@ def versions():
            "dual-annealing": f"scipy {scipy.__version__}",
            "differential-evolution": f"scipy {scipy.__version__}"}
     out.update({name: f"ensemble.py {opts or 'defaults'}" for name, opts in ENSEMBLE.items()})
+    out["portfolio"] = f"{out['hrla']} to 100 d, then ensemble.py pop_factor=2"
+    out["portfolio-300"] = f"{out['hrla']} to 300 d, then ensemble.py pop_factor=2"
     return out
 
 
