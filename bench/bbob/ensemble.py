@@ -43,6 +43,11 @@ Positions are clipped to the box (``boundary="reflect"``: reflected).
 Population: N0 = max(8, ceil(pop_factor P / memory) + 1), P = 1 + d + d(d+1)/2
 the model's parameters (d = 5: 12; d = 10: 34).
 
+Cooling when stalled (``cool``, default 1: off): after every
+``cool_every`` = 10 iterations of a restart without a new best, kappa is
+multiplied by ``cool``, so an ensemble held wide by a rugged landscape's
+rank noise contracts (``cool=1.5``: the variant ``ensemble-n2cool15``).
+
 Restarts (IPOP): when sd(U) over a generation falls below 1e-12 (|mean U| +
 1e-300), the ensemble's largest standard deviation below 1e-12 of the box,
 or the restart's best has not improved (relatively, by 1e-12) for 20 + 3 d
@@ -127,7 +132,7 @@ def fit_quadratic(z, v, ridge):
 
 def minimize(fun, bounds, maxfun, rng=None, *, n0=None, r=6.0, h=1.0, eta=1.0, order=2,
              precondition=True, restarts=True, values="rank", memory=2, ridge=0.05,
-             aldi=True, pop_factor=1.0, boundary="clip", psd=False):
+             aldi=True, pop_factor=1.0, boundary="clip", psd=False, cool=1.0, cool_every=10):
     rng = np.random.default_rng(rng)
     bounds = np.asarray(bounds, dtype=float)
     lo, hi = bounds[:, 0], bounds[:, 1]
@@ -167,6 +172,7 @@ def minimize(fun, bounds, maxfun, rng=None, *, n0=None, r=6.0, h=1.0, eta=1.0, o
             Yv = np.zeros((n, d))
             hist = []
             run_best, since = math.inf, 0
+            kappa_run = kappa
             while True:
                 F = evaluate(X)
                 hist.append((X.copy(), F))
@@ -177,6 +183,8 @@ def minimize(fun, bounds, maxfun, rng=None, *, n0=None, r=6.0, h=1.0, eta=1.0, o
                     run_best, since = fb, 0
                 else:
                     since += 1
+                    if since % cool_every == 0:
+                        kappa_run *= cool
                 sdF = F.std()
                 m = X.mean(axis=0)
                 C = np.cov(X.T).reshape(d, d)
@@ -210,7 +218,7 @@ def minimize(fun, bounds, maxfun, rng=None, *, n0=None, r=6.0, h=1.0, eta=1.0, o
                 sd = cur.std()
                 if not sd > 0:
                     sd = 1.0
-                Va = (kappa / sd) * s
+                Va = (kappa_run / sd) * s
                 # older points far outside the current frame say nothing local
                 near = np.all(np.isfinite(Za), axis=1) & (np.max(np.abs(Za), axis=1) < 1e3)
                 near[-n:] = True

@@ -32,9 +32,10 @@ Extra solvers, run only when named: ``ensemble`` (bench/bbob/ensemble.py,
 a gradient-free ensemble Langevin prototype, ``ensemble.minimize(fun,
 [(-5, 5)] * d, maxfun=B, rng=seed)``) and its ablations ``ensemble-od``,
 ``-iso``, ``-norestart``, ``-raw``, ``-noaldi``, ``-n2``, ``-nhalf``,
-``-n2raw``
+``-n2raw``, ``-n2cool``, ``-n2cool15``
 (ENSEMBLE below); ``portfolio``: hrla's default to ``100 d`` calls, then
-``ensemble-n2`` with the calls left (``portfolio-300``: hrla to ``300 d``).
+``ensemble-n2`` with the calls left (``portfolio-300``: hrla to ``300 d``;
+``portfolio-cool``: then ``ensemble-n2cool15``).
 
 Counting (the same wrapper for every solver): each call of ``fun`` is one
 evaluation; the attempt of call B + 1 raises a private exception that ends
@@ -134,6 +135,10 @@ ENSEMBLE = {
     "ensemble-n2": {"pop_factor": 2.0},  # twice the initial population
     "ensemble-nhalf": {"pop_factor": 0.5},
     "ensemble-n2raw": {"pop_factor": 2.0, "values": "raw"},
+    # cooling when stalled: kappa x2 (x1.5) after every 10 iterations of a
+    # restart without a new best, so a spread ensemble contracts
+    "ensemble-n2cool": {"pop_factor": 2.0, "cool": 2.0},
+    "ensemble-n2cool15": {"pop_factor": 2.0, "cool": 1.5},
 }
 
 
@@ -146,7 +151,7 @@ def run_ensemble(options):
     return runner
 
 
-def run_portfolio(share):
+def run_portfolio(share, **options):
     """hrla's default for the first ``share d`` calls (its lead at 100 d),
     then the ensemble prototype with twice its initial population for the
     rest (its lead from 1000 d): a sequential portfolio, measured as one
@@ -159,7 +164,8 @@ def run_portfolio(share):
         hrla.minimize(fun, [BOX] * d, maxfun=min(budget, share * d), rng=seed)
         left = budget - fun.calls
         if left > 0:
-            ensemble.minimize(fun, [BOX] * d, maxfun=left, rng=seed, pop_factor=2.0)
+            ensemble.minimize(fun, [BOX] * d, maxfun=left, rng=seed,
+                              **{"pop_factor": 2.0, **options})
 
     return runner
 
@@ -173,6 +179,7 @@ RUNNERS = {
 RUNNERS.update({name: run_ensemble(opts) for name, opts in ENSEMBLE.items()})
 RUNNERS["portfolio"] = run_portfolio(100)
 RUNNERS["portfolio-300"] = run_portfolio(300)
+RUNNERS["portfolio-cool"] = run_portfolio(100, cool=1.5)
 
 
 def versions():
@@ -190,6 +197,7 @@ def versions():
     out.update({name: f"ensemble.py {opts or 'defaults'}" for name, opts in ENSEMBLE.items()})
     out["portfolio"] = f"{out['hrla']} to 100 d, then ensemble.py pop_factor=2"
     out["portfolio-300"] = f"{out['hrla']} to 300 d, then ensemble.py pop_factor=2"
+    out["portfolio-cool"] = f"{out['hrla']} to 100 d, then ensemble.py pop_factor=2 cool=1.5"
     return out
 
 
