@@ -313,8 +313,10 @@ def main(argv=None):
     todo = {}
     for p in planned:
         todo.setdefault(p[1:4], []).append(p)
-    suite = cocoex.Suite("bbob", "", f"dimensions:{','.join(map(str, dims))} "
-                         f"instance_indices:{','.join(map(str, insts))} "
+    # the instances by number ("instances: ..."): the default suite holds
+    # 1-5 and 71-80, so instance_indices 6-10 would name 71-75
+    suite = cocoex.Suite("bbob", f"instances: {','.join(map(str, insts))}",
+                         f"dimensions:{','.join(map(str, dims))} "
                          f"function_indices:{','.join(map(str, funcs))}")
     t0 = time.perf_counter()
     done = 0
