@@ -264,7 +264,7 @@ def main(argv=None):
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default="target/bbob/runs.jsonl", help="the store (default %(default)s)")
     ap.add_argument("--dims", default="2,5", help="dimensions (default %(default)s)")
-    ap.add_argument("--instances", default="1-5", help="instance indices (default %(default)s)")
+    ap.add_argument("--instances", default="1-5", help="instance numbers (default %(default)s)")
     ap.add_argument("--functions", default="1-24", help="function indices (default %(default)s)")
     ap.add_argument("--solvers", default=",".join(SOLVERS), help="default: all, %(default)s")
     ap.add_argument("--budget", type=float, default=1e4, help="calls per run / d (default %(default)g)")
