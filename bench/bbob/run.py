@@ -101,6 +101,19 @@ def run_hrla(fun, d, budget, seed):
     hrla.minimize(fun, [BOX] * d, maxfun=budget, rng=seed)
 
 
+def run_hrla_variant(**options):
+    """hrla.minimize with ``options``: ``method=hrla.Auto()`` is Auto
+    alone (no ensemble phase), ``converge=False`` spends every budget."""
+
+    def runner(fun, d, budget, seed):
+        import hrla
+
+        given = {k: (v() if callable(v) else v) for k, v in options.items()}
+        hrla.minimize(fun, [BOX] * d, maxfun=budget, rng=seed, **given)
+
+    return runner
+
+
 def run_ipop_cma_es(fun, d, budget, seed):
     import cma
 
@@ -177,6 +190,8 @@ RUNNERS = {
     "differential-evolution": run_differential_evolution,
 }
 RUNNERS.update({name: run_ensemble(opts) for name, opts in ENSEMBLE.items()})
+RUNNERS["hrla-auto"] = run_hrla_variant(method=lambda: __import__("hrla").Auto())
+RUNNERS["hrla-noconverge"] = run_hrla_variant(converge=False)
 RUNNERS["portfolio"] = run_portfolio(100)
 RUNNERS["portfolio-300"] = run_portfolio(300)
 RUNNERS["portfolio-cool"] = run_portfolio(100, cool=1.5)
@@ -195,6 +210,8 @@ def versions():
            "dual-annealing": f"scipy {scipy.__version__}",
            "differential-evolution": f"scipy {scipy.__version__}"}
     out.update({name: f"ensemble.py {opts or 'defaults'}" for name, opts in ENSEMBLE.items()})
+    out["hrla-auto"] = f"{out['hrla']} method=hrla.Auto() (Auto alone)"
+    out["hrla-noconverge"] = f"{out['hrla']} converge=False"
     out["portfolio"] = f"{out['hrla']} to 100 d, then ensemble.py pop_factor=2"
     out["portfolio-300"] = f"{out['hrla']} to 300 d, then ensemble.py pop_factor=2"
     out["portfolio-cool"] = f"{out['hrla']} to 100 d, then ensemble.py pop_factor=2 cool=1.5"

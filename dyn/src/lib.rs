@@ -18,6 +18,9 @@
 //!   dimension, with the chains readable as flat slices or a [`Layout`];
 //! - [`auto::solve`]: the kernel's default solver, [`hrla::Auto`], on the
 //!   same settings;
+//! - [`Ensemble`]: a gradient-free solver of values alone (an ensemble of
+//!   Langevin particles driven by a quadratic model's gradient), which
+//!   continues `Auto` when a front end has no gradient;
 //! - [`termination_name`], [`termination_code`]: the one mapping of why a
 //!   run ended.
 //!
@@ -34,13 +37,16 @@
 pub mod auto;
 pub mod budget;
 mod engine;
+mod ensemble;
 mod error;
+mod linalg;
 mod potential;
 mod report;
 mod settings;
 mod user;
 
 pub use engine::{Engine, Layout, storage_bytes};
+pub use ensemble::{Ensemble, EnsembleEnd, EnsembleRules, EnsembleSolution};
 pub use error::{Error, RanAway};
 pub use potential::{Builtin, BuiltinKind, BuiltinSpec, UnknownPotential};
 pub use report::{Progress, TERMINATIONS, termination_code, termination_name};

@@ -73,6 +73,7 @@ import numpy as np
 from ._hrla import (
     __version__,
     BUILTINS,
+    ENSEMBLE_MAX_DIM,
     Ackley,
     Auto,
     BusyError,
@@ -105,7 +106,7 @@ from ._hrla import (
 from ._minimize import TERMINATIONS, OptimizeResult, minimize
 
 __all__ = [
-    "__version__", "BUILTINS", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
+    "__version__", "BUILTINS", "ENSEMBLE_MAX_DIM", "TERMINATIONS", "Ackley", "Auto", "Builder", "BusyError", "Constant",
     "DivergedError", "DoubleWell", "Gaussian", "Geometric", "Hrla",
     "HrlaError", "InternalError", "Interval", "Levy", "Linear", "Ola", "OptimizeResult",
     "Optimizer", "Point", "Polished", "PolishSettings", "Potential", "Quadratic", "Rastrigin",

@@ -11,7 +11,8 @@ from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tu
 import numpy as np
 
 from . import _objective
-from ._hrla import Auto, Hrla, Interval, Ola, Optimizer, PolishSettings, Potential, Stop, Ula, split_budget
+from ._hrla import (ENSEMBLE_MAX_DIM, Auto, DivergedError, Hrla, Interval, Ola, Optimizer, PolishSettings, Potential, Stop, Ula,
+                    ensemble_minimize, split_budget)
 
 #: The clock of ``maxtime`` and of the progress line's rate (seconds); a
 #: test may replace it with a fake one.
@@ -412,6 +413,21 @@ def minimize(
     ``converge=False`` switches the rule off (the run then spends
     ``maxfun``).
 
+    Without a gradient (``jac`` by finite differences) and with ``D <=
+    ENSEMBLE_MAX_DIM`` (20), ``"auto"`` is two phases: :class:`Auto` with
+    the first ``100 D`` calls of ``fun`` (at least two gradients a chain),
+    where its quenched starts lead on the bbob benchmark, then the layer's
+    gradient-free ensemble with the rest: Langevin particles in their own
+    whitened frame, driven by the gradient of a quadratic model fitted to
+    their values (no finite differences), restarted with twice the
+    particles when they agree or stall (the crate ``hrla-dyn``'s
+    ``Ensemble`` gives the method). Its generations are ``nit``'s
+    iterations after Auto's rounds, each one batch of ``fun`` through
+    ``workers`` or ``vectorized``; the run has converged when two restarts
+    agreed on the best value (``converge=False``: never); ``target``,
+    ``maxiter``, ``maxtime``, the callback and Ctrl-C end it as they end
+    Auto. ``method=hrla.Auto()`` runs Auto alone.
+
     ``rng`` (or ``seed``) is ``None`` (fresh entropy), an int or a
     ``numpy.random.Generator``; the result's ``seed`` repeats the run.
     ``callback(intermediate_result)`` gets an :class:`OptimizeResult`
@@ -553,7 +569,7 @@ def minimize(
 
         spend = _Budget(maxfun, cost, spare)
         if method == "auto":
-            return _auto(potential, box, budget_k, run_seed, chains, dim, x0, objective, builtin, fun, nfev, spend,
+            return _auto(potential, box, budget_k, run_seed, chains, dim, d, x0, objective, builtin, fun, nfev, spend,
                          settings=settings, target=target, stall=stall, converge=converge, maxiter=maxiter,
                          maxtime=maxtime, callback=callback, disp=disp)
         return _sampler(method, potential, box, budget_k, run_seed, chains, dim, objective, builtin, fun, nfev,
@@ -605,6 +621,7 @@ def _renamed(new: Any, old: Any, name: str, old_name: str) -> Any:
 
 
 def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int], dim: Optional[int],
+          size: Optional[int],
           x0: Optional[np.ndarray], objective: Optional[_objective.Objective], builtin: bool, fun: Any,
           nfev: Callable[[int], int], spend: _Budget, *, settings: Optional[Auto], target: Optional[float],
           stall: Optional[Tuple[int, float]], converge: Optional[int], maxiter: Optional[int],
@@ -615,6 +632,19 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
 
     w = _Watch("auto", maxtime=maxtime, callback=callback, disp=disp, nfev=nfev)
     observed = maxtime is not None or callback is not None or disp
+    # Without a gradient, Auto's default leads the field's benchmark only
+    # early (bbob: up to about 100 D calls); the ensemble, which needs
+    # values only, leads from there. So Auto runs first with the calls of
+    # ENSEMBLE_CALLS D (at least two gradients a chain), and the ensemble
+    # with the rest (docs/QUALITY.md, "Without a gradient"). hrla.Auto(...)
+    # as the method runs Auto alone.
+    ensemble = (settings is None and objective is not None and objective.scheme is not None
+                and size is not None and size <= ENSEMBLE_MAX_DIM)
+    whole = budget
+    if ensemble:
+        assert size is not None
+        share = max(ENSEMBLE_CALLS * size // spend.cost - spend.spare, 1)
+        budget = min(budget, max(share, 2 * (chains or Auto.chains_for(share))))
     # The limits as the run's own rules, which take only finite numbers:
     # the largest float stands for inf (target=inf: any finite value
     # reaches it; stall's tolerance inf: the run stalls after its window).
@@ -625,27 +655,77 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
                         stall=None if stall is None else (stall[0], min(stall[1], sys.float_info.max)),
                         rounds=maxiter, converge=converge)
     termination = w.reason if s.termination == "Observer" and w.reason else s.termination
-    x = np.asarray(s.x)
-    w.polished(x, s.value, termination)
+    x, value, nit = np.asarray(s.x), s.value, s.rounds
+    left = spend.maxfun - nfev(s.evaluations) - spend.cost * spend.spare
+    # The caller's rules that ended Auto end the run: the ensemble takes
+    # over only from Auto's own ends (its share spent, or converged).
+    phases = None
+    if (ensemble and termination in ("Evaluations", "Converged") and left > 0 and budget < whole
+            and (maxiter is None or nit < maxiter)):
+        assert objective is not None and size is not None
+        x, value, nit, termination = _ensemble(objective, box, size, left, seed, w, x, value, nit, target=target,
+                                               stall=stall, maxiter=maxiter, converge=converge is not None,
+                                               with_x=callback is not None)
+        phases = (s.rounds, nit - s.rounds)
+    w.polished(x, value, termination)
     jac = _gradient(x, objective, builtin, fun)
     if disp:
-        w.show(s.rounds, s.evaluations, s.value, _clock())
+        w.show(nit, s.evaluations, value, _clock())
     njev = objective.njev if objective is not None else s.evaluations
     note = ""
-    if termination == "Evaluations":
+    if termination == "Evaluations" and budget == whole:
         # Auto's rounds stop when what is left would not fit one more, and
         # its final polish gets the rest.
         note = spend.note(nfev(s.evaluations), njev, s.evaluations,
                           [(budget - s.evaluations, "not needed by the final polish (it converged first)")])
     return _result(
-        x=x, fun=s.value, jac=jac, nfev=nfev(s.evaluations), budget_note=note,
-        njev=njev, nit=s.rounds, termination=termination,
+        x=x, fun=value, jac=jac, nfev=nfev(s.evaluations), budget_note=note,
+        njev=njev, nit=nit, termination=termination,
         diverged_chains=s.diverged_chains, chains=s.chains, method="auto", seed=seed, step=s.step,
         inverse_temperature=s.inverse_temperature,
         # Auto's chains always hold a feasible basin: an infeasible last
         # proposal is rejected, not a failure.
-        holds_basins=True, kernel_message=s.message,
+        holds_basins=True, kernel_message=s.message, ensemble=phases,
     )
+
+
+#: Auto's share of a run without a gradient, in calls of ``fun`` per
+#: coordinate, before the ensemble takes the rest.
+ENSEMBLE_CALLS = 100
+
+#: The ensemble's ends as ``hrla.minimize`` names them.
+_ENSEMBLE_ENDS = {"Budget": "Evaluations", "Converged": "Converged", "Target": "Target", "Stalled": "Stalled",
+                  "Iterations": "Steps"}
+
+
+def _ensemble(objective: _objective.Objective, box: Box, dim: int, calls: int, seed: int, w: _Watch, x: np.ndarray,
+              value: float, nit: int, *, target: Optional[float], stall: Optional[Tuple[int, float]],
+              maxiter: Optional[int], converge: bool, with_x: bool) -> Tuple[np.ndarray, float, int, str]:
+    """The layer's gradient-free ensemble on ``fun``'s values with
+    ``calls`` calls, after Auto found ``value`` at ``x`` in ``nit`` rounds:
+    the better point, the iterations (Auto's rounds, then the ensemble's
+    generations) and why the run ended. The watch sees the best of both;
+    the layer's rules end it as they end Auto (``target``, ``stall`` and
+    ``maxiter`` over the run's iterations, a stall window reaching back
+    into Auto's rounds measuring the fall from Auto's best); ``converge``
+    switches the ensemble's own rule (two restarts agree) on or off."""
+    lb, ub = (np.broadcast_to(np.asarray(side, dtype=np.float64), dim) for side in _sides(box, dim))
+
+    def watch(generation: int, evaluations: int, best: float, at: Optional[np.ndarray] = None) -> bool:
+        lower = best < value
+        return w(nit + generation, evaluations, min(best, value), (at if lower else x) if with_x else None)
+
+    try:
+        ex, ev, _, generations, _, _, end = ensemble_minimize(
+            objective.values, lb.tolist(), ub.tolist(), calls, seed, observer=watch, with_x=with_x,
+            target=target, stall=stall, iterations=maxiter, elapsed=nit, known=value, converge=converge)
+    except DivergedError:
+        # No finite value in the ensemble's share: Auto's answer stands.
+        return x, value, nit, "Evaluations"
+    termination = _ENSEMBLE_ENDS.get(end) or w.reason or "Observer"
+    if ev < value:
+        x, value = np.asarray(ex), ev
+    return x, value, nit + generations, termination
 
 
 def _sampler(method: str, potential: Any, box: Box, budget: int, seed: int, chains: Optional[int],
@@ -749,15 +829,24 @@ def _gradient(x: np.ndarray, objective: Optional[_objective.Objective], builtin:
     return np.asarray(g[0])
 
 
-def _message(kernel: str, termination: str, r: OptimizeResult, budget_note: str) -> str:
+def _message(kernel: str, termination: str, r: OptimizeResult, budget_note: str,
+             ensemble: Optional[Tuple[int, int]] = None) -> str:
     """Why the run ended and what it found, in the user's units: calls of
     ``fun`` (the kernel counts gradients, each of which may be several
     calls), and ``f`` to its last digit; for a run its budget ended, what
     it left of ``maxfun`` and why (``budget_note``)."""
     reason = _REASONS.get(termination) or kernel.split(": ", 1)[0]
     unit = "rounds" if r["method"] == "auto" else "steps"
+    spent = f"{r['nit']} {unit}"
+    if ensemble is not None:
+        # Auto's rounds (with their gradients), then the ensemble's
+        # generations, which need none.
+        rounds, generations = ensemble
+        spent = f"{rounds} rounds, then {generations} generations of the ensemble"
+        if termination == "Converged":
+            reason = "converged (two restarts of the ensemble agreed on the best value)"
     text = (f"{reason}: best f = {float(r['fun'])!r} after {r['nfev']} calls of fun "
-            f"({r['njev']} gradients) in {r['nit']} {unit}")
+            f"({r['njev']} gradients) in {spent}")
     k, n = r["diverged_chains"], r["chains"]
     if r["method"] == "auto" and r["nit"] == 0 and termination in ("Evaluations", "Time"):
         text += ("; the run ended before its first round of sampling (the starts' quenches took the budget): "
@@ -770,7 +859,8 @@ def _message(kernel: str, termination: str, r: OptimizeResult, budget_note: str)
 
 
 def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, kernel_message: str,
-            holds_basins: bool = False, budget_note: str = "", **rest: Any) -> OptimizeResult:
+            holds_basins: bool = False, budget_note: str = "", ensemble: Optional[Tuple[int, int]] = None,
+            **rest: Any) -> OptimizeResult:
     """An :class:`OptimizeResult` whose ``success`` and ``status`` follow
     from the termination and the value (and, for the samplers, from whether
     any chain is still alive); ``message`` last."""
@@ -783,5 +873,5 @@ def _result(*, fun: float, termination: str, diverged_chains: int, chains: int, 
         status=TERMINATIONS.index(termination), termination=termination,
         all_diverged=diverged_chains == chains, diverged_chains=diverged_chains, chains=chains,
     )
-    r["message"] = _message(kernel_message, termination, r, budget_note)
+    r["message"] = _message(kernel_message, termination, r, budget_note, ensemble)
     return r

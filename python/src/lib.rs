@@ -18,6 +18,7 @@
 mod auto;
 mod config;
 mod engine;
+mod ensemble;
 mod errors;
 mod observer;
 mod potential;
@@ -33,6 +34,7 @@ fn _hrla(m: &Bound<'_, PyModule>) -> PyResult<()> {
     potential::register(m)?;
     engine::register(m)?;
     auto::register(m)?;
+    ensemble::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

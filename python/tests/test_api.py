@@ -39,8 +39,10 @@ def test_readme_example_finds_the_minimum_of_a_user_function(capsys):
     assert res.success and res.fun < 1e-12, res
     minima = np.array([[3.0, 2.0], [-2.805118, 3.131312], [-3.779310, -3.283186], [3.584428, -1.848127]])
     assert np.min(np.linalg.norm(minima - res.x, axis=1)) < 1e-5
-    # Forward differences: D + 1 calls of fun per gradient, all counted.
-    assert res.nfev <= 125_000 and res.nfev == 3 * res.njev
+    # Auto's forward differences (D + 1 calls of fun per gradient), then
+    # the ensemble's values, every call counted; the run converged by
+    # itself, far below maxfun.
+    assert res.njev >= 1 and 3 * res.njev < res.nfev < 125_000 and res.termination == "Converged", res
     # The batched and gradient forms.
     exec(second, scope)
     res = scope["res"]

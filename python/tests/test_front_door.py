@@ -74,8 +74,10 @@ def test_ctrl_c_in_fun_reaches_the_caller_at_once(name, method, k, how, observed
             raise KeyboardInterrupt
 
     watch = dict(callback=lambda intermediate_result: None, maxtime=1e6) if observed else {}
+    # A run long enough to reach the k-th call: auto's convergence rule off.
+    endless = dict(converge=False) if method == "auto" else {}
     with pytest.raises(KeyboardInterrupt):
-        hrla.minimize(bounds=BOX, method=method, maxfun=10**7, rng=k, **form(name, body), **watch)
+        hrla.minimize(bounds=BOX, method=method, maxfun=10**7, rng=k, **form(name, body), **watch, **endless)
     assert calls[0] == k
 
 
@@ -426,7 +428,11 @@ def left_of(message):
                                 {"chains": 16, "maxfun": 30_000}])
 def test_a_budget_spent_says_what_it_left_and_why(method, kw):
     if method == "auto":
-        kw = {**kw, "converge": False}  # a run maxfun ends, not one that converged
+        # A run maxfun ends, not one that converged; Auto alone, whose
+        # gradients leave shares of maxfun (the default without a gradient
+        # hands them to the ensemble: the next test).
+        kw = {**kw, "converge": False}
+        method = hrla.Auto()
     res = hrla.minimize(sphere_value, BOX, method=method, rng=1, **kw)
     maxfun = kw["maxfun"]
     assert res.nfev < maxfun and res.termination in ("Evaluations", "Steps"), res
@@ -435,6 +441,17 @@ def test_a_budget_spent_says_what_it_left_and_why(method, kw):
     # Each share names its calls; together they are what is left.
     assert sum(int(share.split(" ", 1)[0].replace(",", "")) for share in shares) == maxfun - res.nfev, res.message
     assert all(" " in share for share in shares)
+
+
+@pytest.mark.parametrize("kw", [{"maxfun": 10_007}, {"jac": "3-point", "maxfun": 12_345}])
+def test_without_a_gradient_auto_spends_maxfun_but_the_results_gradient(kw):
+    # Auto's share, then the ensemble's values to the last call but the
+    # gradient kept back for the result's jac (D + 1 or 2 D + 1 calls,
+    # spent unless the best point's gradient was already known).
+    res = hrla.minimize(sphere_value, BOX, rng=1, converge=False, **kw)
+    cost = 1 + (2 if kw.get("jac") == "3-point" else 1) * len(BOX)
+    assert res.termination == "Evaluations" and kw["maxfun"] - cost <= res.nfev <= kw["maxfun"], res
+    assert "ensemble" in res.message and res.success is False, res.message
 
 
 def test_a_budget_spent_whole_adds_no_note():

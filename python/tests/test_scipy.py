@@ -142,8 +142,12 @@ def test_a_scalar_function_as_scipy_takes_it(method):
     assert res.x.shape == (2,) and res.jac.shape == (2,)
     # jac is the gradient at x (forward differences there: within their error).
     np.testing.assert_allclose(res.jac, himmelblau_grad(res.x), atol=1e-5)
-    # Forward differences: D + 1 calls of fun per gradient, all counted.
-    assert res.nfev == 3 * res.njev <= 40_000
+    # Forward differences: D + 1 calls of fun per gradient, all counted;
+    # "auto" without a gradient then spends values only (its ensemble).
+    if method == "auto":
+        assert 3 * res.njev < res.nfev <= 40_000
+    else:
+        assert res.nfev == 3 * res.njev <= 40_000
 
 
 def test_args_are_passed_as_scipy_passes_them():

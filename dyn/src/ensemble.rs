@@ -1,0 +1,980 @@
+//! A gradient-free solver: an ensemble of Langevin particles in its own
+//! whitened frame, driven by the gradient of a quadratic model fitted to
+//! the ensemble's values, with restarts of growing population.
+//!
+//! [`Ensemble::minimize`] needs only values of `U`, asked for a whole
+//! generation at a time (one call of the function on `n` points, so a
+//! user's map can spread them over workers). Each generation:
+//!
+//! 1. **Frame.** `m` = the particles' mean, `C` = their covariance (plus
+//!    `1e-12 tr(C)/d` on the diagonal) `= L L^T`; `z = L^-1 (x - m)`.
+//! 2. **Values, scale-free.** `U` is replaced by the normal scores
+//!    `s = Phi^-1((rank + 1/2) / N)` of its ranks among the points of the
+//!    last two generations (non-finite values rank last), so every decision
+//!    is invariant to increasing transforms of `U`, its units included.
+//!    They are tempered to `V = kappa s / sd(s)` over the current
+//!    generation, `kappa = spread sqrt(d / 2)`: at a quadratic centred on
+//!    the ensemble, `V = spread |z|^2 / 2` exactly.
+//! 3. **A model gradient.** `V ~ c0 + g^T z + z^T H z / 2` by least
+//!    squares over the last two generations' points (older points more than
+//!    `1e3` whitened units out left out), the isotropic part of `H` free and
+//!    the rest shrunk by a ridge of `0.05 N` on standardised features; the
+//!    drift is `g + H z - (d + 1)/n z` (the last term is ALDI's finite-`n`
+//!    correction, which keeps the ensemble's spread unbiased).
+//! 4. **HRLA's exact step** (the spec's section 4 at `a = b = alpha = beta
+//!    = 1`) in `z` with that frozen gradient, step `h = min(1, 1 /
+//!    lambda_max(H))` (a Newton-sized step of the model; `1` without
+//!    positive curvature), the velocities kept per particle, the drift
+//!    capped at `3 sqrt(d)` whitened units; the new `x = m + L z` is clipped
+//!    to the box.
+//!
+//! For the isotropic model the variance ratio per step is `2 / spread`:
+//! the default `spread = 6` contracts an ensemble 3 times in variance per
+//! step on a quadratic, so a bowl is solved at a linear rate, while on a
+//! rugged landscape the ranks' noise holds the ensemble wide; after every
+//! `cool_every` generations without a new best, `kappa` is multiplied by
+//! `cool`, and a spread ensemble contracts.
+//!
+//! **Restarts** (IPOP's rule): when the generation's values agree to `1e-12`
+//! of their mean, the ensemble's widest standard deviation is below `1e-12`
+//! of the box, or the restart's best has not improved (by `1e-12`,
+//! relatively) for `20 + 3 d` generations, the particles are drawn again
+//! uniformly in the box with twice as many. The first population is
+//! `max(8, ceil(population P / 2) + 1)`, `P = 1 + d + d(d+1)/2` the model's
+//! parameters.
+//!
+//! **Convergence** ([`Ensemble::converge`]): the run ends once two restarts
+//! that ended by agreement (values or positions, not the stall) reached
+//! the best value to `1e-12` of the spread of `U` over the first
+//! generation: a second, larger ensemble found nothing better.
+//!
+//! Nothing but the stop depends on the budget: a run's first `B`
+//! evaluations are those of any longer run with the same seed.
+
+use std::ops::ControlFlow;
+
+use hrla::rand_core::{Rng, SeedableRng};
+use hrla::{Hrla, HrlaParams, Kernel, Sampler};
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+use crate::linalg::{
+    cholesky, dot, largest_eigenvalue, normal_quantile, solve_lower, solve_upper_transposed,
+};
+use crate::{Error, Progress, UserError};
+
+/// The generations the model is fitted over.
+const MEMORY: usize = 2;
+/// The ridge on the model's non-isotropic curvature, per fitted point.
+const RIDGE: f64 = 0.05;
+
+/// The settings of the ensemble solver (the module docs give the method).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ensemble {
+    /// The model's curvature, in whitened units, at a quadratic centred
+    /// on the ensemble: `2 / spread` is the variance ratio per step
+    /// (default 6).
+    pub spread: f64,
+    /// The first population in units of half the model's parameters
+    /// (default 2: one generation holds as many points as the model has
+    /// parameters).
+    pub population: f64,
+    /// The factor on `kappa` after every `cool_every` generations of a
+    /// restart without a new best (default 1.5; 1 never cools).
+    pub cool: f64,
+    /// See `cool` (default 10).
+    pub cool_every: u32,
+    /// End the run when two restarts agree on the best value (default
+    /// true); false spends the whole budget.
+    pub converge: bool,
+}
+
+impl Default for Ensemble {
+    fn default() -> Self {
+        Self {
+            spread: 6.0,
+            population: 2.0,
+            cool: 1.5,
+            cool_every: 10,
+            converge: true,
+        }
+    }
+}
+
+/// The caller's rules that end an ensemble run besides its budget, all
+/// off by default. A run may continue an earlier phase (another solver's
+/// run on the same problem): `elapsed` iterations that reached `known`;
+/// the rules then count iterations from the earlier phase's start and read
+/// the lower of `known` and the run's best.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EnsembleRules {
+    /// End once the best value is at or below this.
+    pub target: Option<f64>,
+    /// `(window, tolerance)`: end once the best has not fallen by more
+    /// than `tolerance` over `window` iterations (a window reaching back
+    /// into the earlier phase measures the fall from `known`).
+    pub stall: Option<(u64, f64)>,
+    /// End after this many iterations, the earlier phase's included.
+    pub iterations: Option<u64>,
+    /// The earlier phase's iterations.
+    pub elapsed: u64,
+    /// The earlier phase's best value (`inf`: none).
+    pub known: f64,
+}
+
+impl Default for EnsembleRules {
+    fn default() -> Self {
+        Self {
+            target: None,
+            stall: None,
+            iterations: None,
+            elapsed: 0,
+            known: f64::INFINITY,
+        }
+    }
+}
+
+/// Why an ensemble run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EnsembleEnd {
+    /// The budget was spent.
+    Budget,
+    /// Two restarts agreed on the best value ([`Ensemble::converge`]).
+    Converged,
+    /// The observer asked.
+    Observer,
+    /// [`EnsembleRules::target`] was reached.
+    Target,
+    /// [`EnsembleRules::stall`] held.
+    Stalled,
+    /// [`EnsembleRules::iterations`] were done.
+    Iterations,
+}
+
+/// What [`Ensemble::minimize`] found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnsembleSolution {
+    /// The lowest point evaluated.
+    pub x: Vec<f64>,
+    /// `U(x)`.
+    pub value: f64,
+    /// Evaluations used (at most the budget).
+    pub evaluations: u64,
+    /// Generations evaluated, all restarts counted.
+    pub generations: u64,
+    /// Restarts done.
+    pub restarts: u32,
+    /// The population of the last generation.
+    pub population: usize,
+    /// Why it ended.
+    pub end: EnsembleEnd,
+}
+
+/// How a restart ended.
+enum Restart {
+    /// Its values or positions agreed: it converged to something.
+    Agreed,
+    /// Its best stalled, or its frame or model broke down.
+    Other,
+}
+
+/// The run's state across restarts.
+struct Run<'f, V, O> {
+    lo: &'f [f64],
+    hi: &'f [f64],
+    budget: u64,
+    rules: EnsembleRules,
+    /// The best after each iteration of the stall window, oldest first.
+    bests: std::collections::VecDeque<f64>,
+    values: V,
+    observer: O,
+    rng: Xoshiro256PlusPlus,
+    evaluations: u64,
+    generation: u64,
+    restarts: u32,
+    best: f64,
+    best_x: Vec<f64>,
+    /// The spread of `U` over the first generation: the unit of the
+    /// convergence rule's tolerance.
+    spread0: Option<f64>,
+}
+
+impl Ensemble {
+    /// The largest dimension taken: the model has `(d + 1)(d + 2) / 2`
+    /// parameters, and a generation's fit costs `O(d^6)`.
+    pub const MAX_DIM: usize = 20;
+
+    /// The lowest value of `U` found in the box `[lo, hi]` (one side per
+    /// coordinate) within `budget` evaluations, from the generator of
+    /// `seed`, ending early by the `rules`. `values(points, d, out)` fills
+    /// `out[i] = U(points row i)` for the `n x d` row-major `points`; its
+    /// error ends the run and is returned as [`Error::User`]. `observer`
+    /// is called after each generation with the layer's [`Progress`]
+    /// (`iteration`: generations so far, all restarts counted; `chains`:
+    /// the generation's particles; `value` `inf` and `x` empty before the
+    /// first finite value); `Break` ends the run.
+    ///
+    /// Refused: a box that [`hrla::Bounds::new`] refuses, more than
+    /// [`MAX_DIM`](Self::MAX_DIM) coordinates, a budget of 0, settings that
+    /// are not finite and positive (`cool >= 1`, `cool_every >= 1`). A run
+    /// that saw no finite value is [`hrla::Error::AllDiverged`], one whose
+    /// best fell below `-sqrt(f64::MAX)` [`hrla::Error::UnboundedBelow`]:
+    /// never a result.
+    #[allow(clippy::too_many_arguments)]
+    pub fn minimize<V, O>(
+        &self,
+        lo: &[f64],
+        hi: &[f64],
+        budget: u64,
+        seed: u64,
+        rules: EnsembleRules,
+        values: V,
+        observer: O,
+    ) -> Result<EnsembleSolution, Error>
+    where
+        V: FnMut(&[f64], usize, &mut [f64]) -> Result<(), UserError>,
+        O: FnMut(&Progress<'_>) -> ControlFlow<()>,
+    {
+        self.check()?;
+        hrla::Bounds::new(lo, hi).map_err(Error::Kernel)?;
+        let d = lo.len();
+        if d > Self::MAX_DIM {
+            return Err(Error::Kernel(hrla::Error::OutOfRange {
+                name: "dimension",
+                value: d as f64,
+                min: 1.0,
+                max: Self::MAX_DIM as f64,
+            }));
+        }
+        if budget == 0 {
+            return Err(Error::Kernel(hrla::Error::Zero { name: "budget" }));
+        }
+        let mut run = Run {
+            lo,
+            hi,
+            budget,
+            rules,
+            bests: std::collections::VecDeque::from([rules.known]),
+            values,
+            observer,
+            rng: Xoshiro256PlusPlus::seed_from_u64(seed),
+            evaluations: 0,
+            generation: 0,
+            restarts: 0,
+            best: f64::INFINITY,
+            best_x: Vec::new(),
+            spread0: None,
+        };
+        let parameters = 1 + d + d * (d + 1) / 2;
+        let mut n =
+            8.max((self.population * parameters as f64 / MEMORY as f64).ceil() as usize + 1);
+        // The best value of the last restart that converged.
+        let mut agreed: Option<f64> = None;
+        let end = loop {
+            let (restart, run_best) = match self.restart(&mut run, n)? {
+                Ok(r) => r,
+                Err(end) => break end,
+            };
+            if let Restart::Agreed = restart {
+                let tol = 1e-12 * run.spread0.unwrap_or(0.0);
+                let at_best = |b: f64| b <= run.best + tol;
+                if self.converge && at_best(run_best) && agreed.is_some_and(at_best) {
+                    break EnsembleEnd::Converged;
+                }
+                agreed = Some(agreed.map_or(run_best, |a| a.min(run_best)));
+            }
+            run.restarts += 1;
+            n = n.saturating_mul(2);
+        };
+        if run.best_x.is_empty() {
+            return Err(Error::Kernel(hrla::Error::AllDiverged { chains: n }));
+        }
+        if run.best < -f64::MAX.sqrt() {
+            return Err(Error::Kernel(hrla::Error::UnboundedBelow {
+                chain: 0,
+                value: run.best,
+            }));
+        }
+        Ok(EnsembleSolution {
+            x: run.best_x,
+            value: run.best,
+            evaluations: run.evaluations,
+            generations: run.generation,
+            restarts: run.restarts,
+            population: n,
+            end,
+        })
+    }
+
+    fn check(&self) -> Result<(), Error> {
+        let positive = |name, value: f64| {
+            if value.is_finite() && value > 0.0 {
+                Ok(())
+            } else {
+                Err(Error::Kernel(hrla::Error::NotPositive { name, value }))
+            }
+        };
+        positive("spread", self.spread)?;
+        positive("population", self.population)?;
+        positive("cool", self.cool)?;
+        if self.cool < 1.0 {
+            return Err(Error::Kernel(hrla::Error::OutOfRange {
+                name: "cool",
+                value: self.cool,
+                min: 1.0,
+                max: f64::MAX,
+            }));
+        }
+        if self.cool_every == 0 {
+            return Err(Error::Kernel(hrla::Error::Zero { name: "cool_every" }));
+        }
+        Ok(())
+    }
+
+    /// One restart of `n` particles drawn uniformly in the box: how it
+    /// ended and its best, or the run's end.
+    fn restart<V, O>(
+        &self,
+        run: &mut Run<'_, V, O>,
+        n: usize,
+    ) -> Result<Result<(Restart, f64), EnsembleEnd>, Error>
+    where
+        V: FnMut(&[f64], usize, &mut [f64]) -> Result<(), UserError>,
+        O: FnMut(&Progress<'_>) -> ControlFlow<()>,
+    {
+        let (lo, hi) = (run.lo, run.hi);
+        let d = lo.len();
+        let width = lo.iter().zip(hi).map(|(l, h)| h - l).fold(0.0, f64::max);
+        let mut x = vec![0.0; n * d];
+        for row in x.chunks_exact_mut(d) {
+            for ((xi, l), h) in row.iter_mut().zip(lo).zip(hi) {
+                *xi = l + (h - l) * uniform(&mut run.rng);
+            }
+        }
+        let mut y = vec![0.0; n * d];
+        // The last MEMORY generations' points and values, oldest first.
+        let mut history: Vec<(Vec<f64>, Vec<f64>)> = Vec::with_capacity(MEMORY);
+        let (mut run_best, mut since) = (f64::INFINITY, 0_u32);
+        let mut kappa = self.spread * (d as f64 / 2.0).sqrt();
+        let stall = 20 + 3 * d as u32;
+        loop {
+            let f = match run.evaluate(&x, d)? {
+                Ok(f) => f,
+                Err(end) => return Ok(Err(end)),
+            };
+            let generation_best = f
+                .iter()
+                .copied()
+                .filter(|v| v.is_finite())
+                .fold(f64::INFINITY, f64::min);
+            if generation_best < run_best - 1e-12 * run_best.abs()
+                || !run_best.is_finite() && generation_best.is_finite()
+            {
+                (run_best, since) = (generation_best, 0);
+            } else {
+                since += 1;
+                if since % self.cool_every == 0 {
+                    kappa *= self.cool;
+                }
+            }
+            let (mean_f, sd_f) = mean_sd(f.iter().copied().filter(|v| v.is_finite()));
+            if history.len() == MEMORY {
+                history.remove(0);
+            }
+            history.push((x.clone(), f));
+            let (m, mut c) = mean_covariance(&x, n, d);
+            let trace: f64 = (0..d).map(|i| c[i * d + i]).sum();
+            let widest = (0..d).map(|i| c[i * d + i]).fold(0.0, f64::max).sqrt();
+            if sd_f <= 1e-12 * (mean_f.abs() + 1e-300) || widest < 1e-12 * width {
+                return Ok(Ok((Restart::Agreed, run_best)));
+            }
+            if since > stall || !(trace.is_finite() && trace > 0.0) {
+                return Ok(Ok((Restart::Other, run_best)));
+            }
+            for i in 0..d {
+                c[i * d + i] += 1e-12 * trace / d as f64;
+            }
+            if !cholesky(&mut c, d) {
+                return Ok(Ok((Restart::Other, run_best)));
+            }
+            let l = c;
+            let Some(drift) = self.drift(&history, &m, &l, n, d, kappa) else {
+                return Ok(Ok((Restart::Other, run_best)));
+            };
+            let Some((kernel, reach)) = step_kernel(&drift.curvature, d) else {
+                return Ok(Ok((Restart::Other, run_best)));
+            };
+            // The drift capped at 3 sqrt(d) whitened units a step.
+            let cap = 3.0 * (d as f64).sqrt() / reach.max(1e-300);
+            let mut z = drift.z;
+            let mut g = drift.gradient;
+            for ((zi, yi), gi) in z
+                .chunks_exact_mut(d)
+                .zip(y.chunks_exact_mut(d))
+                .zip(g.chunks_exact_mut(d))
+            {
+                let norm = dot(gi, gi).sqrt();
+                if norm > cap {
+                    gi.iter_mut().for_each(|v| *v *= cap / norm);
+                }
+                kernel.step_slice(zi, yi, gi, &mut run.rng);
+            }
+            for (xi, zi) in x.chunks_exact_mut(d).zip(z.chunks_exact(d)) {
+                for k in 0..d {
+                    let v = m[k] + dot(&l[k * d..k * d + k + 1], &zi[..k + 1]);
+                    xi[k] = v.clamp(lo[k], hi[k]);
+                }
+            }
+        }
+    }
+
+    /// The model gradient at the current generation (the last of
+    /// `history`) in the frame `(m, L)`, or `None` where the frame or the
+    /// fit breaks down.
+    fn drift(
+        &self,
+        history: &[(Vec<f64>, Vec<f64>)],
+        m: &[f64],
+        l: &[f64],
+        n: usize,
+        d: usize,
+        kappa: f64,
+    ) -> Option<Drift> {
+        let total: usize = history.iter().map(|(f, _)| f.len() / d).sum();
+        let mut z = Vec::with_capacity(total * d);
+        let mut values = Vec::with_capacity(total);
+        for (points, f) in history {
+            for row in points.chunks_exact(d) {
+                let start = z.len();
+                z.extend(row.iter().zip(m).map(|(x, m)| x - m));
+                solve_lower(l, d, &mut z[start..]);
+            }
+            values.extend_from_slice(f);
+        }
+        let current = total - n;
+        if !z[current * d..].iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let scores = rank_scores(&values);
+        let (_, sd) = mean_sd(scores[current..].iter().copied());
+        let sd = if sd > 0.0 { sd } else { 1.0 };
+        // Older points far outside the current frame say nothing local.
+        let near: Vec<usize> = (0..total)
+            .filter(|&i| {
+                i >= current
+                    || z[i * d..i * d + d]
+                        .iter()
+                        .all(|v| v.is_finite() && v.abs() < 1e3)
+            })
+            .collect();
+        let v: Vec<f64> = near.iter().map(|&i| kappa / sd * scores[i]).collect();
+        let rows: Vec<&[f64]> = near.iter().map(|&i| &z[i * d..i * d + d]).collect();
+        let (g, h) = fit_quadratic(&rows, &v, d, RIDGE)?;
+        let aldi = (d + 1) as f64 / n as f64;
+        let z_now = z.split_off(current * d);
+        let mut gradient = vec![0.0; n * d];
+        for (gi, zi) in gradient.chunks_exact_mut(d).zip(z_now.chunks_exact(d)) {
+            for k in 0..d {
+                gi[k] = g[k] + dot(&h[k * d..k * d + d], zi) - aldi * zi[k];
+            }
+        }
+        Some(Drift {
+            z: z_now,
+            gradient,
+            curvature: h,
+        })
+    }
+}
+
+/// The current generation in whitened units, its model gradient, and the
+/// model's Hessian.
+struct Drift {
+    z: Vec<f64>,
+    gradient: Vec<f64>,
+    curvature: Vec<f64>,
+}
+
+impl<V, O> Run<'_, V, O>
+where
+    V: FnMut(&[f64], usize, &mut [f64]) -> Result<(), UserError>,
+    O: FnMut(&Progress<'_>) -> ControlFlow<()>,
+{
+    /// `U` at the rows of `x`, the best kept; the run's end when the budget
+    /// is spent (the rows it still covered evaluated) or the observer asks.
+    fn evaluate(&mut self, x: &[f64], d: usize) -> Result<Result<Vec<f64>, EnsembleEnd>, Error> {
+        let n = x.len() / d;
+        let take = (self.budget - self.evaluations).min(n as u64) as usize;
+        let mut f = vec![f64::NAN; n];
+        (self.values)(&x[..take * d], d, &mut f[..take]).map_err(Error::User)?;
+        self.evaluations += take as u64;
+        self.generation += 1;
+        for (row, &v) in x.chunks_exact(d).zip(&f[..take]) {
+            if v.is_finite() && v < self.best {
+                self.best = v;
+                self.best_x.clear();
+                self.best_x.extend_from_slice(row);
+            }
+        }
+        if self.spread0.is_none() {
+            self.spread0 = Some(mean_sd(f.iter().copied().filter(|v| v.is_finite())).1);
+        }
+        let progress = Progress {
+            iteration: self.generation,
+            evaluations: self.evaluations,
+            value: self.best,
+            x: &self.best_x,
+            dim: d,
+            chains: n,
+        };
+        if (self.observer)(&progress).is_break() {
+            return Ok(Err(EnsembleEnd::Observer));
+        }
+        if let Some(end) = self.rule() {
+            return Ok(Err(end));
+        }
+        if self.evaluations >= self.budget {
+            return Ok(Err(EnsembleEnd::Budget));
+        }
+        Ok(Ok(f))
+    }
+
+    /// The caller's rule that ends the run after this generation, if any.
+    fn rule(&mut self) -> Option<EnsembleEnd> {
+        let rules = self.rules;
+        let best = self.best.min(rules.known);
+        let iteration = rules.elapsed + self.generation;
+        if rules.target.is_some_and(|t| best <= t) {
+            return Some(EnsembleEnd::Target);
+        }
+        if let Some((window, tolerance)) = rules.stall {
+            // The best `window` iterations ago, or `known` where that is
+            // before this run.
+            self.bests.push_back(best);
+            let keep = (window.min(self.generation) + 1) as usize;
+            while self.bests.len() > keep {
+                self.bests.pop_front();
+            }
+            let fell = self.bests.front().map_or(0.0, |b| b - best);
+            let falling = fell > tolerance;
+            if iteration >= window && !falling {
+                return Some(EnsembleEnd::Stalled);
+            }
+        }
+        if rules.iterations.is_some_and(|k| iteration >= k) {
+            return Some(EnsembleEnd::Iterations);
+        }
+        None
+    }
+}
+
+/// A uniform draw in `[0, 1)` from the top 53 bits of one word.
+fn uniform(rng: &mut Xoshiro256PlusPlus) -> f64 {
+    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+/// The mean and the population standard deviation (`0, 0` for nothing).
+fn mean_sd(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
+    let (count, sum) = values
+        .clone()
+        .fold((0usize, 0.0), |(c, s), v| (c + 1, s + v));
+    if count == 0 {
+        return (0.0, 0.0);
+    }
+    let mean = sum / count as f64;
+    let var = values.map(|v| (v - mean) * (v - mean)).sum::<f64>() / count as f64;
+    (mean, var.sqrt())
+}
+
+/// The mean (`d`) and the sample covariance (`d x d`, divided by `n - 1`)
+/// of the `n` rows of `x`.
+fn mean_covariance(x: &[f64], n: usize, d: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut m = vec![0.0; d];
+    for row in x.chunks_exact(d) {
+        m.iter_mut().zip(row).for_each(|(m, v)| *m += v);
+    }
+    m.iter_mut().for_each(|v| *v /= n as f64);
+    let mut c = vec![0.0; d * d];
+    for row in x.chunks_exact(d) {
+        for i in 0..d {
+            for j in 0..=i {
+                c[i * d + j] += (row[i] - m[i]) * (row[j] - m[j]);
+            }
+        }
+    }
+    let denominator = (n.max(2) - 1) as f64;
+    for i in 0..d {
+        for j in 0..=i {
+            c[i * d + j] /= denominator;
+            c[j * d + i] = c[i * d + j];
+        }
+    }
+    (m, c)
+}
+
+/// The normal scores `Phi^-1((r + 1/2) / N)` of the ranks `r` of `values`
+/// (ties by index; non-finite values last).
+fn rank_scores(values: &[f64]) -> Vec<f64> {
+    let key = |v: f64| if v.is_finite() { v } else { f64::INFINITY };
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| key(values[a]).total_cmp(&key(values[b])));
+    let total = values.len() as f64;
+    let mut scores = vec![0.0; values.len()];
+    for (rank, &i) in order.iter().enumerate() {
+        scores[i] = normal_quantile((rank as f64 + 0.5) / total);
+    }
+    scores
+}
+
+/// `g` and `H` of `v ~ c0 + g^T z + z^T H z / 2` by least squares over the
+/// rows `z`: features `1, z, |z|^2 / 2` free, and `z_k z_l` (halved on the
+/// diagonal) shrunk by a ridge of `ridge N` after each feature is scaled
+/// to unit root mean square. `None` when the normal equations break down.
+fn fit_quadratic(z: &[&[f64]], v: &[f64], d: usize, ridge: f64) -> Option<(Vec<f64>, Vec<f64>)> {
+    let free = 2 + d;
+    let p = free + d * (d + 1) / 2;
+    let features = |zi: &[f64], out: &mut [f64]| {
+        out[0] = 1.0;
+        out[1..=d].copy_from_slice(zi);
+        out[1 + d] = 0.5 * dot(zi, zi);
+        let mut j = free;
+        for k in 0..d {
+            for l in k..d {
+                out[j] = zi[k] * zi[l] * if k == l { 0.5 } else { 1.0 };
+                j += 1;
+            }
+        }
+    };
+    let rows = z.len();
+    let mut a = vec![0.0; rows * p];
+    for (zi, row) in z.iter().zip(a.chunks_exact_mut(p)) {
+        features(zi, row);
+    }
+    let mut scale = vec![0.0; p];
+    for row in a.chunks_exact(p) {
+        scale.iter_mut().zip(row).for_each(|(s, v)| *s += v * v);
+    }
+    scale
+        .iter_mut()
+        .for_each(|s| *s = (*s / rows as f64).sqrt() + 1e-300);
+    for row in a.chunks_exact_mut(p) {
+        row.iter_mut().zip(&scale).for_each(|(v, s)| *v /= s);
+    }
+    // The normal equations (A^T A + ridge) theta = A^T v, lower triangle.
+    let mut normal = vec![0.0; p * p];
+    let mut rhs = vec![0.0; p];
+    for (row, &vi) in a.chunks_exact(p).zip(v) {
+        for i in 0..p {
+            let ri = row[i];
+            rhs[i] += ri * vi;
+            for (nij, rj) in normal[i * p..i * p + i + 1].iter_mut().zip(&row[..=i]) {
+                *nij += ri * rj;
+            }
+        }
+    }
+    for j in free..p {
+        normal[j * p + j] += ridge * rows as f64;
+    }
+    if !cholesky(&mut normal, p) {
+        return None;
+    }
+    solve_lower(&normal, p, &mut rhs);
+    solve_upper_transposed(&normal, p, &mut rhs);
+    let theta: Vec<f64> = rhs.iter().zip(&scale).map(|(t, s)| t / s).collect();
+    let g = theta[1..=d].to_vec();
+    let mut h = vec![0.0; d * d];
+    let mut j = free;
+    for k in 0..d {
+        for l in k..d {
+            h[k * d + l] = theta[j];
+            h[l * d + k] = theta[j];
+            j += 1;
+        }
+        h[k * d + k] += theta[1 + d];
+    }
+    let finite = g.iter().chain(&h).all(|v| v.is_finite());
+    finite.then_some((g, h))
+}
+
+/// HRLA's kernel at `a = b = alpha = beta = 1` with the step `min(1, 1 /
+/// lambda_max(H))`, and how far a unit gradient moves its mean.
+fn step_kernel(h: &[f64], d: usize) -> Option<(hrla::OuKernel<f64>, f64)> {
+    let top = largest_eigenvalue(h, d);
+    let step = if top > 0.0 { (1.0 / top).min(1.0) } else { 1.0 };
+    let params = HrlaParams {
+        b: 1.0,
+        alpha: 1.0,
+        beta: 1.0,
+        h: step,
+    };
+    let kernel = Hrla::new(params).ok()?.at(1.0).ok()?;
+    let reach = -kernel.moments(0.0, 0.0, 1.0).mean_x;
+    Some((kernel, reach))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(
+        f: impl Fn(&[f64]) -> f64,
+        d: usize,
+        budget: u64,
+        seed: u64,
+        settings: Ensemble,
+    ) -> EnsembleSolution {
+        let lo = vec![-5.0; d];
+        let hi = vec![5.0; d];
+        let values = |x: &[f64], d: usize, out: &mut [f64]| {
+            for (row, o) in x.chunks_exact(d).zip(out.iter_mut()) {
+                *o = f(row);
+            }
+            Ok(())
+        };
+        settings
+            .minimize(
+                &lo,
+                &hi,
+                budget,
+                seed,
+                EnsembleRules::default(),
+                values,
+                |_: &Progress<'_>| ControlFlow::Continue(()),
+            )
+            .unwrap()
+    }
+
+    #[test]
+    fn the_fit_recovers_a_quadratic() {
+        // v = 1 + g.z + z^T H z / 2 exactly, with a ridge far below the
+        // curvature's share: the fit returns g and H to rounding.
+        let d = 3;
+        let g = [0.5, -1.0, 2.0];
+        let h = [2.0, 0.3, -0.1, 0.3, 1.0, 0.2, -0.1, 0.2, 3.0];
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(3);
+        let z: Vec<Vec<f64>> = (0..400)
+            .map(|_| (0..d).map(|_| 4.0 * uniform(&mut rng) - 2.0).collect())
+            .collect();
+        let v: Vec<f64> = z
+            .iter()
+            .map(|zi| {
+                let hz: Vec<f64> = (0..d).map(|k| dot(&h[k * d..k * d + d], zi)).collect();
+                1.0 + dot(&g, zi) + 0.5 * dot(zi, &hz)
+            })
+            .collect();
+        let rows: Vec<&[f64]> = z.iter().map(Vec::as_slice).collect();
+        // With a vanishing ridge (some is needed: the isotropic feature is
+        // the sum of the diagonal ones) the fit is exact up to a bias of
+        // the ridge's order and the rounding of normal equations of
+        // condition about 1/ridge.
+        let (fg, fh) = fit_quadratic(&rows, &v, d, 1e-10).unwrap();
+        for (a, b) in fg.iter().chain(&fh).zip(g.iter().chain(&h)) {
+            assert!(
+                (a - b).abs() < 1e-6,
+                "g {fg:?}, H {fh:?} against {g:?}, {h:?}"
+            );
+        }
+        // The default ridge biases the curvature, by less than a tenth of
+        // it here (Frobenius norms).
+        let (_, rh) = fit_quadratic(&rows, &v, d, RIDGE).unwrap();
+        let norm = |m: &[f64]| dot(m, m).sqrt();
+        let diff: Vec<f64> = rh.iter().zip(&h).map(|(a, b)| a - b).collect();
+        assert!(norm(&diff) < 0.1 * norm(&h), "{rh:?} against {h:?}");
+    }
+
+    #[test]
+    fn a_rotated_ellipsoid_is_solved_and_the_run_converges_by_itself() {
+        // Condition 1e4, rotated: what the whitened frame is for.
+        let f = |x: &[f64]| {
+            let (u, v) = (
+                (x[0] + x[1]) / 2f64.sqrt() - 1.0,
+                (x[0] - x[1]) / 2f64.sqrt() + 0.5,
+            );
+            u * u + 1e4 * v * v + x[2..].iter().map(|t| (t - 0.3) * (t - 0.3)).sum::<f64>()
+        };
+        let s = run(f, 5, 100_000, 1, Ensemble::default());
+        assert!(s.value < 1e-10, "{s:?}");
+        assert_eq!(s.end, EnsembleEnd::Converged, "{s:?}");
+        assert!(s.evaluations < 100_000);
+    }
+
+    #[test]
+    fn the_same_seed_gives_the_same_bits_and_a_longer_budget_extends_a_run() {
+        let f = |x: &[f64]| {
+            x.iter()
+                .map(|t| t * t - 10.0 * (2.0 * core::f64::consts::PI * t).cos() + 10.0)
+                .sum::<f64>()
+        };
+        let settings = Ensemble {
+            converge: false,
+            ..Ensemble::default()
+        };
+        let a = run(f, 4, 3_000, 9, settings);
+        let b = run(f, 4, 3_000, 9, settings);
+        assert_eq!(a, b);
+        assert_eq!(a.evaluations, 3_000);
+        assert_eq!(a.end, EnsembleEnd::Budget);
+        // Nothing but the stop depends on the budget: the longer run's best
+        // is at least as low.
+        let c = run(f, 4, 6_000, 9, settings);
+        assert!(c.value <= a.value);
+        assert_ne!(run(f, 4, 3_000, 10, settings), a);
+    }
+
+    #[test]
+    fn bad_input_is_refused_and_a_failed_run_is_never_a_result() {
+        let e = Ensemble::default();
+        let none = EnsembleRules::default();
+        let ok = |_: &[f64], _: usize, out: &mut [f64]| {
+            out.fill(1.0);
+            Ok(())
+        };
+        let go = |_: &Progress<'_>| ControlFlow::Continue(());
+        assert!(e.minimize(&[0.0], &[0.0], 10, 0, none, ok, go).is_err());
+        assert!(
+            e.minimize(&[0.0, 0.0], &[1.0], 10, 0, none, ok, go)
+                .is_err()
+        );
+        assert!(
+            e.minimize(&[f64::NAN], &[1.0], 10, 0, none, ok, go)
+                .is_err()
+        );
+        assert!(e.minimize(&[0.0], &[1.0], 0, 0, none, ok, go).is_err());
+        assert!(
+            e.minimize(&[0.0; 21], &[1.0; 21], 10, 0, none, ok, go)
+                .is_err()
+        );
+        for bad in [
+            Ensemble {
+                spread: f64::NAN,
+                ..e
+            },
+            Ensemble { cool: 0.5, ..e },
+            Ensemble { cool_every: 0, ..e },
+            Ensemble {
+                population: 0.0,
+                ..e
+            },
+        ] {
+            assert!(bad.minimize(&[0.0], &[1.0], 10, 0, none, ok, go).is_err());
+        }
+        let nan = |_: &[f64], _: usize, out: &mut [f64]| {
+            out.fill(f64::NAN);
+            Ok(())
+        };
+        assert!(matches!(
+            e.minimize(&[0.0], &[1.0], 500, 0, none, nan, go),
+            Err(Error::Kernel(hrla::Error::AllDiverged { .. }))
+        ));
+        let downhill = |x: &[f64], d: usize, out: &mut [f64]| {
+            for (row, o) in x.chunks_exact(d).zip(out.iter_mut()) {
+                *o = if row[0] > 0.99 { -1e300 } else { -row[0] };
+            }
+            Ok(())
+        };
+        assert!(matches!(
+            e.minimize(&[0.0], &[1.0], 500, 0, none, downhill, go),
+            Err(Error::Kernel(hrla::Error::UnboundedBelow { .. }))
+        ));
+        let failing = |_: &[f64], _: usize, _: &mut [f64]| Err("no".into());
+        assert!(matches!(
+            e.minimize(&[0.0], &[1.0], 500, 0, none, failing, go),
+            Err(Error::User(_))
+        ));
+        // A constant function: every restart agrees at once, and the run
+        // converges without spending its budget.
+        let s = e.minimize(&[0.0], &[1.0], 10_000, 0, none, ok, go).unwrap();
+        assert_eq!((s.value, s.end), (1.0, EnsembleEnd::Converged));
+        assert!(s.evaluations < 100);
+    }
+
+    #[test]
+    fn the_observer_sees_every_generation_and_can_stop_the_run() {
+        let mut seen = Vec::new();
+        let s = Ensemble::default()
+            .minimize(
+                &[-1.0; 2],
+                &[1.0; 2],
+                10_000,
+                4,
+                EnsembleRules::default(),
+                |x: &[f64], d: usize, out: &mut [f64]| {
+                    for (row, o) in x.chunks_exact(d).zip(out.iter_mut()) {
+                        *o = dot(row, row);
+                    }
+                    Ok(())
+                },
+                |p: &Progress<'_>| {
+                    seen.push((p.iteration, p.evaluations, p.value));
+                    if p.iteration == 5 {
+                        ControlFlow::Break(())
+                    } else {
+                        ControlFlow::Continue(())
+                    }
+                },
+            )
+            .unwrap();
+        assert_eq!(s.end, EnsembleEnd::Observer);
+        assert_eq!(seen.len(), 5);
+        assert!(seen.windows(2).all(|w| w[1].2 <= w[0].2 && w[1].1 > w[0].1));
+        assert_eq!(
+            (s.generations, s.evaluations, s.value),
+            (seen[4].0, seen[4].1, seen[4].2)
+        );
+    }
+
+    #[test]
+    fn the_callers_rules_end_the_run_counting_the_earlier_phase() {
+        let bowl = |x: &[f64], d: usize, out: &mut [f64]| {
+            for (row, o) in x.chunks_exact(d).zip(out.iter_mut()) {
+                *o = dot(row, row);
+            }
+            Ok(())
+        };
+        let go = |_: &Progress<'_>| ControlFlow::Continue(());
+        let e = Ensemble::default();
+        let end = |rules| {
+            let s = e
+                .minimize(&[-1.0; 3], &[1.0; 3], 100_000, 2, rules, bowl, go)
+                .unwrap();
+            (s.end, s.generations)
+        };
+        let none = EnsembleRules::default();
+        // A target an earlier phase already met ends the run at its first look.
+        let known = EnsembleRules {
+            target: Some(0.5),
+            known: 0.25,
+            ..none
+        };
+        assert_eq!(end(known), (EnsembleEnd::Target, 1));
+        assert_eq!(
+            end(EnsembleRules {
+                target: Some(1e-6),
+                ..none
+            })
+            .0,
+            EnsembleEnd::Target
+        );
+        // No fall exceeds inf: stalled once the window is done, counting
+        // the earlier phase's iterations.
+        let stall = |window, elapsed| EnsembleRules {
+            stall: Some((window, f64::INFINITY)),
+            elapsed,
+            ..none
+        };
+        assert_eq!(end(stall(1, 0)), (EnsembleEnd::Stalled, 1));
+        assert_eq!(end(stall(3, 0)), (EnsembleEnd::Stalled, 3));
+        assert_eq!(end(stall(3, 2)), (EnsembleEnd::Stalled, 1));
+        // A tolerance of 0 on a bowl: the best falls every generation
+        // until rounding, so the run does not stall early.
+        let strict = EnsembleRules {
+            stall: Some((5, 0.0)),
+            ..none
+        };
+        assert!(end(strict).1 > 20);
+        let cap = EnsembleRules {
+            iterations: Some(7),
+            elapsed: 4,
+            ..none
+        };
+        assert_eq!(end(cap), (EnsembleEnd::Iterations, 3));
+    }
+}
