@@ -46,7 +46,9 @@
 //! **Convergence** ([`Ensemble::converge`]): the run ends once two restarts
 //! that ended by agreement (values or positions, not the stall) reached
 //! the best value to `1e-12` of the spread of `U` over the first
-//! generation: a second, larger ensemble found nothing better.
+//! generation plus `1e-11` of `|U|` there (the restarts' own agreement,
+//! `1e-12` of their mean, leaves their bests that far apart): a second,
+//! larger ensemble found nothing better.
 //!
 //! Nothing but the stop depends on the budget: a run's first `B`
 //! evaluations are those of any longer run with the same seed.
@@ -275,7 +277,10 @@ impl Ensemble {
                 Err(end) => break end,
             };
             if let Restart::Agreed = restart {
-                let tol = 1e-12 * run.spread0.unwrap_or(0.0);
+                // A restart agrees to 1e-12 of its values' mean, so two
+                // restarts' bests differ by a few of those; and by no
+                // less than 1e-12 of U's spread, the problem's own scale.
+                let tol = 1e-12 * run.spread0.unwrap_or(0.0) + 1e-11 * run.best.abs();
                 let at_best = |b: f64| b <= run.best + tol;
                 if self.converge && at_best(run_best) && agreed.is_some_and(at_best) {
                     break EnsembleEnd::Converged;
