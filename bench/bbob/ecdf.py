@@ -57,6 +57,8 @@ STYLE = {
     "ipop-cma-es": dict(color="C0", lw=1.6),
     "dual-annealing": dict(color="C2", lw=1.6),
     "differential-evolution": dict(color="C1", lw=1.6),
+    # Auto alone (the default before the ensemble phase): hrla's colour, dashed.
+    "hrla-auto": dict(color="C3", lw=1.4, ls="--", alpha=0.8),
     REF: dict(color="0.55", lw=5, alpha=0.45, zorder=1),
 }
 COLUMNS = ["solver", "d", "f", "i", "budget", "seed", "calls", "returned", "best", "wall_s", "version", "hits"]

@@ -16,7 +16,9 @@ with ``seed = 10000 d + 100 f + i``.
 Solvers, each called as a scipy user would, with ``fun`` alone (no
 gradient; finite differences, where a solver takes them, are calls too):
 
-  hrla                    hrla.minimize(fun, [(-5, 5)] * d, maxfun=B, rng=seed)
+  hrla                    hrla.minimize(fun, [(-5, 5)] * d, maxfun=B, rng=seed):
+                          its default, Auto for the first 100 d calls, then
+                          the ensemble of hrla_dyn::Ensemble
   ipop-cma-es             cma.fmin2(fun, x0, 2.0, options={bounds: [-5, 5],
                           maxfevals: B, seed: seed + 1, verbose: -9,
                           verb_log: 0}, restarts=9, incpopsize=2), x0 drawn
@@ -28,14 +30,17 @@ gradient; finite differences, where a solver takes them, are calls too):
                           polish=True): its defaults, until its tolerance
                           stops it or the cap does
 
-Extra solvers, run only when named: ``ensemble`` (bench/bbob/ensemble.py,
+Extra solvers, run only when named: ``hrla-auto`` (``method=hrla.Auto()``:
+Auto alone, the default before the ensemble) and ``hrla-noconverge``
+(``converge=False``: every run spends B); ``ensemble`` (bench/bbob/ensemble.py,
 a gradient-free ensemble Langevin prototype, ``ensemble.minimize(fun,
 [(-5, 5)] * d, maxfun=B, rng=seed)``) and its ablations ``ensemble-od``,
 ``-iso``, ``-norestart``, ``-raw``, ``-noaldi``, ``-n2``, ``-nhalf``,
 ``-n2raw``, ``-n2cool``, ``-n2cool15``
-(ENSEMBLE below); ``portfolio``: hrla's default to ``100 d`` calls, then
-``ensemble-n2`` with the calls left (``portfolio-300``: hrla to ``300 d``;
-``portfolio-cool``: then ``ensemble-n2cool15``).
+(ENSEMBLE below); ``portfolio``: hrla's Auto to ``100 d`` calls, then
+``ensemble-n2`` with the calls left (``portfolio-300``: Auto to ``300 d``;
+``portfolio-cool``: then ``ensemble-n2cool15``, the prototype of hrla's
+default; PORTFOLIO below).
 
 Counting (the same wrapper for every solver): each call of ``fun`` is one
 evaluation; the attempt of call B + 1 raises a private exception that ends
@@ -165,7 +170,7 @@ def run_ensemble(options):
 
 
 def run_portfolio(share, **options):
-    """hrla's default for the first ``share d`` calls (its lead at 100 d),
+    """hrla's Auto for the first ``share d`` calls (its lead at 100 d),
     then the ensemble prototype with twice its initial population for the
     rest (its lead from 1000 d): a sequential portfolio, measured as one
     solver."""
@@ -174,13 +179,21 @@ def run_portfolio(share, **options):
         import ensemble
         import hrla
 
-        hrla.minimize(fun, [BOX] * d, maxfun=min(budget, share * d), rng=seed)
+        hrla.minimize(fun, [BOX] * d, maxfun=min(budget, share * d), rng=seed, method=hrla.Auto())
         left = budget - fun.calls
         if left > 0:
             ensemble.minimize(fun, [BOX] * d, maxfun=left, rng=seed,
                               **{"pop_factor": 2.0, **options})
 
     return runner
+
+
+# The portfolios: name -> (Auto's share in calls / d, ensemble.py's options).
+PORTFOLIO = {
+    "portfolio": (100, {}),
+    "portfolio-300": (300, {}),
+    "portfolio-cool": (100, {"cool": 1.5}),
+}
 
 
 RUNNERS = {
@@ -192,9 +205,7 @@ RUNNERS = {
 RUNNERS.update({name: run_ensemble(opts) for name, opts in ENSEMBLE.items()})
 RUNNERS["hrla-auto"] = run_hrla_variant(method=lambda: __import__("hrla").Auto())
 RUNNERS["hrla-noconverge"] = run_hrla_variant(converge=False)
-RUNNERS["portfolio"] = run_portfolio(100)
-RUNNERS["portfolio-300"] = run_portfolio(300)
-RUNNERS["portfolio-cool"] = run_portfolio(100, cool=1.5)
+RUNNERS.update({name: run_portfolio(share, **opts) for name, (share, opts) in PORTFOLIO.items()})
 
 
 def versions():
@@ -212,9 +223,9 @@ def versions():
     out.update({name: f"ensemble.py {opts or 'defaults'}" for name, opts in ENSEMBLE.items()})
     out["hrla-auto"] = f"{out['hrla']} method=hrla.Auto() (Auto alone)"
     out["hrla-noconverge"] = f"{out['hrla']} converge=False"
-    out["portfolio"] = f"{out['hrla']} to 100 d, then ensemble.py pop_factor=2"
-    out["portfolio-300"] = f"{out['hrla']} to 300 d, then ensemble.py pop_factor=2"
-    out["portfolio-cool"] = f"{out['hrla']} to 100 d, then ensemble.py pop_factor=2 cool=1.5"
+    for name, (share, opts) in PORTFOLIO.items():
+        extra = "".join(f" {k}={v}" for k, v in opts.items())
+        out[name] = f"{out['hrla']} Auto to {share} d, then ensemble.py pop_factor=2{extra}"
     return out
 
 

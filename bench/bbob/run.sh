@@ -9,7 +9,7 @@
 #   scripts/test-python.sh -k nothing      # builds hrla from source into $CARGO_TARGET_DIR/python-venv
 #   nice -n 10 bench/bbob/run.sh           # everything: d = 2, 5, 10, f1-24, instances 1-5,
 #                                          # four solvers, 10^4 d calls a run (about 80 minutes)
-#   nice -n 10 bench/bbob/run.sh --solvers hrla            # hrla alone, the same runs (about 15 minutes)
+#   nice -n 10 bench/bbob/run.sh --solvers hrla            # hrla alone, the same runs (about 3 minutes)
 #   bench/bbob/run.sh --dims 2 --functions 15-19 --instances 1 --budget 1000
 #   bench/bbob/run.sh --summary            # the tables and plots again, no run
 #

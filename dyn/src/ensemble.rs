@@ -982,4 +982,53 @@ mod tests {
         };
         assert_eq!(end(cap), (EnsembleEnd::Iterations, 3));
     }
+
+    #[test]
+    fn decisions_are_invariant_to_the_units_of_u_and_of_the_box() {
+        // U enters only through its ranks and through tolerances relative
+        // to its own spread and size: U times c gives the same points, bit
+        // for bit, and c times the values. A box scaled by a power of two
+        // scales every position exactly, so the same decisions again.
+        let rastrigin = |x: &[f64]| {
+            7.5 + x
+                .iter()
+                .map(|t| {
+                    let u = t - 0.7;
+                    u * u - 10.0 * (2.0 * core::f64::consts::PI * u).cos() + 10.0
+                })
+                .sum::<f64>()
+        };
+        let go = |_: &Progress<'_>| ControlFlow::Continue(());
+        let solve = |c: f64, s: f64| {
+            let values = |x: &[f64], d: usize, out: &mut [f64]| {
+                for (row, o) in x.chunks_exact(d).zip(out.iter_mut()) {
+                    let unscaled: Vec<f64> = row.iter().map(|v| v / s).collect();
+                    *o = c * rastrigin(&unscaled);
+                }
+                Ok(())
+            };
+            let (lo, hi) = ([-5.0 * s; 3], [5.0 * s; 3]);
+            Ensemble::default()
+                .minimize(&lo, &hi, 20_000, 5, EnsembleRules::default(), values, go)
+                .unwrap()
+        };
+        let base = solve(1.0, 1.0);
+        assert_eq!(base.end, EnsembleEnd::Converged, "{base:?}");
+        for c in [1e-14, 1e-3, 1e14] {
+            let other = solve(c, 1.0);
+            assert_eq!(
+                (&other.x, other.evaluations, other.end),
+                (&base.x, base.evaluations, base.end)
+            );
+            assert!((other.value / c - base.value).abs() <= 1e-12 * base.value);
+        }
+        for s in [2f64.powi(-34), 2f64.powi(33)] {
+            let other = solve(1.0, s);
+            let x: Vec<f64> = other.x.iter().map(|v| v / s).collect();
+            assert_eq!(
+                (&x, other.evaluations, other.value),
+                (&base.x, base.evaluations, base.value)
+            );
+        }
+    }
 }
