@@ -45,10 +45,11 @@
 //!
 //! **Convergence** ([`Ensemble::converge`]): the run ends once two restarts
 //! that ended by agreement (values or positions, not the stall) reached
-//! the best value to `1e-12` of the spread of `U` over the first
-//! generation plus `1e-11` of `|U|` there (the restarts' own agreement,
-//! `1e-12` of their mean, leaves their bests that far apart): a second,
-//! larger ensemble found nothing better.
+//! the best value, each to its last generation's spread of values, plus
+//! `1e-12` of the spread of `U` over the first generation and `1e-11` of
+//! `|U|` there (a restart's own agreement, `1e-12` of its values' mean,
+//! leaves two bests that far apart): a second, larger ensemble found
+//! nothing better.
 //!
 //! Nothing but the stop depends on the budget: a run's first `B`
 //! evaluations are those of any longer run with the same seed.
@@ -173,8 +174,10 @@ pub struct EnsembleSolution {
 
 /// How a restart ended.
 enum Restart {
-    /// Its values or positions agreed: it converged to something.
-    Agreed,
+    /// Its values or positions agreed: it converged to something, its best
+    /// known to about `spread`, the standard deviation of its last
+    /// generation's values.
+    Agreed { spread: f64 },
     /// Its best stalled, or its frame or model broke down.
     Other,
 }
@@ -269,23 +272,28 @@ impl Ensemble {
         let parameters = 1 + d + d * (d + 1) / 2;
         let mut n =
             8.max((self.population * parameters as f64 / MEMORY as f64).ceil() as usize + 1);
-        // The best value of the last restart that converged.
-        let mut agreed: Option<f64> = None;
+        // The best value of the restarts that converged, and its spread.
+        let mut agreed: Option<(f64, f64)> = None;
         let end = loop {
             let (restart, run_best) = match self.restart(&mut run, n)? {
                 Ok(r) => r,
                 Err(end) => break end,
             };
-            if let Restart::Agreed = restart {
-                // A restart agrees to 1e-12 of its values' mean, so two
-                // restarts' bests differ by a few of those; and by no
-                // less than 1e-12 of U's spread, the problem's own scale.
+            if let Restart::Agreed { spread } = restart {
+                // A restart ends when its values agree to 1e-12 of their
+                // mean, or its positions to 1e-12 of the box: its best is
+                // known to its last generation's spread of values. Two
+                // restarts' bests then differ by that, and by no less than
+                // 1e-12 of U's spread, the problem's own scale.
                 let tol = 1e-12 * run.spread0.unwrap_or(0.0) + 1e-11 * run.best.abs();
-                let at_best = |b: f64| b <= run.best + tol;
-                if self.converge && at_best(run_best) && agreed.is_some_and(at_best) {
+                let at_best = |(b, spread): (f64, f64)| b <= run.best + tol + spread;
+                if self.converge && at_best((run_best, spread)) && agreed.is_some_and(at_best) {
                     break EnsembleEnd::Converged;
                 }
-                agreed = Some(agreed.map_or(run_best, |a| a.min(run_best)));
+                agreed = match agreed {
+                    Some(a) if a.0 <= run_best => Some(a),
+                    _ => Some((run_best, spread)),
+                };
             }
             run.restarts += 1;
             n = n.saturating_mul(2);
@@ -390,7 +398,7 @@ impl Ensemble {
             let trace: f64 = (0..d).map(|i| c[i * d + i]).sum();
             let widest = (0..d).map(|i| c[i * d + i]).fold(0.0, f64::max).sqrt();
             if sd_f <= 1e-12 * (mean_f.abs() + 1e-300) || widest < 1e-12 * width {
-                return Ok(Ok((Restart::Agreed, run_best)));
+                return Ok(Ok((Restart::Agreed { spread: sd_f }, run_best)));
             }
             if since > stall || !(trace.is_finite() && trace > 0.0) {
                 return Ok(Ok((Restart::Other, run_best)));
@@ -799,6 +807,24 @@ mod tests {
         assert!(s.value < 1e-10, "{s:?}");
         assert_eq!(s.end, EnsembleEnd::Converged, "{s:?}");
         assert!(s.evaluations < 100_000);
+    }
+
+    #[test]
+    fn a_minimum_of_value_zero_at_a_cusp_converges() {
+        // Ackley's f is 0 at its minimum and grows like |x| there: the
+        // restarts end when their positions agree, their values still
+        // spread far beyond 1e-12 of their mean, and must agree to that
+        // spread.
+        let ackley = |x: &[f64]| {
+            let n = x.len() as f64;
+            let (sq, cos) = x.iter().fold((0.0, 0.0), |(s, c), t| {
+                (s + t * t, c + (2.0 * core::f64::consts::PI * t).cos())
+            });
+            -20.0 * (-0.2 * (sq / n).sqrt()).exp() - (cos / n).exp() + 20.0 + core::f64::consts::E
+        };
+        let s = run(ackley, 10, 150_000, 1, Ensemble::default());
+        assert!(s.value < 1e-9, "{s:?}");
+        assert_eq!(s.end, EnsembleEnd::Converged, "{s:?}");
     }
 
     #[test]
