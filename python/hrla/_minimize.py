@@ -11,8 +11,8 @@ from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tu
 import numpy as np
 
 from . import _objective
-from ._hrla import (ENSEMBLE_MAX_DIM, Auto, DivergedError, Hrla, Interval, Ola, Optimizer, PolishSettings, Potential, Stop, Ula,
-                    ensemble_minimize, split_budget)
+from ._hrla import (ENSEMBLE_MAX_DIM, Auto, DivergedError, Hrla, Interval, Ola, Optimizer, PolishSettings,
+                    Potential, Stop, Ula, ensemble_minimize, split_budget)
 
 #: The clock of ``maxtime`` and of the progress line's rate (seconds); a
 #: test may replace it with a fake one.
@@ -636,8 +636,8 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
     # early (bbob: up to about 100 D calls); the ensemble, which needs
     # values only, leads from there. So Auto runs first with the calls of
     # ENSEMBLE_CALLS D (at least two gradients a chain), and the ensemble
-    # with the rest (docs/QUALITY.md, "Without a gradient"). hrla.Auto(...)
-    # as the method runs Auto alone.
+    # with the rest (docs/QUALITY.md, "Black-box: COCO bbob").
+    # hrla.Auto(...) as the method runs Auto alone.
     ensemble = (settings is None and objective is not None and objective.scheme is not None
                 and size is not None and size <= ENSEMBLE_MAX_DIM)
     whole = budget
