@@ -56,8 +56,8 @@
 
 use std::ops::ControlFlow;
 
-use hrla::rand_core::{Rng, SeedableRng};
-use hrla::{Hrla, HrlaParams, Kernel, Sampler};
+use hrla::rand_core::SeedableRng;
+use hrla::{Bounds, Hrla, HrlaParams, Kernel, Sampler, Sides};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::linalg::{
@@ -184,8 +184,7 @@ enum Restart {
 
 /// The run's state across restarts.
 struct Run<'f, V, O> {
-    lo: &'f [f64],
-    hi: &'f [f64],
+    bounds: Bounds<f64, &'f [f64]>,
     budget: u64,
     rules: EnsembleRules,
     /// The best after each iteration of the stall window, oldest first.
@@ -240,7 +239,7 @@ impl Ensemble {
         O: FnMut(&Progress<'_>) -> ControlFlow<()>,
     {
         self.check()?;
-        hrla::Bounds::new(lo, hi).map_err(Error::Kernel)?;
+        let bounds = Bounds::new(lo, hi).map_err(Error::Kernel)?;
         let d = lo.len();
         if d > Self::MAX_DIM {
             return Err(Error::Kernel(hrla::Error::OutOfRange {
@@ -254,8 +253,7 @@ impl Ensemble {
             return Err(Error::Kernel(hrla::Error::Zero { name: "budget" }));
         }
         let mut run = Run {
-            lo,
-            hi,
+            bounds,
             budget,
             rules,
             bests: std::collections::VecDeque::from([rules.known]),
@@ -354,14 +352,13 @@ impl Ensemble {
         V: FnMut(&[f64], usize, &mut [f64]) -> Result<(), UserError>,
         O: FnMut(&Progress<'_>) -> ControlFlow<()>,
     {
-        let (lo, hi) = (run.lo, run.hi);
+        let bounds = run.bounds;
+        let (lo, hi) = (bounds.lo(), bounds.hi());
         let d = lo.len();
         let width = lo.iter().zip(hi).map(|(l, h)| h - l).fold(0.0, f64::max);
         let mut x = vec![0.0; n * d];
         for row in x.chunks_exact_mut(d) {
-            for ((xi, l), h) in row.iter_mut().zip(lo).zip(hi) {
-                *xi = l + (h - l) * uniform(&mut run.rng);
-            }
+            bounds.uniform(&mut run.rng, row);
         }
         let mut y = vec![0.0; n * d];
         // The last MEMORY generations' points and values, oldest first.
@@ -452,7 +449,7 @@ impl Ensemble {
         d: usize,
         kappa: f64,
     ) -> Option<Drift> {
-        let total: usize = history.iter().map(|(f, _)| f.len() / d).sum();
+        let total: usize = history.iter().map(|(points, _)| points.len() / d).sum();
         let mut z = Vec::with_capacity(total * d);
         let mut values = Vec::with_capacity(total);
         for (points, f) in history {
@@ -577,11 +574,6 @@ where
         }
         None
     }
-}
-
-/// A uniform draw in `[0, 1)` from the top 53 bits of one word.
-fn uniform(rng: &mut Xoshiro256PlusPlus) -> f64 {
-    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
 /// The mean and the population standard deviation (`0, 0` for nothing).
@@ -763,8 +755,13 @@ mod tests {
         let g = [0.5, -1.0, 2.0];
         let h = [2.0, 0.3, -0.1, 0.3, 1.0, 0.2, -0.1, 0.2, 3.0];
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(3);
+        let square = Bounds::new([-2.0; 3], [2.0; 3]).unwrap();
         let z: Vec<Vec<f64>> = (0..400)
-            .map(|_| (0..d).map(|_| 4.0 * uniform(&mut rng) - 2.0).collect())
+            .map(|_| {
+                let mut zi = vec![0.0; d];
+                square.uniform(&mut rng, &mut zi);
+                zi
+            })
             .collect();
         let v: Vec<f64> = z
             .iter()

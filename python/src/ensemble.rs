@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 
 use crate::errors::{guard, layer};
 use crate::observer::{observe, observer_of};
+use crate::potential::real;
 
 /// `values(X) -> U` on the rows of `points` (`n x d`), checked for shape.
 fn call(
@@ -23,6 +24,8 @@ fn call(
     let x = PyArray1::from_slice(py, points).reshape([n, d])?;
     let u = values.bind(py).call1((x,))?;
     let numpy = py.import("numpy")?;
+    // Refused as the batch seam refuses them: booleans, complex, strings.
+    let u = real(&numpy, &u, "U")?;
     let u = numpy.call_method1("ascontiguousarray", (u, "float64"))?;
     let u = u.cast_into::<numpy::PyArrayDyn<f64>>()?;
     if u.shape() != [n] {

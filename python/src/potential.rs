@@ -193,7 +193,7 @@ fn call(
 /// numbers, strings and objects are refused with `TypeError`: numpy would
 /// turn `True` into 1, drop an imaginary part, or parse `"1.5"`, each a
 /// wrong value that would pass unnoticed.
-fn real<'py>(
+pub(crate) fn real<'py>(
     numpy: &Bound<'py, PyModule>,
     v: &Bound<'py, PyAny>,
     what: &str,
