@@ -4,7 +4,6 @@
 //! Ctrl-C between steps, one call at a time, and the end of a run whose
 //! Python potential raised.
 
-use std::ops::ControlFlow;
 use std::sync::{Mutex, MutexGuard, TryLockError};
 
 use hrla::{Observe, PolishSettings};
@@ -68,21 +67,7 @@ fn run(
     };
     let mut interrupted = None;
     let mut observer = |p: &hrla_dyn::Progress| {
-        let answer = Python::attach(|py| {
-            py.check_signals()?;
-            match user_observer {
-                Some(o) => crate::observer::observe(py, o, p, with_x),
-                None => Ok(false),
-            }
-        });
-        match answer {
-            Ok(false) => ControlFlow::Continue(()),
-            Ok(true) => ControlFlow::Break(()),
-            Err(e) => {
-                interrupted = Some(e);
-                ControlFlow::Break(())
-            }
-        }
+        Python::attach(|py| crate::observer::look(py, user_observer, p, with_x, &mut interrupted))
     };
     let report = if user {
         engine.run(Observe::Every(every), &mut observer)

@@ -1,15 +1,13 @@
 //! The layer's gradient-free solver, [`hrla_dyn::Ensemble`], on a Python
 //! function of values: `hrla.minimize`'s second phase without a gradient.
 
-use std::ops::ControlFlow;
-
 use hrla_dyn::{Ensemble, EnsembleEnd, EnsembleRules, Progress, UserError};
 use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use crate::errors::{guard, layer};
-use crate::observer::{observe, observer_of};
+use crate::observer::{look, observer_of};
 use crate::potential::real;
 
 /// `values(X) -> U` on the rows of `points` (`n x d`), checked for shape.
@@ -91,20 +89,7 @@ pub fn ensemble_minimize<'py>(
         let evaluate = |points: &[f64], d: usize, out: &mut [f64]| {
             call(py, &values, points, d, out).map_err(UserError::from)
         };
-        let watch = |p: &Progress<'_>| {
-            let answer = py.check_signals().and_then(|()| match &observer {
-                None => Ok(false),
-                Some(o) => observe(py, o, p, with_x),
-            });
-            match answer {
-                Ok(false) => ControlFlow::Continue(()),
-                Ok(true) => ControlFlow::Break(()),
-                Err(e) => {
-                    stopped = Some(e);
-                    ControlFlow::Break(())
-                }
-            }
-        };
+        let watch = |p: &Progress<'_>| look(py, observer.as_ref(), p, with_x, &mut stopped);
         let rules = EnsembleRules {
             target,
             stall,

@@ -2,6 +2,8 @@
 //! Ctrl-C: what the optimiser (`engine.rs`) and the default solver
 //! (`auto.rs`) share.
 
+use std::ops::ControlFlow;
+
 use hrla_dyn::Progress;
 use numpy::PyArray1;
 use pyo3::exceptions::PyTypeError;
@@ -46,4 +48,29 @@ pub fn observe(py: Python<'_>, o: &Py<PyAny>, p: &Progress<'_>, with_x: bool) ->
         o.call1((p.iteration, p.evaluations, p.value))?
     };
     answer.is_truthy()
+}
+
+/// A look at a run of the layer: Ctrl-C first, then the caller's
+/// observer, if any (see [`observe`]). `Break` when either asks the run to
+/// end; an exception (Ctrl-C's `KeyboardInterrupt` included) is kept in
+/// `stopped` for the caller to raise once the run has returned.
+pub fn look(
+    py: Python<'_>,
+    observer: Option<&Py<PyAny>>,
+    p: &Progress<'_>,
+    with_x: bool,
+    stopped: &mut Option<PyErr>,
+) -> ControlFlow<()> {
+    let answer = py.check_signals().and_then(|()| match observer {
+        Some(o) => observe(py, o, p, with_x),
+        None => Ok(false),
+    });
+    match answer {
+        Ok(false) => ControlFlow::Continue(()),
+        Ok(true) => ControlFlow::Break(()),
+        Err(e) => {
+            *stopped = Some(e);
+            ControlFlow::Break(())
+        }
+    }
 }
