@@ -107,8 +107,8 @@
 //!   lends, [`FlatChains`] (over any [`FlatStorage`]; [`FlatSlices`] for
 //!   borrowed slices), run by the same [`Optimizer`]; the slice twins of
 //!   the traits,
-//!   [`SlicePotential`], [`SliceDomain`], [`SliceStart`] (and
-//!   [`FromSliceFn`]); the batch seam, [`BatchPotential`]; L-BFGS in
+//!   [`SlicePotential`], [`SliceDomain`], [`SliceStart`] ([`FromFn`]
+//!   takes either form of closure); the batch seam, [`BatchPotential`]; L-BFGS in
 //!   caller storage, [`LbfgsIn`].
 //! - Algorithm 1: [`Builder`] and [`Optimizer`], over [`Chain`]s (in
 //!   [`Chains`]) or [`FlatChains`], with [`Stop`] rules, [`Progress`]
@@ -290,21 +290,18 @@ mod schedule;
 mod start;
 mod ziggurat_tables;
 
-pub use auto::{
-    Auto, AutoProgress, AutoStorage, CONVERGED, MAX_STEPS, Parts, Problem, Sampling, Solution,
-    Tempering,
-};
+pub use auto::{Auto, AutoProgress, AutoStorage, MAX_STEPS, Parts, Problem, Sampling, Solution};
 pub use domain::{Bounds, Domain, Interval, Sides, SliceDomain, Unbounded};
 pub use error::Error;
 pub use float::Float;
-pub use lockstep::{LANES, Lane, Xoshiro256Lanes};
+pub use lockstep::{LANES, Xoshiro256Lanes};
 pub use normal::StandardNormal;
 pub use optimizer::*;
 pub use polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished};
 pub use potential::*;
 pub use sampler::*;
 pub use schedule::{AnySchedule, Constant, FnSchedule, Geometric, Linear, Schedule};
-pub use start::{FromFn, FromSliceFn, Gaussian, Point, SliceStart, Start};
+pub use start::{FromFn, Gaussian, Point, SliceStart, Start};
 
 pub use heapless;
 pub use rand_core;

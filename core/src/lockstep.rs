@@ -96,7 +96,7 @@ impl Xoshiro256Lanes {
 
     /// Lane `l` alone, as a generator (panics if `l >= LANES`).
     #[inline]
-    pub fn lane(&mut self, l: usize) -> Lane<'_> {
+    pub fn lane(&mut self, l: usize) -> impl rand_core::Rng + '_ {
         assert!(l < LANES, "lane {l} of {LANES}");
         Lane { lanes: self, l }
     }
@@ -173,7 +173,7 @@ fn rotate_left<const K: u32>(v: u64x4) -> u64x4 {
 /// the lane's `Xoshiro256PlusPlus` (`next_u32` too: the high half of the
 /// next word, as `Xoshiro256PlusPlus` gives).
 #[derive(Debug)]
-pub struct Lane<'a> {
+struct Lane<'a> {
     lanes: &'a mut Xoshiro256Lanes,
     l: usize,
 }

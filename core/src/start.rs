@@ -127,10 +127,12 @@ impl<F: Float, const D: usize> SliceStart<F> for Gaussian<F, D> {
     }
 }
 
-/// Initial points from a closure `(chain, rng) -> x_0`. A non-finite point
-/// is infeasible: the optimiser calls the closure again for that chain (see
-/// [`Builder::build`](crate::Builder::build)), and fails with
-/// [`Error::NonFiniteStart`] when none of its tries is feasible.
+/// Initial points from a closure: `(chain, rng) -> x_0` for chains whose
+/// dimension is in their type ([`Start`]), `(chain, rng, x)` filling `x`
+/// for chains whose dimension is known at run time ([`SliceStart`]). A
+/// non-finite point is infeasible: the optimiser calls the closure again
+/// for that chain (see [`Builder::build`](crate::Builder::build)), and
+/// fails with [`Error::NonFiniteStart`] when none of its tries is feasible.
 #[derive(Clone, Copy, Debug)]
 pub struct FromFn<G>(pub G);
 
@@ -145,12 +147,7 @@ where
     }
 }
 
-/// Initial points from a function that fills a slice, for chains whose
-/// dimension is known at run time: `f(chain, rng, x)`.
-#[derive(Clone, Copy, Debug)]
-pub struct FromSliceFn<G>(pub G);
-
-impl<F: Float, G> SliceStart<F> for FromSliceFn<G>
+impl<F: Float, G> SliceStart<F> for FromFn<G>
 where
     G: FnMut(usize, &mut dyn Rng, &mut [F]),
 {

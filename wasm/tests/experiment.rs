@@ -6,7 +6,7 @@
 
 use hrla::rand_core::{Rng, SeedableRng};
 use hrla::{
-    AnySampler, AnySchedule, Builder, Constant, FlatChains, FromSliceFn, Rastrigin, StandardNormal,
+    AnySampler, AnySchedule, Builder, Constant, FlatChains, FromFn, Rastrigin, StandardNormal,
     splitmix64,
 };
 use hrla_wasm::{Experiment, ExperimentSettings, ROW, SAMPLERS};
@@ -33,7 +33,7 @@ fn direct_record(s: &ExperimentSettings, steps: u64) -> Vec<f64> {
                 )
                 .unwrap();
                 let std_dev = 10f64.sqrt();
-                let start = FromSliceFn(move |_c: usize, rng: &mut dyn Rng, x: &mut [f64]| {
+                let start = FromFn(move |_c: usize, rng: &mut dyn Rng, x: &mut [f64]| {
                     for xi in x.iter_mut() {
                         *xi = 3.0 + std_dev * f64::standard_normal(rng);
                     }

@@ -16,7 +16,7 @@ use crate::float::Float;
 
 /// The convergence rule's tolerance, relative to the spread of `U` at the
 /// initial points: a fall smaller than this is rounding.
-pub const CONVERGED: f64 = 1e-12;
+pub(super) const CONVERGED: f64 = 1e-12;
 
 /// How close to the best, relative to the spread of `U` at the initial
 /// points, a chain's basin is the best's for the convergence rule.

@@ -92,26 +92,12 @@ use crate::float::Float;
 use crate::optimizer::{Stop, Termination};
 use crate::polish::Quencher;
 use crate::potential::BatchPotential;
-use crate::schedule::Schedule;
 
-pub use measure::CONVERGED;
 pub use problem::{AutoProgress, Problem, Solution};
 pub use settings::{Auto, MAX_STEPS, Parts, Sampling};
 pub use storage::AutoStorage;
 
 use problem::AutoStore;
-
-/// An inverse temperature that the caller changes between steps: a
-/// schedule for runs whose temperature adapts to the run.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Tempering<F>(pub F);
-
-impl<F: Float> Schedule<F> for Tempering<F> {
-    #[inline]
-    fn inverse_temperature(&self, _k: u64) -> F {
-        self.0
-    }
-}
 
 impl<F: Float> Auto<F> {
     /// The number of chains measured best for an evaluation budget:

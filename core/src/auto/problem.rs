@@ -113,7 +113,7 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
 
     /// End the run as converged ([`Termination::Converged`]) when the
     /// best value has not fallen, beyond rounding, over the last `window`
-    /// rounds: by more than [`CONVERGED`](crate::CONVERGED) times the spread (interquartile
+    /// rounds: by more than `1e-12` times the spread (interquartile
     /// range) of `U` at the initial points, a tolerance in the problem's
     /// own units, so that the rule reads the same whatever the scale of
     /// `U`. The default window is two stalls, `2` [`Auto::stall`] rounds

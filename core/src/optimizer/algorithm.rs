@@ -597,7 +597,7 @@ where
     }
 
     /// The schedule, to change it between steps (for a schedule that
-    /// adapts to the run, such as [`Tempering`](crate::Tempering)).
+    /// adapts to the run).
     pub fn schedule_mut(&mut self) -> &mut C {
         &mut self.schedule
     }

@@ -35,7 +35,7 @@ use crate::lanes;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
 use crate::polish::{LbfgsIn, PolishSettings, Polished};
 use crate::potential::{BatchPotential, SlicePotential};
-use crate::sampler::{ChainSlices, Kernel};
+use crate::sampler::{ChainState, Kernel};
 use crate::start::SliceStart;
 
 /// Storage of `T`s that [`FlatChains`] reads and writes: any
@@ -731,8 +731,8 @@ where
     let mut xs = chains.x[span.clone()].chunks_exact_mut(d);
     let mut ys = chains.y[span.clone()].chunks_exact_mut(d);
     let mut gs = chains.grad[span].chunks_exact(d);
-    let mut part = || -> Option<ChainSlices<'_, F>> {
-        Some(ChainSlices {
+    let mut part = || -> Option<ChainState<'_, [F]>> {
+        Some(ChainState {
             x: xs.next()?,
             y: ys.next()?,
             grad: gs.next()?,

@@ -13,7 +13,7 @@ use rand_core::Rng;
 use super::hrla::Hrla;
 use super::ola::{Ola, OlaKernel};
 use super::ou::OuKernel;
-use super::traits::{ChainSlices, ChainState, Kernel, Sampler, StepMoments};
+use super::traits::{ChainState, Kernel, Sampler, StepMoments};
 use super::ula::Ula;
 use crate::error::Error;
 use crate::float::Float;
@@ -128,7 +128,7 @@ macro_rules! samplers {
             }
 
             #[inline]
-            fn step_lanes_slice(&self, chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+            fn step_lanes_slice(&self, chains: [ChainState<'_, [F]>; LANES], rng: &mut Xoshiro256Lanes) {
                 match self {
                     $( Self::$variant(k) => k.step_lanes_slice(chains, rng), )+
                 }
@@ -137,7 +137,7 @@ macro_rules! samplers {
             #[inline]
             fn step_lanes<const D: usize>(
                 &self,
-                chains: [ChainState<'_, F, D>; LANES],
+                chains: [ChainState<'_, [F; D]>; LANES],
                 rng: &mut Xoshiro256Lanes,
             ) {
                 match self {

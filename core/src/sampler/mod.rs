@@ -21,5 +21,5 @@ pub use any::{AnyKernel, AnySampler, SamplerKind};
 pub use hrla::{Hrla, HrlaParams};
 pub use ola::{Ola, OlaKernel, OlaParams};
 pub use ou::{NoiseFactor, OuKernel};
-pub use traits::{ChainSlices, ChainState, Kernel, Sampler, StepMoments};
+pub use traits::{ChainState, Kernel, Sampler, StepMoments};
 pub use ula::{Ula, UlaParams};

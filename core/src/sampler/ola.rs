@@ -3,7 +3,7 @@
 
 use rand_core::Rng;
 
-use super::traits::{ChainSlices, ChainState, Kernel, Sampler, StepMoments};
+use super::traits::{ChainState, Kernel, Sampler, StepMoments};
 use crate::error::{Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
@@ -117,7 +117,7 @@ impl<F: Float> Kernel<F> for OlaKernel<F> {
     #[inline]
     fn step_lanes<const D: usize>(
         &self,
-        mut chains: [ChainState<'_, F, D>; LANES],
+        mut chains: [ChainState<'_, [F; D]>; LANES],
         rng: &mut Xoshiro256Lanes,
     ) {
         // The arrays' fixed length spares the bounds checks of the slice
@@ -141,7 +141,7 @@ impl<F: Float> Kernel<F> for OlaKernel<F> {
     /// [`step_lanes`](Kernel::step_lanes) on slices: the same draws and
     /// updates.
     #[inline]
-    fn step_lanes_slice(&self, chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+    fn step_lanes_slice(&self, chains: [ChainState<'_, [F]>; LANES], rng: &mut Xoshiro256Lanes) {
         let d = chains[0].x.len();
         let mut parts = chains.map(|c| (c.x, c.grad));
         for i in 0..d {

@@ -44,7 +44,7 @@
 
 use rand_core::Rng;
 
-use super::traits::{ChainSlices, ChainState, Kernel, StepMoments};
+use super::traits::{ChainState, Kernel, StepMoments};
 use crate::error::{ALPHA_H, Error, INVERSE_TEMPERATURE, in_range, positive};
 use crate::float::Float;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
@@ -327,7 +327,7 @@ impl<F: Float> Kernel<F> for OuKernel<F> {
     #[inline]
     fn step_lanes<const D: usize>(
         &self,
-        mut chains: [ChainState<'_, F, D>; LANES],
+        mut chains: [ChainState<'_, [F; D]>; LANES],
         rng: &mut Xoshiro256Lanes,
     ) {
         if D <= BLOCK {
@@ -360,7 +360,11 @@ impl<F: Float> Kernel<F> for OuKernel<F> {
     }
 
     #[inline]
-    fn step_lanes_slice(&self, mut chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+    fn step_lanes_slice(
+        &self,
+        mut chains: [ChainState<'_, [F]>; LANES],
+        rng: &mut Xoshiro256Lanes,
+    ) {
         let d = chains[0].x.len();
         if d <= SMALL_BLOCK {
             self.step_lanes_block_slices::<SMALL_BLOCK>(&mut chains, d, 0, rng);
@@ -410,7 +414,7 @@ impl<F: Float> OuKernel<F> {
     #[inline]
     fn step_lanes_block<const D: usize, const B: usize>(
         &self,
-        chains: &mut [ChainState<'_, F, D>; LANES],
+        chains: &mut [ChainState<'_, [F; D]>; LANES],
         start: usize,
         rng_out: &mut Xoshiro256Lanes,
     ) {
@@ -434,7 +438,7 @@ impl<F: Float> OuKernel<F> {
     #[inline]
     fn step_lanes_block_slices<const B: usize>(
         &self,
-        chains: &mut [ChainSlices<'_, F>; LANES],
+        chains: &mut [ChainState<'_, [F]>; LANES],
         d: usize,
         start: usize,
         rng_out: &mut Xoshiro256Lanes,

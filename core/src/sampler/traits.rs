@@ -68,7 +68,7 @@ pub trait Kernel<F: Float>: Copy {
     #[inline]
     fn step_lanes<const D: usize>(
         &self,
-        chains: [ChainState<'_, F, D>; LANES],
+        chains: [ChainState<'_, [F; D]>; LANES],
         rng: &mut Xoshiro256Lanes,
     ) {
         for (l, chain) in chains.into_iter().enumerate() {
@@ -79,35 +79,25 @@ pub trait Kernel<F: Float>: Copy {
     /// [`step_lanes`](Kernel::step_lanes) for a dimension known at run time,
     /// the length of every chain's slices.
     #[inline]
-    fn step_lanes_slice(&self, chains: [ChainSlices<'_, F>; LANES], rng: &mut Xoshiro256Lanes) {
+    fn step_lanes_slice(&self, chains: [ChainState<'_, [F]>; LANES], rng: &mut Xoshiro256Lanes) {
         for (l, chain) in chains.into_iter().enumerate() {
             self.step_slice(chain.x, chain.y, chain.grad, &mut rng.lane(l));
         }
     }
 }
 
-/// What [`Kernel::step_lanes_slice`] advances of one chain: its position,
-/// velocity and gradient, slices of the run's dimension.
+/// What [`Kernel::step_lanes`] and [`Kernel::step_lanes_slice`] advance of
+/// one chain: its position and velocity, and the gradient at the position,
+/// each a `V`: an array `[F; D]` when the dimension is in the type, a
+/// slice `[F]` of the run's dimension otherwise.
 #[derive(Debug)]
-pub struct ChainSlices<'a, F> {
+pub struct ChainState<'a, V: ?Sized> {
     /// Position `x`.
-    pub x: &'a mut [F],
+    pub x: &'a mut V,
     /// Velocity `y`.
-    pub y: &'a mut [F],
+    pub y: &'a mut V,
     /// `∇U(x)`.
-    pub grad: &'a [F],
-}
-
-/// What [`Kernel::step_lanes`] advances of one chain: its position and
-/// velocity, and the gradient at the position.
-#[derive(Debug)]
-pub struct ChainState<'a, F, const D: usize> {
-    /// Position `x`.
-    pub x: &'a mut [F; D],
-    /// Velocity `y`.
-    pub y: &'a mut [F; D],
-    /// `∇U(x)`.
-    pub grad: &'a [F; D],
+    pub grad: &'a V,
 }
 
 /// Mean and covariance of one step of one coordinate, given `(x, y)` and the
