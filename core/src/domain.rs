@@ -14,7 +14,7 @@ use rand_core::Rng;
 
 use crate::error::{Error, finite};
 use crate::float::Float;
-use crate::start::{SliceStart, Start};
+use crate::start::Start;
 
 /// A domain for the chains.
 pub trait Domain<F: Float, const D: usize> {
@@ -360,16 +360,9 @@ impl<F: Float> Sides<F> for Interval<F> {
     }
 }
 
-impl<F: Float, const D: usize> Start<F, D> for Interval<F> {
+impl<F: Float> Start<F> for Interval<F> {
     /// Uniform in the box: `lo + (hi - lo) u`, `u` from the top 53 (f64) or
     /// 24 (f32) bits of one `next_u64` per coordinate.
-    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F; D]) {
-        uniform_each(rng, x, |_| self.lo, |_| self.hi);
-    }
-}
-
-impl<F: Float> SliceStart<F> for Interval<F> {
-    /// As [`Start::initial_point`]: the same draws.
     fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F]) {
         uniform_each(rng, x, |_| self.lo, |_| self.hi);
     }
@@ -498,21 +491,9 @@ impl<F: Float, S: AsRef<[F]>> Sides<F> for Bounds<F, S> {
     }
 }
 
-impl<F: Float, S: AsRef<[F]>, const D: usize> Start<F, D> for Bounds<F, S> {
+impl<F: Float, S: AsRef<[F]>> Start<F> for Bounds<F, S> {
     /// Uniform in the box, as [`Interval`]'s start: one `next_u64` per
     /// coordinate.
-    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F; D]) {
-        let (lo, hi) = self.sides();
-        uniform_each(rng, x, |i| lo[i], |i| hi[i]);
-    }
-
-    fn dimension(&self) -> Option<usize> {
-        Some(self.lo.as_ref().len())
-    }
-}
-
-impl<F: Float, S: AsRef<[F]>> SliceStart<F> for Bounds<F, S> {
-    /// As [`Start::initial_point`]: the same draws.
     fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F]) {
         let (lo, hi) = self.sides();
         uniform_each(rng, x, |i| lo[i], |i| hi[i]);

@@ -107,8 +107,8 @@
 //!   lends, [`FlatChains`] (over any [`FlatStorage`]; [`FlatSlices`] for
 //!   borrowed slices), run by the same [`Optimizer`]; the slice twins of
 //!   the traits,
-//!   [`SlicePotential`], [`SliceDomain`], [`SliceStart`] ([`FromFn`]
-//!   takes either form of closure); the batch seam, [`BatchPotential`]; L-BFGS in
+//!   [`SlicePotential`], [`SliceDomain`] ([`Start`] serves both); the
+//!   batch seam, [`BatchPotential`]; L-BFGS in
 //!   caller storage, [`LbfgsIn`].
 //! - Algorithm 1: [`Builder`] and [`Optimizer`], over [`Chain`]s (in
 //!   [`Chains`]) or [`FlatChains`], with [`Stop`] rules, [`Progress`]
@@ -301,7 +301,7 @@ pub use polish::{Lbfgs, LbfgsIn, PolishEnd, PolishSettings, Polished};
 pub use potential::*;
 pub use sampler::*;
 pub use schedule::{AnySchedule, Constant, FnSchedule, Geometric, Linear, Schedule};
-pub use start::{FromFn, Gaussian, Point, SliceStart, Start};
+pub use start::{FromFn, Gaussian, Point, Start};
 
 pub use heapless;
 pub use rand_core;

@@ -5,16 +5,19 @@ use rand_core::Rng;
 use crate::error::{Error, finite};
 use crate::float::Float;
 
-/// Draws the initial position of each chain (the velocity starts at 0).
-pub trait Start<F: Float, const D: usize> {
+/// Draws the initial position of each chain (the velocity starts at 0),
+/// whether the chains' dimension is in their type ([`Chain`](crate::Chain))
+/// or known at run time ([`FlatChains`](crate::FlatChains)): `x` is the
+/// chain's position, of the run's dimension, and the draws are the same
+/// either way.
+pub trait Start<F: Float> {
     /// Writes the initial position of chain `chain` into `x`, drawing from
     /// that chain's own generator `rng`. Called again for the same chain,
     /// with the generator where the last call left it, when the point was
     /// infeasible.
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]);
-    /// The dimension the start was made for, if it has one apart from `D`
-    /// (a box with a side per coordinate); a run of another dimension is
-    /// refused.
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F]);
+    /// The dimension the start was made for, if it has one (a mean, a
+    /// box); a run of another dimension is refused.
     fn dimension(&self) -> Option<usize> {
         None
     }
@@ -22,29 +25,7 @@ pub trait Start<F: Float, const D: usize> {
 
 /// A start behind a mutable reference is the same start: it can then live
 /// on the heap, or serve several runs.
-impl<F: Float, const D: usize, S: Start<F, D> + ?Sized> Start<F, D> for &mut S {
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]) {
-        (**self).initial_point(chain, rng, x);
-    }
-    fn dimension(&self) -> Option<usize> {
-        (**self).dimension()
-    }
-}
-
-/// Where each chain starts, for chains whose dimension is the length of
-/// the slice: the run-time-dimension twin of [`Start`], with the same
-/// draws.
-pub trait SliceStart<F: Float> {
-    /// Writes chain `chain`'s initial point into `x`, drawing from `rng`.
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F]);
-    /// The dimension the start was made for, if it has one (a mean, a box);
-    /// a run of another dimension is refused.
-    fn dimension(&self) -> Option<usize> {
-        None
-    }
-}
-
-impl<F: Float, S: SliceStart<F> + ?Sized> SliceStart<F> for &mut S {
+impl<F: Float, S: Start<F> + ?Sized> Start<F> for &mut S {
     fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F]) {
         (**self).initial_point(chain, rng, x);
     }
@@ -67,13 +48,7 @@ impl<F: Float, const D: usize> Point<F, D> {
     }
 }
 
-impl<F: Float, const D: usize> Start<F, D> for Point<F, D> {
-    fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, _rng: &mut R, x: &mut [F; D]) {
-        *x = self.0;
-    }
-}
-
-impl<F: Float, const D: usize> SliceStart<F> for Point<F, D> {
+impl<F: Float, const D: usize> Start<F> for Point<F, D> {
     fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, _rng: &mut R, x: &mut [F]) {
         x.copy_from_slice(&self.0);
     }
@@ -110,13 +85,7 @@ impl<F: Float, const D: usize> Gaussian<F, D> {
     }
 }
 
-impl<F: Float, const D: usize> Start<F, D> for Gaussian<F, D> {
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]) {
-        SliceStart::initial_point(self, chain, rng, x);
-    }
-}
-
-impl<F: Float, const D: usize> SliceStart<F> for Gaussian<F, D> {
+impl<F: Float, const D: usize> Start<F> for Gaussian<F, D> {
     fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [F]) {
         for (xi, &m) in x.iter_mut().zip(&self.mean) {
             *xi = m + self.std_dev * F::standard_normal(rng);
@@ -127,31 +96,20 @@ impl<F: Float, const D: usize> SliceStart<F> for Gaussian<F, D> {
     }
 }
 
-/// Initial points from a closure: `(chain, rng) -> x_0` for chains whose
-/// dimension is in their type ([`Start`]), `(chain, rng, x)` filling `x`
-/// for chains whose dimension is known at run time ([`SliceStart`]). A
-/// non-finite point is infeasible: the optimiser calls the closure again
-/// for that chain (see [`Builder::build`](crate::Builder::build)), and
-/// fails with [`Error::NonFiniteStart`] when none of its tries is feasible.
+/// Initial points from a closure `(chain, rng, x)` that writes chain
+/// `chain`'s initial point into `x` (of the run's dimension). A non-finite
+/// point is infeasible: the optimiser calls the closure again for that
+/// chain (see [`Builder::build`](crate::Builder::build)), and fails with
+/// [`Error::NonFiniteStart`] when none of its tries is feasible.
 #[derive(Clone, Copy, Debug)]
 pub struct FromFn<G>(pub G);
 
-impl<F: Float, const D: usize, G> Start<F, D> for FromFn<G>
-where
-    G: FnMut(usize, &mut dyn Rng) -> [F; D],
-{
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F; D]) {
-        // `&mut R` is itself a sized `Rng`, so it coerces to `dyn Rng`.
-        let mut rng = rng;
-        *x = (self.0)(chain, &mut rng);
-    }
-}
-
-impl<F: Float, G> SliceStart<F> for FromFn<G>
+impl<F: Float, G> Start<F> for FromFn<G>
 where
     G: FnMut(usize, &mut dyn Rng, &mut [F]),
 {
     fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [F]) {
+        // `&mut R` is itself a sized `Rng`, so it coerces to `dyn Rng`.
         let mut rng = rng;
         (self.0)(chain, &mut rng, x);
     }

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use hrla::rand_core::Rng;
 use hrla::{
     AnySampler, AnySchedule, BatchPotential, Constant, Geometric, Interval, Linear, SliceDomain,
-    SlicePotential, SliceStart, StandardNormal, Start, Stop,
+    SlicePotential, StandardNormal, Start, Stop,
 };
 
 use crate::Error;
@@ -309,13 +309,13 @@ pub enum AnyStart<const D: usize> {
     Bounds(hrla::Bounds<f64, [f64; D]>),
 }
 
-impl<const D: usize> Start<f64, D> for AnyStart<D> {
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64; D]) {
+impl<const D: usize> Start<f64> for AnyStart<D> {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64]) {
         match self {
-            Self::Gaussian(s) => Start::<f64, D>::initial_point(s, chain, rng, x),
-            Self::Point(s) => Start::<f64, D>::initial_point(s, chain, rng, x),
-            Self::Interval(s) => Start::<f64, D>::initial_point(s, chain, rng, x),
-            Self::Bounds(s) => Start::<f64, D>::initial_point(s, chain, rng, x),
+            Self::Gaussian(s) => s.initial_point(chain, rng, x),
+            Self::Point(s) => s.initial_point(chain, rng, x),
+            Self::Interval(s) => s.initial_point(chain, rng, x),
+            Self::Bounds(s) => s.initial_point(chain, rng, x),
         }
     }
 }
@@ -354,7 +354,7 @@ impl DynStart {
     }
 }
 
-impl SliceStart<f64> for DynStart {
+impl Start<f64> for DynStart {
     fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64]) {
         match self {
             Self::Gaussian { mean, std_dev } => {
@@ -363,8 +363,8 @@ impl SliceStart<f64> for DynStart {
                 }
             }
             Self::Point(p) => x.copy_from_slice(p),
-            Self::Interval(s) => SliceStart::initial_point(s, chain, rng, x),
-            Self::Bounds(s) => SliceStart::initial_point(s, chain, rng, x),
+            Self::Interval(s) => s.initial_point(chain, rng, x),
+            Self::Bounds(s) => s.initial_point(chain, rng, x),
         }
     }
 
@@ -373,7 +373,7 @@ impl SliceStart<f64> for DynStart {
             Self::Gaussian { mean, .. } => Some(mean.len()),
             Self::Point(p) => Some(p.len()),
             Self::Interval(_) => None,
-            Self::Bounds(b) => SliceStart::dimension(b),
+            Self::Bounds(b) => Start::<f64>::dimension(b),
         }
     }
 }

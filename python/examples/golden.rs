@@ -66,7 +66,7 @@ where
     P: Potential<f64, D>,
     S: Sampler<f64>,
     C: Schedule<f64>,
-    St: Start<f64, D>,
+    St: Start<f64>,
 {
     let mut storage = chains::<D>(n);
     let mut opt = builder.build(&mut storage)?;

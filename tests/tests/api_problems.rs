@@ -309,10 +309,11 @@ fn one_type_annotation_at_most() -> Result<(), Error> {
     let last = Linear::new(0.5, 4.0, 300)?.inverse_temperature(299);
     assert_eq!(opt.kernel().inverse_temperature(), last);
     assert!(chains.iter().all(|c| !c.is_diverged()));
-    // Not even that one: the element type follows from the start.
+    // Or written where the chains are made; the float type follows from
+    // the sampler.
     let mut opt = Builder::new(Rastrigin, Ola::paper(0.01)?, 2.0, Point::new([1.0; 5])?)
         .stop(Stop::new().steps(10))
-        .build(vec![Chain::new(); 3])?;
+        .build(vec![Chain::<_, 5>::new(); 3])?;
     assert_eq!(opt.run()?.iterations, 10);
     assert_eq!(opt.chains()[0].x().len(), 5);
     Ok(())
@@ -402,8 +403,9 @@ fn the_evaluation_budget_is_exact() {
 
     for budget in [50, 200, 1_000, 1_001] {
         let build = || {
-            let start =
-                FromFn(|c: usize, _: &mut dyn Rng| if c.is_multiple_of(2) { [0.0] } else { [4.5] });
+            let start = FromFn(|c: usize, _: &mut dyn Rng, x: &mut [f64]| {
+                x.copy_from_slice(&if c.is_multiple_of(2) { [0.0] } else { [4.5] })
+            });
             Builder::new(Cliff::NAN, Hrla::paper(0.01).unwrap(), 4.0, start)
                 .seed(12)
                 .stop(Stop::new().evaluations(budget))
@@ -768,7 +770,8 @@ fn out_of_range_parameters_are_refused() {
 #[test]
 fn non_finite_starts_are_named() {
     let hrla = Hrla::paper(0.01).unwrap();
-    let start = FromFn(|c: usize, _: &mut dyn Rng| [c as f64, 0.0]);
+    let start =
+        FromFn(|c: usize, _: &mut dyn Rng, x: &mut [f64]| x.copy_from_slice(&[c as f64, 0.0]));
     let nan_at = |bad: usize, what: &'static str| {
         FnPotential::new(move |x: &[f64; 2], g: &mut [f64; 2]| {
             let here = x[0] == bad as f64;
@@ -800,11 +803,9 @@ fn non_finite_starts_are_named() {
             })
         );
     }
-    let start = FromFn(
-        |c: usize, _: &mut dyn Rng| {
-            if c == 2 { [f64::NAN, 0.0] } else { [0.0; 2] }
-        },
-    );
+    let start = FromFn(|c: usize, _: &mut dyn Rng, x: &mut [f64]| {
+        x.copy_from_slice(&{ if c == 2 { [f64::NAN, 0.0] } else { [0.0; 2] } })
+    });
     let got = Builder::new(Rastrigin, hrla, 4.0, start)
         .build(chains::<2>(5))
         .map(|o| o.iteration());

@@ -165,8 +165,8 @@ const ALPHA_H: (f64, f64) = (1e-8, 50.0);
 const A: (f64, f64) = (1e-6, 1e6);
 
 /// A start of `n` chains at `[c, 0]` for chain `c`.
-fn indexed_start() -> FromFn<impl FnMut(usize, &mut dyn Rng) -> [f64; 2] + Copy> {
-    FromFn(|c: usize, _: &mut dyn Rng| [c as f64, 0.0])
+fn indexed_start() -> FromFn<impl FnMut(usize, &mut dyn Rng, &mut [f64]) + Copy> {
+    FromFn(|c: usize, _: &mut dyn Rng, x: &mut [f64]| x.copy_from_slice(&[c as f64, 0.0]))
 }
 
 /// `n` empty chains.
@@ -395,11 +395,9 @@ fn check(c: Case) -> Result<(), TestCaseError> {
         25 => {
             let bad = seed as usize % n;
             let value = not_finite(v);
-            let start = FromFn(
-                move |c: usize, _: &mut dyn Rng| {
-                    if c == bad { [0.0, value] } else { [0.5, 0.5] }
-                },
-            );
+            let start = FromFn(move |c: usize, _: &mut dyn Rng, x: &mut [f64]| {
+                x.copy_from_slice(&{ if c == bad { [0.0, value] } else { [0.5, 0.5] } })
+            });
             let got = no_panic("build", || {
                 Builder::new(Rastrigin, hrla, 4.0, start)
                     .seed(seed)

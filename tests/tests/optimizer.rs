@@ -339,7 +339,9 @@ fn rng_states<const D: usize>(chains: &[Chain<f64, D>]) -> Vec<u64> {
 /// the well's law is N(0, 1/4), and |x| = 3 is 6 standard deviations out).
 fn check_partial_divergence(cliff: Cliff) {
     const N: usize = 6;
-    let start = FromFn(|c: usize, _: &mut dyn Rng| if c.is_multiple_of(2) { [0.0] } else { [4.5] });
+    let start = FromFn(|c: usize, _: &mut dyn Rng, x: &mut [f64]| {
+        x.copy_from_slice(&if c.is_multiple_of(2) { [0.0] } else { [4.5] })
+    });
     let mut opt = Builder::new(cliff, paper_hrla(), 4.0, start)
         .seed(41)
         .stop(Stop::new().steps(500))
@@ -446,7 +448,9 @@ fn negative_infinity_value_beyond_radius_is_unbounded_below() {
         outside: f64::NEG_INFINITY,
         outside_grad: 0.0,
     };
-    let start = FromFn(|c: usize, _: &mut dyn Rng| if c.is_multiple_of(2) { [0.0] } else { [4.5] });
+    let start = FromFn(|c: usize, _: &mut dyn Rng, x: &mut [f64]| {
+        x.copy_from_slice(&if c.is_multiple_of(2) { [0.0] } else { [4.5] })
+    });
     let mut opt = Builder::new(cliff, paper_hrla(), 4.0, start)
         .seed(41)
         .stop(Stop::new().steps(500))
@@ -855,11 +859,9 @@ fn non_finite_start_errors() {
         tries: hrla::START_TRIES,
     };
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-        let start = FromFn(
-            move |c: usize, _: &mut dyn Rng| {
-                if c == 2 { [0.0, bad] } else { [1.0, 1.0] }
-            },
-        );
+        let start = FromFn(move |c: usize, _: &mut dyn Rng, x: &mut [f64]| {
+            x.copy_from_slice(&{ if c == 2 { [0.0, bad] } else { [1.0, 1.0] } })
+        });
         let got = Builder::new(Rastrigin, paper_hrla(), 4.0, start)
             .build(chains::<2>(4))
             .map(|o| o.iteration());
@@ -872,7 +874,9 @@ fn non_finite_start_errors() {
         .map(|o| o.iteration());
     assert_eq!(got, Err(start_error(0, "value")));
     // A finite value beside a NaN gradient.
-    let start = FromFn(|c: usize, _: &mut dyn Rng| [1.0 - c as f64, 0.0]);
+    let start = FromFn(|c: usize, _: &mut dyn Rng, x: &mut [f64]| {
+        x.copy_from_slice(&[1.0 - c as f64, 0.0])
+    });
     let got = Builder::new(NanGradientAtOrigin, paper_hrla(), 4.0, start)
         .build(chains::<2>(3))
         .map(|o| o.iteration());

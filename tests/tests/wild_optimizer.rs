@@ -97,8 +97,8 @@ enum AnyStart {
     Gaussian(Gaussian<f64, 2>),
 }
 
-impl Start<f64, 2> for AnyStart {
-    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64; 2]) {
+impl Start<f64> for AnyStart {
+    fn initial_point<R: Rng + ?Sized>(&mut self, chain: usize, rng: &mut R, x: &mut [f64]) {
         match self {
             Self::Point(s) => s.initial_point(chain, rng, x),
             Self::Gaussian(s) => s.initial_point(chain, rng, x),

@@ -264,7 +264,7 @@ where
     R: Rng + SeedableRng + 'static,
     P: Potential<F, D>,
     B: Domain<F, D>,
-    Sd: Start<F, D>,
+    Sd: Start<F>,
 {
     fn check(&self, from: &Origins<'_, P, B, Sd>) -> [(&'static str, Option<usize>); 3] {
         [
@@ -285,7 +285,7 @@ where
         for (c, chain) in self.iter_mut().enumerate() {
             chain.rng = R::seed_from_u64(chain_seed(seed, c as u64));
             draw_start(c, chain, potential, spare, &mut evaluations, |rng, x, y| {
-                start.initial_point(c, rng, x);
+                start.initial_point(c, rng, x.as_mut_slice());
                 *y = [F::ZERO; D];
                 domain.confine(x, y);
             })?;

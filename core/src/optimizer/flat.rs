@@ -36,7 +36,7 @@ use crate::lockstep::{LANES, Xoshiro256Lanes};
 use crate::polish::{LbfgsIn, PolishSettings, Polished};
 use crate::potential::{BatchPotential, SlicePotential};
 use crate::sampler::{ChainState, Kernel};
-use crate::start::SliceStart;
+use crate::start::Start;
 
 /// Storage of `T`s that [`FlatChains`] reads and writes: any
 /// `AsRef<[T]> + AsMut<[T]>`, such as `&mut [T]` or `[T; N]` on firmware,
@@ -443,7 +443,7 @@ where
     Rs: FlatStorage<R>,
     P: BatchPotential<F>,
     B: SliceDomain<F>,
-    Sd: SliceStart<F>,
+    Sd: Start<F>,
 {
     fn check(&self, from: &Origins<'_, P, B, Sd>) -> [(&'static str, Option<usize>); 3] {
         [

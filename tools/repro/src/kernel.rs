@@ -9,9 +9,7 @@
 //! Everything else in the tool sees only [`KernelRun`]'s few methods.
 
 use hrla::rand_core::{Rng, SeedableRng};
-use hrla::{
-    AnySampler, AnySchedule, Builder, FlatChains, Rastrigin, SliceStart, StandardNormal, Stop,
-};
+use hrla::{AnySampler, AnySchedule, Builder, FlatChains, Rastrigin, StandardNormal, Start, Stop};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::config::{RunSpec, StartSpec};
@@ -67,7 +65,7 @@ impl RunStart {
     }
 }
 
-impl SliceStart<f64> for RunStart {
+impl Start<f64> for RunStart {
     fn initial_point<R: Rng + ?Sized>(&mut self, _chain: usize, rng: &mut R, x: &mut [f64]) {
         match *self {
             RunStart::Gaussian { centre, std_dev } => {
@@ -155,7 +153,7 @@ mod tests {
     use super::*;
     use crate::config::{Method, Temperature};
     use crate::seed::run_seed;
-    use hrla::{Chain, Gaussian, Point, SamplerKind, Start};
+    use hrla::{Chain, Gaussian, Point, SamplerKind};
 
     fn spec(d: usize, start: StartSpec, temperature: Temperature) -> RunSpec {
         RunSpec {
@@ -184,7 +182,7 @@ mod tests {
     /// The same run over `Chain<f64, D>`s from the kernel's own `Gaussian`
     /// or `Point`: the const-generic path.
     fn const_path<const D: usize>(s: &RunSpec, seed: u64) -> Trace {
-        fn trace<const D: usize>(s: &RunSpec, seed: u64, start: impl Start<f64, D>) -> Trace {
+        fn trace<const D: usize>(s: &RunSpec, seed: u64, start: impl hrla::Start<f64>) -> Trace {
             let (schedule, sampler) = s.kernel_setup().unwrap();
             let mut opt = Builder::new(Rastrigin, sampler, schedule, start)
                 .seed(seed)

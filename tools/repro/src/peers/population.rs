@@ -2,7 +2,7 @@
 //! ([`Peer`]): what the four methods and their moves share.
 
 use hrla::rand_core::SeedableRng;
-use hrla::{SlicePotential, SliceStart, chain_seed};
+use hrla::{SlicePotential, Start, chain_seed};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 /// The stream index of the resampling generator (no member has it).
@@ -37,7 +37,7 @@ pub struct Population {
 impl Population {
     /// `n` members of dimension `d` started by `start` (member `c` from
     /// its own stream `chain_seed(seed, c)`), each evaluated once.
-    pub fn new<P: SlicePotential<f64>, S: SliceStart<f64>>(
+    pub fn new<P: SlicePotential<f64>, S: Start<f64>>(
         potential: &P,
         start: &mut S,
         n: usize,
