@@ -192,6 +192,36 @@ pub(crate) fn check_dimensions(
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let value = |v: f64| Num(v);
+        // A run that failed; every other error refuses an input.
+        match *self {
+            Error::NonFiniteStart { chain, what, tries } => write!(
+                f,
+                "no feasible initial point for chain {chain}: {tries} drawn, \
+                 the last one's {what} is not finite"
+            ),
+            Error::Poisoned => f.write_str(
+                "the potential panicked during an evaluation: the optimiser's state is \
+                 inconsistent and it refuses to go on; build a new one",
+            ),
+            Error::AllDiverged { chains } => write!(
+                f,
+                "all {chains} chains diverged (non-finite position, potential or gradient): \
+                 try a smaller step h"
+            ),
+            Error::UnboundedBelow { chain, value: v } => write!(
+                f,
+                "the potential looks unbounded below: chain {chain} reached U = {}",
+                value(v)
+            ),
+            _ => self.refusal(f),
+        }
+    }
+}
+
+impl Error {
+    /// The message of an error that refuses an input.
+    fn refusal(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let value = |v: f64| Num(v);
         match *self {
             Error::NotPositive { name, value: v } => {
                 write!(f, "`{name}` must be finite and > 0, got {}", value(v))
@@ -213,11 +243,6 @@ impl fmt::Display for Error {
             Error::Unknown { what, expected } => {
                 write!(f, "unknown {what}; expected one of:{expected}")
             }
-            Error::NonFiniteStart { chain, what, tries } => write!(
-                f,
-                "no feasible initial point for chain {chain}: {tries} drawn, \
-                 the last one's {what} is not finite"
-            ),
             Error::Index { name, index, len } => match len {
                 0 => write!(f, "`{name}` = {index} is out of range: there are none"),
                 _ => write!(
@@ -231,10 +256,6 @@ impl fmt::Display for Error {
                 expected,
                 got,
             } => write!(f, "`{name}` must have length {expected}, got {got}"),
-            Error::Poisoned => f.write_str(
-                "the potential panicked during an evaluation: the optimiser's state is \
-                 inconsistent and it refuses to go on; build a new one",
-            ),
             Error::OutOfRange {
                 name,
                 value: v,
@@ -268,16 +289,11 @@ impl fmt::Display for Error {
             Error::NoStoppingRule => f.write_str(
                 "the run has no stopping rule: give a step or evaluation budget, a target or a stall rule",
             ),
-            Error::AllDiverged { chains } => write!(
-                f,
-                "all {chains} chains diverged (non-finite position, potential or gradient): \
-                 try a smaller step h"
-            ),
-            Error::UnboundedBelow { chain, value: v } => write!(
-                f,
-                "the potential looks unbounded below: chain {chain} reached U = {}",
-                value(v)
-            ),
+            // Written by `fmt`.
+            Error::NonFiniteStart { .. }
+            | Error::Poisoned
+            | Error::AllDiverged { .. }
+            | Error::UnboundedBelow { .. } => Ok(()),
         }
     }
 }

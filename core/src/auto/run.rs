@@ -457,9 +457,6 @@ where
         buffers: Buffers<'a, F>,
         observer: O,
     ) -> Result<Self, Error> {
-        let n = chains.len();
-        let mut spare = budget - n as u64;
-        let mut evaluations = 0;
         let Buffers {
             best,
             x,
@@ -469,35 +466,9 @@ where
             base,
             g0,
         } = buffers;
-        let mut best_value = F::INFINITY;
         let one = One(potential);
-        for c in 0..n {
-            let chain = chains.chain(c);
-            *chain.rng = S::Rng::seed_from_u64(chain_seed(seed, c as u64));
-            chain.y.fill(F::ZERO);
-            *chain.diverged = false;
-            *chain.value = match x0 {
-                Some(x0) if c == 0 => given_point(x0, chain.x, chain.grad, &one)?,
-                _ => draw_point(
-                    c,
-                    chain.x,
-                    chain.grad,
-                    chain.rng,
-                    &one,
-                    &mut spare,
-                    &mut evaluations,
-                    |rng, x| domain.uniform(rng, x),
-                )?,
-            };
-            if x0.is_some() && c == 0 {
-                evaluations += 1;
-            }
-            if *chain.value < best_value {
-                best_value = *chain.value;
-                best.copy_from_slice(chain.x);
-            }
-            chains.started(c);
-        }
+        let (evaluations, best_value) =
+            first_points(&mut *chains, &one, domain, x0, budget, seed, best)?;
         Ok(Self {
             tally: Tally {
                 auto,
@@ -757,6 +728,56 @@ where
         }
     }
 
+    /// Langevin sampling: `steps` steps of `kernel` from the proposal's
+    /// point, each evaluated.
+    fn langevin(
+        &mut self,
+        c: usize,
+        kernel: &OuKernel<F>,
+        point: Point<F>,
+        steps: u64,
+    ) -> ControlFlow<Stop, Point<F>> {
+        let mut value = match point {
+            Point::Known(value) => value,
+            _ => match self.tally.evaluate(self.x, self.grad)? {
+                Some(value) => value,
+                None => return ControlFlow::Continue(Point::Rejected),
+            },
+        };
+        // The trajectory in unit coordinates (`self.x`, with the
+        // momentum), each point evaluated at its place in the box
+        // (`self.base`). In a box of equal sides they are the same, and
+        // the maps are skipped.
+        let unit = self.tally.unit;
+        let identity = unit.is_identity();
+        unit.scale_in(self.x);
+        for _ in 0..steps {
+            let g: &[F] = if identity {
+                self.grad
+            } else {
+                unit.gradient(self.grad, self.g0);
+                self.g0
+            };
+            kernel.step_slice(self.x, self.y, g, self.chains.chain(c).rng);
+            unit.confine(self.x, self.y);
+            let at: &[F] = if identity {
+                self.x
+            } else {
+                unit.point_of(self.x, self.base);
+                self.base
+            };
+            match self.tally.evaluate(at, self.grad)? {
+                Some(v) => value = v,
+                None => return ControlFlow::Continue(Point::Rejected),
+            }
+            self.observe()?;
+        }
+        if !identity {
+            self.x.copy_from_slice(self.base);
+        }
+        ControlFlow::Continue(Point::Known(value))
+    }
+
     /// Step 1, sampling: [`Auto::steps`] steps of `kernel` from the
     /// proposal's point (each evaluated, with Langevin sampling), or free
     /// moves (jump sampling), or a differential move.
@@ -768,48 +789,7 @@ where
     ) -> ControlFlow<Stop, Point<F>> {
         let steps = self.tally.auto.steps;
         match self.tally.auto.parts.sampling {
-            Sampling::Langevin => {
-                let mut value = match point {
-                    Point::Known(value) => value,
-                    _ => match self.tally.evaluate(self.x, self.grad)? {
-                        Some(value) => value,
-                        None => return ControlFlow::Continue(Point::Rejected),
-                    },
-                };
-                // The trajectory in unit coordinates (`self.x`, with the
-                // momentum), each point evaluated at its place in the box
-                // (`self.base`).
-                // (In a box of equal sides they are the same, and the maps
-                // are skipped.)
-                let unit = self.tally.unit;
-                let identity = unit.is_identity();
-                unit.scale_in(self.x);
-                for _ in 0..steps {
-                    let g: &[F] = if identity {
-                        self.grad
-                    } else {
-                        unit.gradient(self.grad, self.g0);
-                        self.g0
-                    };
-                    kernel.step_slice(self.x, self.y, g, self.chains.chain(c).rng);
-                    unit.confine(self.x, self.y);
-                    let at: &[F] = if identity {
-                        self.x
-                    } else {
-                        unit.point_of(self.x, self.base);
-                        self.base
-                    };
-                    match self.tally.evaluate(at, self.grad)? {
-                        Some(v) => value = v,
-                        None => return ControlFlow::Continue(Point::Rejected),
-                    }
-                    self.observe()?;
-                }
-                if !identity {
-                    self.x.copy_from_slice(self.base);
-                }
-                ControlFlow::Continue(Point::Known(value))
-            }
+            Sampling::Langevin => self.langevin(c, kernel, point, steps),
             Sampling::Jump => {
                 let unit = self.tally.unit;
                 unit.scale_in(self.x);
@@ -1053,6 +1033,58 @@ where
 /// `U` at the caller's start `x0`, copied into `x` (one evaluation):
 /// where it is infeasible, an error naming `x0` rather than a redraw, since
 /// the caller chose that point.
+/// Every chain's initial point, as [`Run::start`] says: the evaluations
+/// spent, and the lowest value (its point written to `best`).
+fn first_points<F, P, B, S>(
+    chains: &mut S,
+    one: &One<'_, P>,
+    domain: &B,
+    x0: Option<&[F]>,
+    budget: u64,
+    seed: u64,
+    best: &mut [F],
+) -> Result<(u64, F), Error>
+where
+    F: Float,
+    P: BatchPotential<F> + ?Sized,
+    B: Sides<F> + ?Sized,
+    S: Chains<F> + ?Sized,
+    S::Rng: Rng + SeedableRng + 'static,
+{
+    let n = chains.len();
+    let mut spare = budget - n as u64;
+    let mut evaluations = 0;
+    let mut best_value = F::INFINITY;
+    for c in 0..n {
+        let chain = chains.chain(c);
+        *chain.rng = S::Rng::seed_from_u64(chain_seed(seed, c as u64));
+        chain.y.fill(F::ZERO);
+        *chain.diverged = false;
+        *chain.value = match x0 {
+            Some(x0) if c == 0 => given_point(x0, chain.x, chain.grad, one)?,
+            _ => draw_point(
+                c,
+                chain.x,
+                chain.grad,
+                chain.rng,
+                one,
+                &mut spare,
+                &mut evaluations,
+                |rng, x| domain.uniform(rng, x),
+            )?,
+        };
+        if x0.is_some() && c == 0 {
+            evaluations += 1;
+        }
+        if *chain.value < best_value {
+            best_value = *chain.value;
+            best.copy_from_slice(chain.x);
+        }
+        chains.started(c);
+    }
+    Ok((evaluations, best_value))
+}
+
 fn given_point<F, P>(x0: &[F], x: &mut [F], grad: &mut [F], potential: &P) -> Result<F, Error>
 where
     F: Float,
