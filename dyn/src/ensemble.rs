@@ -39,7 +39,10 @@
 //! of their mean, the ensemble's widest standard deviation is below `1e-12`
 //! of the box, or the restart's best has not improved (by `1e-12`,
 //! relatively) for `20 + 3 d` generations, the particles are drawn again
-//! uniformly in the box with twice as many. The first population is
+//! uniformly in the box with twice as many; but the restart after the
+//! first that ended by agreement keeps its population, so that the
+//! convergence rule below can be met for the cost of one more restart of
+//! the same size. The first population is
 //! `max(8, ceil(population P / 2) + 1)`, `P = 1 + d + d(d+1)/2` the model's
 //! parameters.
 //!
@@ -297,7 +300,13 @@ impl Ensemble {
                 agreed.push((run_best, spread));
             }
             run.restarts += 1;
-            n = n.saturating_mul(2);
+            // The restart after the first agreement keeps the population:
+            // it can confirm that agreement for the cost of one more
+            // restart, where a doubled one costs two (docs/QUALITY.md).
+            let confirming = matches!(restart, Restart::Agreed { .. }) && agreed.len() == 1;
+            if !confirming {
+                n = n.saturating_mul(2);
+            }
         };
         if run.best_x.is_empty() {
             return Err(Error::Kernel(hrla::Error::AllDiverged { chains: n }));
@@ -1035,7 +1044,7 @@ mod tests {
             };
             let (lo, hi) = ([-5.0 * s; 3], [5.0 * s; 3]);
             Ensemble::default()
-                .minimize(&lo, &hi, 20_000, 5, EnsembleRules::default(), values, go)
+                .minimize(&lo, &hi, 20_000, 10, EnsembleRules::default(), values, go)
                 .unwrap()
         };
         let base = solve(1.0, 1.0);

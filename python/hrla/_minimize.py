@@ -420,8 +420,9 @@ def minimize(
     gradient-free ensemble with the rest: Langevin particles in their own
     whitened frame, driven by the gradient of a quadratic model fitted to
     their values (no finite differences), restarted with twice the
-    particles when they agree or stall (the crate ``hrla-dyn``'s
-    ``Ensemble`` gives the method). Its generations are ``nit``'s
+    particles when they agree or stall, but with as many after the first
+    agreement, which the next restart may confirm (the crate
+    ``hrla-dyn``'s ``Ensemble`` gives the method). Its generations are ``nit``'s
     iterations after Auto's rounds, each one batch of ``fun`` through
     ``workers`` or ``vectorized``; the run has converged when two restarts
     agreed on the best value (``converge=False``: never); ``target``,
