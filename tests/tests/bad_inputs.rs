@@ -690,3 +690,33 @@ fn every_kind_is_checked() {
         }
     }
 }
+
+/// A start made for another dimension than the chains' is refused before
+/// any point is drawn, on the const path as on the flat one: the start's
+/// own dimension is checked against the chains', so a `Point` of 3
+/// coordinates never fills chains of 5.
+#[test]
+fn a_start_of_another_dimension_is_refused() {
+    let hrla = Hrla::paper(0.01).unwrap();
+    let got = Builder::new(Rastrigin, hrla, 4.0, Point::new([1.0; 3]).unwrap())
+        .stop(Stop::new().steps(10))
+        .build(chains::<5>(4))
+        .map(|o| o.iteration());
+    let want = Error::Length {
+        name: "start",
+        expected: 5,
+        got: 3,
+    };
+    assert_eq!(got, Err(want));
+    let gaussian = Gaussian::new([0.0; 7], 1.0).unwrap();
+    let got = Builder::new(Rastrigin, hrla, 4.0, gaussian)
+        .stop(Stop::new().steps(10))
+        .build(chains::<2>(4))
+        .map(|o| o.iteration());
+    let want = Error::Length {
+        name: "start",
+        expected: 2,
+        got: 7,
+    };
+    assert_eq!(got, Err(want));
+}
