@@ -16,17 +16,20 @@ use crate::error::{Error, finite};
 use crate::float::Float;
 use crate::start::Start;
 
-/// A domain for the chains.
-pub trait Domain<F: Float, const D: usize> {
+/// A domain for the chains, whether their dimension is in their type
+/// ([`Chain`](crate::Chain)) or known at run time
+/// ([`FlatChains`](crate::FlatChains)): every slice has the run's
+/// dimension, and the same per-coordinate code serves both.
+pub trait Domain<F: Float> {
     /// Brings a position just moved by a step back into the domain,
     /// adjusting the velocity to match.
-    fn confine(&self, x: &mut [F; D], y: &mut [F; D]);
+    fn confine(&self, x: &mut [F], y: &mut [F]);
     /// The nearest point of the domain (for the polish's trial points).
-    fn project(&self, x: &mut [F; D]);
+    fn project(&self, x: &mut [F]);
     /// Zeroes the components of a search direction `d` that would leave
     /// the domain at once from `x` (coordinates on a face, pointing out),
     /// so that the polish searches along the faces it touches.
-    fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]);
+    fn feasible_direction(&self, x: &[F], d: &mut [F]);
     /// The dimension the domain was made for, if it has one (a box with a
     /// side per coordinate); a run of another dimension is refused.
     fn dimension(&self) -> Option<usize> {
@@ -34,23 +37,7 @@ pub trait Domain<F: Float, const D: usize> {
     }
 }
 
-/// A domain for chains whose dimension is the length of the slices: the
-/// run-time-dimension twin of [`Domain`], with the same per-coordinate
-/// code.
-pub trait SliceDomain<F: Float> {
-    /// As [`Domain::confine`].
-    fn confine(&self, x: &mut [F], y: &mut [F]);
-    /// As [`Domain::project`].
-    fn project(&self, x: &mut [F]);
-    /// As [`Domain::feasible_direction`].
-    fn feasible_direction(&self, x: &[F], d: &mut [F]);
-    /// As [`Domain::dimension`].
-    fn dimension(&self) -> Option<usize> {
-        None
-    }
-}
-
-impl<F: Float> SliceDomain<F> for Unbounded {
+impl<F: Float> Domain<F> for Unbounded {
     #[inline(always)]
     fn confine(&self, _x: &mut [F], _y: &mut [F]) {}
     #[inline(always)]
@@ -59,7 +46,9 @@ impl<F: Float> SliceDomain<F> for Unbounded {
     fn feasible_direction(&self, _x: &[F], _d: &mut [F]) {}
 }
 
-impl<F: Float, B: SliceDomain<F> + ?Sized> SliceDomain<F> for &B {
+/// A domain behind a reference is the same domain (for large boxes kept
+/// elsewhere).
+impl<F: Float, B: Domain<F> + ?Sized> Domain<F> for &B {
     #[inline(always)]
     fn confine(&self, x: &mut [F], y: &mut [F]) {
         (**self).confine(x, y);
@@ -83,7 +72,7 @@ impl<F: Float, B: SliceDomain<F> + ?Sized> SliceDomain<F> for &B {
 /// coordinates (every side stretched to the widest), and its restarts are
 /// uniform in the box. [`Interval`] (every side the same) and [`Bounds`]
 /// implement it.
-pub trait Sides<F: Float>: SliceDomain<F> {
+pub trait Sides<F: Float>: Domain<F> {
     /// The ends `(lo_i, hi_i)` of coordinate `i` (below the dimension).
     fn side(&self, i: usize) -> (F, F);
 
@@ -105,35 +94,6 @@ impl<F: Float, B: Sides<F> + ?Sized> Sides<F> for &B {
 /// All of `R^D`: no constraint (the default).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Unbounded;
-
-impl<F: Float, const D: usize> Domain<F, D> for Unbounded {
-    #[inline(always)]
-    fn confine(&self, _x: &mut [F; D], _y: &mut [F; D]) {}
-    #[inline(always)]
-    fn project(&self, _x: &mut [F; D]) {}
-    #[inline(always)]
-    fn feasible_direction(&self, _x: &[F; D], _d: &mut [F; D]) {}
-}
-
-/// A domain behind a reference is the same domain (for large boxes kept
-/// elsewhere).
-impl<F: Float, const D: usize, B: Domain<F, D> + ?Sized> Domain<F, D> for &B {
-    #[inline(always)]
-    fn confine(&self, x: &mut [F; D], y: &mut [F; D]) {
-        (**self).confine(x, y);
-    }
-    #[inline(always)]
-    fn project(&self, x: &mut [F; D]) {
-        (**self).project(x);
-    }
-    #[inline(always)]
-    fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]) {
-        (**self).feasible_direction(x, d);
-    }
-    fn dimension(&self) -> Option<usize> {
-        (**self).dimension()
-    }
-}
 
 /// The box `[lo, hi]^D`, the same interval in every coordinate; also a
 /// [`Start`]: uniform in the box, from each chain's own generator.
@@ -321,23 +281,7 @@ fn uniform_each<F: Float, R: Rng + ?Sized>(
     }
 }
 
-impl<F: Float, const D: usize> Domain<F, D> for Interval<F> {
-    #[inline]
-    fn confine(&self, x: &mut [F; D], y: &mut [F; D]) {
-        SliceDomain::confine(self, x, y);
-    }
-
-    #[inline]
-    fn project(&self, x: &mut [F; D]) {
-        SliceDomain::project(self, x);
-    }
-
-    fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]) {
-        SliceDomain::feasible_direction(self, x, d);
-    }
-}
-
-impl<F: Float> SliceDomain<F> for Interval<F> {
+impl<F: Float> Domain<F> for Interval<F> {
     #[inline(always)]
     fn confine(&self, x: &mut [F], y: &mut [F]) {
         confine_each(x, y, |_| self.lo, |_| self.hi);
@@ -440,27 +384,7 @@ impl<F: Float, S: AsRef<[F]>> Bounds<F, S> {
     }
 }
 
-impl<F: Float, S: AsRef<[F]>, const D: usize> Domain<F, D> for Bounds<F, S> {
-    #[inline]
-    fn confine(&self, x: &mut [F; D], y: &mut [F; D]) {
-        SliceDomain::confine(self, x, y);
-    }
-
-    #[inline]
-    fn project(&self, x: &mut [F; D]) {
-        SliceDomain::project(self, x);
-    }
-
-    fn feasible_direction(&self, x: &[F; D], d: &mut [F; D]) {
-        SliceDomain::feasible_direction(self, x, d);
-    }
-
-    fn dimension(&self) -> Option<usize> {
-        Some(self.lo.as_ref().len())
-    }
-}
-
-impl<F: Float, S: AsRef<[F]>> SliceDomain<F> for Bounds<F, S> {
+impl<F: Float, S: AsRef<[F]>> Domain<F> for Bounds<F, S> {
     #[inline(always)]
     fn confine(&self, x: &mut [F], y: &mut [F]) {
         let (lo, hi) = self.sides();

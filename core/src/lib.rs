@@ -105,10 +105,9 @@
 //!   every coordinate into its interval.
 //! - Dimension at run time: chains in flat storage the caller owns or
 //!   lends, [`FlatChains`] (over any [`FlatStorage`]; [`FlatSlices`] for
-//!   borrowed slices), run by the same [`Optimizer`]; the slice twins of
-//!   the traits,
-//!   [`SlicePotential`], [`SliceDomain`] ([`Start`] serves both); the
-//!   batch seam, [`BatchPotential`]; L-BFGS in
+//!   borrowed slices), run by the same [`Optimizer`] with the same
+//!   [`Domain`] and [`Start`]; the potential's slice form,
+//!   [`SlicePotential`]; the batch seam, [`BatchPotential`]; L-BFGS in
 //!   caller storage, [`LbfgsIn`].
 //! - Algorithm 1: [`Builder`] and [`Optimizer`], over [`Chain`]s (in
 //!   [`Chains`]) or [`FlatChains`], with [`Stop`] rules, [`Progress`]
@@ -291,7 +290,7 @@ mod start;
 mod ziggurat_tables;
 
 pub use auto::{Auto, AutoProgress, AutoStorage, MAX_STEPS, Parts, Problem, Sampling, Solution};
-pub use domain::{Bounds, Domain, Interval, Sides, SliceDomain, Unbounded};
+pub use domain::{Bounds, Domain, Interval, Sides, Unbounded};
 pub use error::Error;
 pub use float::Float;
 pub use lockstep::{LANES, Xoshiro256Lanes};

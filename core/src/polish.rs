@@ -11,7 +11,7 @@
 //! and the approximation stays positive definite. All storage is the
 //! [`Lbfgs`] value, which the caller owns: `2 M + 3` arrays of `D` floats.
 
-use crate::domain::{Domain, SliceDomain, Unbounded};
+use crate::domain::{Domain, Unbounded};
 use crate::error::{Error, check_lengths, finite, floor};
 use crate::float::Float;
 use crate::potential::traits::{Potential, SlicePotential};
@@ -274,7 +274,7 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
     /// [`minimize`](Lbfgs::minimize) within a domain: every trial point is
     /// projected onto it (so `x` is first projected too), which ends on a
     /// face where the minimum of the box lies there.
-    pub fn minimize_in<P: Potential<F, D> + ?Sized, B: Domain<F, D> + ?Sized>(
+    pub fn minimize_in<P: Potential<F, D> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
@@ -298,7 +298,7 @@ pub(crate) trait Quencher<F: Float> {
     /// L-BFGS from `x` (of the storage's dimension, [`Error::Length`]
     /// otherwise) within `domain` in the units `scale`, `x` ending at the
     /// best point.
-    fn quench<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+    fn quench<P: SlicePotential<F> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
@@ -309,7 +309,7 @@ pub(crate) trait Quencher<F: Float> {
 }
 
 impl<F: Float, const D: usize, const M: usize> Quencher<F> for Lbfgs<F, D, M> {
-    fn quench<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+    fn quench<P: SlicePotential<F> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
@@ -410,7 +410,7 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
 
     /// [`Lbfgs::minimize_in`] for `x` of length [`dimension`](LbfgsIn::dimension)
     /// ([`Error::Length`] otherwise).
-    pub fn minimize_in<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+    pub fn minimize_in<P: SlicePotential<F> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
@@ -422,7 +422,7 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
 
     /// Polishes a copy of `start` (of the storage's dimension) in the
     /// storage's own point, returned with the outcome.
-    pub(crate) fn minimize_from<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+    pub(crate) fn minimize_from<P: SlicePotential<F> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
@@ -465,7 +465,7 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
 }
 
 impl<F: Float> Quencher<F> for LbfgsIn<'_, F> {
-    fn quench<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+    fn quench<P: SlicePotential<F> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
@@ -494,7 +494,7 @@ impl<F: Float, P: Potential<F, D> + ?Sized, const D: usize> SlicePotential<F> fo
     }
 }
 
-impl<F: Float, B: Domain<F, D> + ?Sized, const D: usize> SliceDomain<F> for Arrays<'_, B, D> {
+impl<F: Float, B: Domain<F> + ?Sized, const D: usize> Domain<F> for Arrays<'_, B, D> {
     fn confine(&self, x: &mut [F], y: &mut [F]) {
         if let (Ok(x), Ok(y)) = (<&mut [F; D]>::try_from(x), <&mut [F; D]>::try_from(y)) {
             self.0.confine(x, y);
@@ -577,7 +577,7 @@ impl<F: Float> Memory<'_, F> {
 
     /// `trial = x + step d`, projected onto the domain: the point a probe
     /// asks for.
-    fn set_trial<B: SliceDomain<F> + ?Sized>(&mut self, domain: &B, x: &[F], step: F) {
+    fn set_trial<B: Domain<F> + ?Sized>(&mut self, domain: &B, x: &[F], step: F) {
         for ((t, &xi), &di) in self.trial.iter_mut().zip(x).zip(&*self.direction) {
             *t = xi + step * di;
         }
@@ -611,7 +611,7 @@ impl<F: Float> Memory<'_, F> {
     /// handed to [`tell`](Self::tell), until [`Next::Done`]. Between the
     /// calls the search is the [`Search`] and these buffers (and `x`, the
     /// current point, which ends at the best point found).
-    pub(crate) fn begin<B: SliceDomain<F> + ?Sized>(
+    pub(crate) fn begin<B: Domain<F> + ?Sized>(
         &mut self,
         domain: &B,
         x: &mut [F],
@@ -653,7 +653,7 @@ impl<F: Float> Memory<'_, F> {
 
     /// `U` at the trial point (its gradient already in the trial gradient
     /// buffer): the search goes on to its next evaluation or its end.
-    pub(crate) fn tell<B: SliceDomain<F> + ?Sized>(
+    pub(crate) fn tell<B: Domain<F> + ?Sized>(
         &mut self,
         s: &mut Search<F>,
         domain: &B,
@@ -707,7 +707,7 @@ impl<F: Float> Memory<'_, F> {
 
     /// The top of an L-BFGS iteration: the convergence and budget checks,
     /// the direction, and the line search's first probe.
-    fn iterate<B: SliceDomain<F> + ?Sized>(
+    fn iterate<B: Domain<F> + ?Sized>(
         &mut self,
         s: &mut Search<F>,
         domain: &B,
@@ -764,7 +764,7 @@ impl<F: Float> Memory<'_, F> {
     }
 
     /// The bracket's next probe at `step`, within the budget.
-    fn bracket_probe<B: SliceDomain<F> + ?Sized>(
+    fn bracket_probe<B: Domain<F> + ?Sized>(
         &mut self,
         s: &mut Search<F>,
         domain: &B,
@@ -778,7 +778,7 @@ impl<F: Float> Memory<'_, F> {
     }
 
     /// A bracket's probe `p` answered.
-    fn bracketed<B: SliceDomain<F> + ?Sized>(
+    fn bracketed<B: Domain<F> + ?Sized>(
         &mut self,
         s: &mut Search<F>,
         domain: &B,
@@ -810,7 +810,7 @@ impl<F: Float> Memory<'_, F> {
     }
 
     /// The zoom's next probe, inside the bracket `[lo, hi]`.
-    fn zoom_probe<B: SliceDomain<F> + ?Sized>(
+    fn zoom_probe<B: Domain<F> + ?Sized>(
         &mut self,
         s: &mut Search<F>,
         domain: &B,
@@ -836,7 +836,7 @@ impl<F: Float> Memory<'_, F> {
 
     /// One evaluation of the budget spent on the trial point `x + step d`,
     /// asked for in `phase`.
-    fn probe<B: SliceDomain<F> + ?Sized>(
+    fn probe<B: Domain<F> + ?Sized>(
         &mut self,
         s: &mut Search<F>,
         domain: &B,
@@ -852,7 +852,7 @@ impl<F: Float> Memory<'_, F> {
     }
 
     /// A zoom's probe `p` answered.
-    fn zoomed<B: SliceDomain<F> + ?Sized>(
+    fn zoomed<B: Domain<F> + ?Sized>(
         &mut self,
         s: &mut Search<F>,
         domain: &B,
@@ -879,12 +879,7 @@ impl<F: Float> Memory<'_, F> {
 
     /// The bracket collapsed: the best point found, if it lowers U enough
     /// (its pair may still have s'y > 0), else a failed search.
-    fn last<B: SliceDomain<F> + ?Sized>(
-        &mut self,
-        s: &mut Search<F>,
-        domain: &B,
-        x: &[F],
-    ) -> Next<F> {
+    fn last<B: Domain<F> + ?Sized>(&mut self, s: &mut Search<F>, domain: &B, x: &[F]) -> Next<F> {
         if s.lo.step > F::ZERO && s.budget > 0 {
             return self.probe(s, domain, x, s.lo.step, Phase::Last);
         }
@@ -903,7 +898,7 @@ impl<F: Float> Memory<'_, F> {
 
     /// The line search's step `p` (its point and gradient in the trial
     /// buffers): the new pair, the move, and the value tolerance.
-    fn accept<B: SliceDomain<F> + ?Sized>(
+    fn accept<B: Domain<F> + ?Sized>(
         &mut self,
         s: &mut Search<F>,
         domain: &B,
@@ -940,7 +935,7 @@ impl<F: Float> Memory<'_, F> {
 
     /// L-BFGS from `x` within the domain, `potential` answering each of
     /// the search's requests at once.
-    fn minimize_in<P: SlicePotential<F> + ?Sized, B: SliceDomain<F> + ?Sized>(
+    fn minimize_in<P: SlicePotential<F> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use hrla::rand_core::Rng;
 use hrla::{
-    AnySampler, AnySchedule, BatchPotential, Constant, Geometric, Interval, Linear, SliceDomain,
+    AnySampler, AnySchedule, BatchPotential, Constant, Domain, Geometric, Interval, Linear,
     SlicePotential, StandardNormal, Start, Stop,
 };
 
@@ -178,7 +178,7 @@ pub(crate) enum Sides {
     PerCoordinate(hrla::Bounds<f64, Vec<f64>>),
 }
 
-impl SliceDomain<f64> for Sides {
+impl Domain<f64> for Sides {
     #[inline]
     fn confine(&self, x: &mut [f64], y: &mut [f64]) {
         match self {
@@ -189,20 +189,20 @@ impl SliceDomain<f64> for Sides {
     #[inline]
     fn project(&self, x: &mut [f64]) {
         match self {
-            Self::Uniform(b) => SliceDomain::project(b, x),
-            Self::PerCoordinate(b) => SliceDomain::project(b, x),
+            Self::Uniform(b) => Domain::project(b, x),
+            Self::PerCoordinate(b) => Domain::project(b, x),
         }
     }
     fn feasible_direction(&self, x: &[f64], d: &mut [f64]) {
         match self {
-            Self::Uniform(b) => SliceDomain::feasible_direction(b, x, d),
-            Self::PerCoordinate(b) => SliceDomain::feasible_direction(b, x, d),
+            Self::Uniform(b) => Domain::feasible_direction(b, x, d),
+            Self::PerCoordinate(b) => Domain::feasible_direction(b, x, d),
         }
     }
     fn dimension(&self) -> Option<usize> {
         match self {
             Self::Uniform(_) => None,
-            Self::PerCoordinate(b) => SliceDomain::dimension(b),
+            Self::PerCoordinate(b) => Domain::dimension(b),
         }
     }
 }
@@ -387,7 +387,7 @@ pub(crate) enum Bounds {
     PerCoordinate(hrla::Bounds<f64, Vec<f64>>),
 }
 
-impl SliceDomain<f64> for Bounds {
+impl Domain<f64> for Bounds {
     #[inline]
     fn confine(&self, x: &mut [f64], y: &mut [f64]) {
         match self {
@@ -400,22 +400,22 @@ impl SliceDomain<f64> for Bounds {
     fn project(&self, x: &mut [f64]) {
         match self {
             Self::Unbounded => {}
-            Self::Box(b) => SliceDomain::project(b, x),
-            Self::PerCoordinate(b) => SliceDomain::project(b, x),
+            Self::Box(b) => Domain::project(b, x),
+            Self::PerCoordinate(b) => Domain::project(b, x),
         }
     }
     #[inline]
     fn feasible_direction(&self, x: &[f64], d: &mut [f64]) {
         match self {
             Self::Unbounded => {}
-            Self::Box(b) => SliceDomain::feasible_direction(b, x, d),
-            Self::PerCoordinate(b) => SliceDomain::feasible_direction(b, x, d),
+            Self::Box(b) => Domain::feasible_direction(b, x, d),
+            Self::PerCoordinate(b) => Domain::feasible_direction(b, x, d),
         }
     }
     fn dimension(&self) -> Option<usize> {
         match self {
             Self::Unbounded | Self::Box(_) => None,
-            Self::PerCoordinate(b) => SliceDomain::dimension(b),
+            Self::PerCoordinate(b) => Domain::dimension(b),
         }
     }
 }

@@ -1036,7 +1036,7 @@ fn the_step_rule_crosses_deep_regular_barriers() {
 fn a_callers_sides_are_checked_as_bounds_are() {
     /// Sides given by a function of the coordinate.
     struct Own(fn(usize) -> (f64, f64));
-    impl hrla::SliceDomain<f64> for Own {
+    impl hrla::Domain<f64> for Own {
         fn confine(&self, _x: &mut [f64], _y: &mut [f64]) {}
         fn project(&self, _x: &mut [f64]) {}
         fn feasible_direction(&self, _x: &[f64], _d: &mut [f64]) {}

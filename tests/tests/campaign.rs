@@ -109,20 +109,20 @@ enum AnyDomain {
     Box(Interval<f64>),
 }
 
-impl Domain<f64, 2> for AnyDomain {
-    fn confine(&self, x: &mut [f64; 2], y: &mut [f64; 2]) {
+impl Domain<f64> for AnyDomain {
+    fn confine(&self, x: &mut [f64], y: &mut [f64]) {
         match self {
             Self::Free => Unbounded.confine(x, y),
             Self::Box(b) => b.confine(x, y),
         }
     }
-    fn project(&self, x: &mut [f64; 2]) {
+    fn project(&self, x: &mut [f64]) {
         match self {
-            Self::Free => Domain::<f64, 2>::project(&Unbounded, x),
-            Self::Box(b) => Domain::<f64, 2>::project(b, x),
+            Self::Free => Domain::<f64>::project(&Unbounded, x),
+            Self::Box(b) => Domain::<f64>::project(b, x),
         }
     }
-    fn feasible_direction(&self, x: &[f64; 2], d: &mut [f64; 2]) {
+    fn feasible_direction(&self, x: &[f64], d: &mut [f64]) {
         match self {
             Self::Free => Unbounded.feasible_direction(x, d),
             Self::Box(b) => b.feasible_direction(x, d),
@@ -778,7 +778,7 @@ fn interval_campaign() {
             }
             prop_assert!(y.iter().all(|v| v.abs() == 1.0));
             let mut p = x0;
-            Domain::<f64, 2>::project(&b, &mut p);
+            Domain::<f64>::project(&b, &mut p);
             if x0.iter().all(|v| v.is_finite()) {
                 counts.borrow_mut()[2] += 1;
                 prop_assert!(inside(&p));

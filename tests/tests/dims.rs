@@ -9,7 +9,7 @@ use std::cell::Cell;
 use hrla::{
     AnySampler, BatchPotential, Bounds, Builder, Chain, Error, FlatChains, FlatSlices, FnPotential,
     Gaussian, Interval, Lbfgs, LbfgsIn, PolishSettings, Potential, Rastrigin, SamplerKind,
-    SliceDomain, SlicePotential, Stop, Unbounded,
+    SlicePotential, Stop, Unbounded,
 };
 use hrla::{Domain, Float};
 use rand_xoshiro::rand_core::SeedableRng;
@@ -74,7 +74,7 @@ fn with_chains<F, P, B, R>(kind: SamplerKind, potential: P, domain: B) -> Trace
 where
     F: Float,
     P: Potential<F, D> + SlicePotential<F>,
-    B: Domain<F, D> + SliceDomain<F> + Copy,
+    B: Domain<F> + Copy,
     R: rand_xoshiro::rand_core::Rng + SeedableRng + Clone + 'static,
 {
     let mut chains: Vec<Chain<F, D, R>> = (0..N).map(|_| Chain::default()).collect();
@@ -118,7 +118,7 @@ fn flat<F, P, B, R>(kind: SamplerKind, potential: P, domain: B) -> Trace
 where
     F: Float,
     P: SlicePotential<F>,
-    B: SliceDomain<F> + Copy,
+    B: Domain<F> + Copy,
     R: rand_xoshiro::rand_core::Rng + SeedableRng + Clone + 'static,
 {
     let d = D;
@@ -167,7 +167,7 @@ fn same_bits<F, P, B, R>(kind: SamplerKind, potential: P, domain: B, what: &str)
 where
     F: Float,
     P: Potential<F, D> + SlicePotential<F> + Copy,
-    B: Domain<F, D> + SliceDomain<F> + Copy,
+    B: Domain<F> + Copy,
     R: rand_xoshiro::rand_core::Rng + SeedableRng + Clone + 'static,
 {
     let reference = with_chains::<F, P, B, R>(kind, potential, domain);

@@ -3,7 +3,7 @@
 
 use rand_core::Rng;
 
-use crate::domain::{Sides, SliceDomain};
+use crate::domain::{Domain, Sides};
 use crate::float::Float;
 use crate::sampler::Kernel;
 
@@ -74,7 +74,7 @@ pub(super) fn differential<F: Float, B: Sides<F> + ?Sized>(
 
 /// `steps` steps of `kernel` with the gradient set to zero (`zero` is
 /// scratch): the noise of a trajectory without the potential's drift.
-pub(super) fn free<F: Float, K: Kernel<F>, B: SliceDomain<F> + ?Sized, R: Rng + ?Sized>(
+pub(super) fn free<F: Float, K: Kernel<F>, B: Domain<F> + ?Sized, R: Rng + ?Sized>(
     kernel: &K,
     x: &mut [F],
     y: &mut [F],

@@ -12,7 +12,7 @@ use super::measure::{self, A_RANGE, Units};
 use super::moves;
 use super::scale::{Scaled, Unit};
 use super::settings::{Auto, Sampling};
-use crate::domain::{Sides, SliceDomain};
+use crate::domain::{Domain, Sides};
 use crate::error::{Error, floor};
 use crate::float::Float;
 use crate::optimizer::{Chain, Stop as Rules, Termination, chain_seed, draw_point};

@@ -12,7 +12,7 @@
 
 use core::cell::RefCell;
 
-use crate::domain::{Sides, SliceDomain, confine_each, feasible_each, project_each};
+use crate::domain::{Domain, Sides, confine_each, feasible_each, project_each};
 use crate::float::Float;
 use crate::potential::SlicePotential;
 
@@ -130,7 +130,7 @@ impl<'a, F: Float, B: Sides<F> + ?Sized> Unit<'a, F, B> {
     }
 }
 
-impl<F: Float, B: Sides<F> + ?Sized> SliceDomain<F> for Unit<'_, F, B> {
+impl<F: Float, B: Sides<F> + ?Sized> Domain<F> for Unit<'_, F, B> {
     #[inline]
     fn confine(&self, x: &mut [F], y: &mut [F]) {
         if self.equal {

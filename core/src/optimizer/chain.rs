@@ -222,7 +222,7 @@ where
     St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
     R: Rng + 'static,
     P: Potential<F, D>,
-    B: Domain<F, D>,
+    B: Domain<F>,
 {
     fn sweep<K: Kernel<F>>(&mut self, cx: &Context<'_, K, P, B, F>) -> Sweep<F> {
         sweep(cx, self, 0)
@@ -244,7 +244,7 @@ where
     St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
     R: Rng + Send + 'static,
     P: Potential<F, D> + Sync,
-    B: Domain<F, D> + Sync,
+    B: Domain<F> + Sync,
 {
     fn sweep_on<K: Kernel<F> + Sync, E: Executor>(
         &mut self,
@@ -263,7 +263,7 @@ where
     St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
     R: Rng + SeedableRng + 'static,
     P: Potential<F, D>,
-    B: Domain<F, D>,
+    B: Domain<F>,
     Sd: Start<F>,
 {
     fn check(&self, from: &Origins<'_, P, B, Sd>) -> [(&'static str, Option<usize>); 3] {
@@ -304,7 +304,7 @@ where
     F: Float,
     St: AsRef<[Chain<F, D, R>]> + AsMut<[Chain<F, D, R>]>,
     P: Potential<F, D>,
-    B: Domain<F, D>,
+    B: Domain<F>,
 {
     fn search(
         &mut self,
@@ -395,7 +395,7 @@ where
     F: Float,
     K: Kernel<F>,
     P: Potential<F, D>,
-    B: Domain<F, D>,
+    B: Domain<F>,
     R: Rng + 'static,
 {
     let mut found = Sweep::NOTHING;
@@ -478,7 +478,7 @@ fn evaluate<F, K, P, B, R, const D: usize>(
 ) where
     F: Float,
     P: Potential<F, D>,
-    B: Domain<F, D>,
+    B: Domain<F>,
 {
     cx.domain.confine(&mut chain.x, &mut chain.y);
     let value = cx.potential.value_and_gradient(&chain.x, &mut chain.grad);

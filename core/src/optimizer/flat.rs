@@ -28,7 +28,7 @@ use super::executor::{Executor, Split};
 use super::store::{Best, IntoStore, Origin, Origins, Searches, Starts, Steps, StepsOn, Store};
 use super::stream::chain_seed;
 use super::sweep::{Context, LOCKSTEP_F64_FROM, Sweep, Verdict, judge, settle_point};
-use crate::domain::SliceDomain;
+use crate::domain::Domain;
 use crate::error::{Error, check_lengths, floor};
 use crate::float::Float;
 use crate::lanes;
@@ -385,7 +385,7 @@ where
     Ds: FlatStorage<bool>,
     Rs: FlatStorage<R>,
     P: BatchPotential<F>,
-    B: SliceDomain<F>,
+    B: Domain<F>,
 {
     fn sweep<K: Kernel<F>>(&mut self, cx: &Context<'_, K, P, B, F>) -> Sweep<F> {
         sweep_flat(cx, self.parts(), 0)
@@ -415,7 +415,7 @@ where
     Ds: FlatStorage<bool>,
     Rs: FlatStorage<R>,
     P: BatchPotential<F> + Sync,
-    B: SliceDomain<F> + Sync,
+    B: Domain<F> + Sync,
 {
     fn sweep_on<K: Kernel<F> + Sync, E: Executor>(
         &mut self,
@@ -442,7 +442,7 @@ where
     Ds: FlatStorage<bool>,
     Rs: FlatStorage<R>,
     P: BatchPotential<F>,
-    B: SliceDomain<F>,
+    B: Domain<F>,
     Sd: Start<F>,
 {
     fn check(&self, from: &Origins<'_, P, B, Sd>) -> [(&'static str, Option<usize>); 3] {
@@ -525,7 +525,7 @@ where
     Ds: FlatStorage<bool>,
     Rs: FlatStorage<R>,
     P: BatchPotential<F>,
-    B: SliceDomain<F>,
+    B: Domain<F>,
 {
     fn fits(&self, lbfgs: &LbfgsIn<'_, F>) -> Result<(), Error> {
         if lbfgs.dimension() == self.d {
@@ -593,7 +593,7 @@ where
     F: Float,
     K: Kernel<F>,
     P: BatchPotential<F>,
-    B: SliceDomain<F>,
+    B: Domain<F>,
     R: Rng + 'static,
 {
     let (kernel, potential, d) = (cx.kernel, cx.potential, chains.d);
@@ -643,7 +643,7 @@ fn evaluate_group<F, K, P, B, R>(
 ) where
     F: Float,
     P: BatchPotential<F>,
-    B: SliceDomain<F>,
+    B: Domain<F>,
 {
     let (potential, domain, d) = (cx.potential, cx.domain, chains.d);
     let points = group.start * d..group.end * d;
