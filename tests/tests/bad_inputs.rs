@@ -84,7 +84,7 @@
 use hrla::{
     AnySampler, Builder, Chain, Constant, Error, FnPotential, FnSchedule, FromFn, Gaussian,
     Geometric, Hrla, HrlaParams, Linear, Ola, OlaParams, Point, Quadratic, Rastrigin, Sampler,
-    SamplerKind, Stop, Ula, UlaParams, check_gradient,
+    SamplerKind, Start, Stop, Ula, UlaParams, check_gradient,
 };
 use hrla_tests::fixtures::Cliff;
 use hrla_tests::hostile::{SEED, expect_error, no_panic, valid, wild64};
@@ -697,26 +697,22 @@ fn every_kind_is_checked() {
 /// coordinates never fills chains of 5.
 #[test]
 fn a_start_of_another_dimension_is_refused() {
-    let hrla = Hrla::paper(0.01).unwrap();
-    let got = Builder::new(Rastrigin, hrla, 4.0, Point::new([1.0; 3]).unwrap())
-        .stop(Stop::new().steps(10))
-        .build(chains::<5>(4))
-        .map(|o| o.iteration());
-    let want = Error::Length {
-        name: "start",
-        expected: 5,
-        got: 3,
+    fn build<const D: usize>(start: impl Start<f64>) -> Result<u64, Error> {
+        Builder::new(Rastrigin, Hrla::paper(0.01).unwrap(), 4.0, start)
+            .stop(Stop::new().steps(10))
+            .build(chains::<D>(4))
+            .map(|o| o.iteration())
+    }
+    let length = |expected, got| {
+        Err(Error::Length {
+            name: "start",
+            expected,
+            got,
+        })
     };
-    assert_eq!(got, Err(want));
-    let gaussian = Gaussian::new([0.0; 7], 1.0).unwrap();
-    let got = Builder::new(Rastrigin, hrla, 4.0, gaussian)
-        .stop(Stop::new().steps(10))
-        .build(chains::<2>(4))
-        .map(|o| o.iteration());
-    let want = Error::Length {
-        name: "start",
-        expected: 2,
-        got: 7,
-    };
-    assert_eq!(got, Err(want));
+    assert_eq!(build::<5>(Point::new([1.0; 3]).unwrap()), length(5, 3));
+    assert_eq!(
+        build::<2>(Gaussian::new([0.0; 7], 1.0).unwrap()),
+        length(2, 7)
+    );
 }

@@ -438,6 +438,52 @@ where
     L: Quencher<F> + ?Sized,
     O: FnMut(&Seen<'_, F>) -> ControlFlow<()>,
 {
+    /// Every chain's initial point, as [`start`](Self::start) says: the
+    /// evaluations spent, and the lowest value (its point written to
+    /// `best`).
+    fn first_points(
+        chains: &mut S,
+        one: &One<'_, P>,
+        domain: &B,
+        x0: Option<&[F]>,
+        budget: u64,
+        seed: u64,
+        best: &mut [F],
+    ) -> Result<(u64, F), Error> {
+        let n = chains.len();
+        let mut spare = budget - n as u64;
+        let mut evaluations = 0;
+        let mut best_value = F::INFINITY;
+        for c in 0..n {
+            let chain = chains.chain(c);
+            *chain.rng = S::Rng::seed_from_u64(chain_seed(seed, c as u64));
+            chain.y.fill(F::ZERO);
+            *chain.diverged = false;
+            *chain.value = match x0 {
+                Some(x0) if c == 0 => given_point(x0, chain.x, chain.grad, one)?,
+                _ => draw_point(
+                    c,
+                    chain.x,
+                    chain.grad,
+                    chain.rng,
+                    one,
+                    &mut spare,
+                    &mut evaluations,
+                    |rng, x| domain.uniform(rng, x),
+                )?,
+            };
+            if x0.is_some() && c == 0 {
+                evaluations += 1;
+            }
+            if *chain.value < best_value {
+                best_value = *chain.value;
+                best.copy_from_slice(chain.x);
+            }
+            chains.started(c);
+        }
+        Ok((evaluations, best_value))
+    }
+
     /// Draws every chain's initial point uniformly in the box (redrawn
     /// where infeasible, up to [`START_TRIES`](crate::START_TRIES), within
     /// the budget), but chain 0's where the caller gave `x0` (in the box):
@@ -468,7 +514,7 @@ where
         } = buffers;
         let one = One(potential);
         let (evaluations, best_value) =
-            first_points(&mut *chains, &one, domain, x0, budget, seed, best)?;
+            Self::first_points(&mut *chains, &one, domain, x0, budget, seed, best)?;
         Ok(Self {
             tally: Tally {
                 auto,
@@ -1033,58 +1079,6 @@ where
 /// `U` at the caller's start `x0`, copied into `x` (one evaluation):
 /// where it is infeasible, an error naming `x0` rather than a redraw, since
 /// the caller chose that point.
-/// Every chain's initial point, as [`Run::start`] says: the evaluations
-/// spent, and the lowest value (its point written to `best`).
-fn first_points<F, P, B, S>(
-    chains: &mut S,
-    one: &One<'_, P>,
-    domain: &B,
-    x0: Option<&[F]>,
-    budget: u64,
-    seed: u64,
-    best: &mut [F],
-) -> Result<(u64, F), Error>
-where
-    F: Float,
-    P: BatchPotential<F> + ?Sized,
-    B: Sides<F> + ?Sized,
-    S: Chains<F> + ?Sized,
-    S::Rng: Rng + SeedableRng + 'static,
-{
-    let n = chains.len();
-    let mut spare = budget - n as u64;
-    let mut evaluations = 0;
-    let mut best_value = F::INFINITY;
-    for c in 0..n {
-        let chain = chains.chain(c);
-        *chain.rng = S::Rng::seed_from_u64(chain_seed(seed, c as u64));
-        chain.y.fill(F::ZERO);
-        *chain.diverged = false;
-        *chain.value = match x0 {
-            Some(x0) if c == 0 => given_point(x0, chain.x, chain.grad, one)?,
-            _ => draw_point(
-                c,
-                chain.x,
-                chain.grad,
-                chain.rng,
-                one,
-                &mut spare,
-                &mut evaluations,
-                |rng, x| domain.uniform(rng, x),
-            )?,
-        };
-        if x0.is_some() && c == 0 {
-            evaluations += 1;
-        }
-        if *chain.value < best_value {
-            best_value = *chain.value;
-            best.copy_from_slice(chain.x);
-        }
-        chains.started(c);
-    }
-    Ok((evaluations, best_value))
-}
-
 fn given_point<F, P>(x0: &[F], x: &mut [F], grad: &mut [F], potential: &P) -> Result<F, Error>
 where
     F: Float,
