@@ -845,17 +845,7 @@ impl<'g> Ensemble<'g> {
         if let Some(e) = &self.failed {
             return Err(e.clone());
         }
-        if group_size == 0 {
-            return Err(hrla::Error::Zero { name: "group size" }.into());
-        }
-        if !self.chains.is_multiple_of(group_size) {
-            return Err(hrla::Error::Count {
-                name: "group size (a divisor of the chains)",
-                value: group_size,
-                max: self.chains,
-            }
-            .into());
-        }
+        let groups = self.groups(group_size)?;
         if eps.len() > MAX_EPS {
             return Err(hrla::Error::Count {
                 name: "eps values",
@@ -882,7 +872,6 @@ impl<'g> Ensemble<'g> {
         self.gpu
             .queue
             .write_buffer(&self.counts, 0, &vec![0u8; 8 * eps.len().max(1)]);
-        let groups = self.chains / group_size;
         let params = Params {
             group_size: group_size as u32,
             groups: groups as u32,
@@ -906,16 +895,9 @@ impl<'g> Ensemble<'g> {
             .collect())
     }
 
-    /// Per group of `group_size` consecutive chains (one run of Algorithm
-    /// 1, as in [`probability`](Self::probability)), in order: its best
-    /// current value, its best running best, its diverged chains and its
-    /// evaluations. Reduced on the host from the chains' scalars (4 to 8
-    /// words a chain are read back), and readable after a failed run too
-    /// (the chains keep what they reached).
-    ///
-    /// Errors: [`hrla::Error::Zero`] or [`hrla::Error::Count`] when
-    /// `group_size` does not divide the chains into whole runs.
-    pub fn group_bests(&self, group_size: usize) -> Result<Vec<GroupBest>, GpuError> {
+    /// The runs of `group_size` consecutive chains: [`hrla::Error::Zero`]
+    /// or [`hrla::Error::Count`] unless they divide the chains.
+    fn groups(&self, group_size: usize) -> Result<usize, GpuError> {
         if group_size == 0 {
             return Err(hrla::Error::Zero { name: "group size" }.into());
         }
@@ -927,6 +909,20 @@ impl<'g> Ensemble<'g> {
             }
             .into());
         }
+        Ok(self.chains / group_size)
+    }
+
+    /// Per group of `group_size` consecutive chains (one run of Algorithm
+    /// 1, as in [`probability`](Self::probability)), in order: its best
+    /// current value, its best running best, its diverged chains and its
+    /// evaluations. Reduced on the host from the chains' scalars (4 to 8
+    /// words a chain are read back), and readable after a failed run too
+    /// (the chains keep what they reached).
+    ///
+    /// Errors: [`hrla::Error::Zero`] or [`hrla::Error::Count`] when
+    /// `group_size` does not divide the chains into whole runs.
+    pub fn group_bests(&self, group_size: usize) -> Result<Vec<GroupBest>, GpuError> {
+        self.groups(group_size)?;
         let status = self.read_status()?;
         Ok(status
             .chunks_exact(group_size)

@@ -2,7 +2,7 @@
 //! not be planned, run or written; and [`ShardProblem`], why a shard file
 //! is refused.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use crate::split::Shard;
 use crate::stats::BadRunningBest;
@@ -71,6 +71,16 @@ pub enum ReproError {
         /// What plotters said.
         message: String,
     },
+}
+
+impl ReproError {
+    /// The error of a failed file operation at `path`, for `map_err`.
+    pub fn io(path: &Path) -> impl Fn(std::io::Error) -> ReproError + Copy + '_ {
+        move |source| ReproError::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
 }
 
 /// Why `--merge` refuses a shard file, or the set of them.

@@ -9,7 +9,7 @@ use indicatif::ProgressBar;
 use rayon::prelude::*;
 
 use crate::config::RunSpec;
-use crate::engine::{U_STAR, run_once};
+use crate::engine::{RunOutcome, U_STAR, run_once};
 use crate::error::ReproError;
 use crate::protocol::Plan;
 use crate::seed::run_seed;
@@ -119,6 +119,35 @@ impl Part {
             wall: Duration::ZERO,
             chain_steps: 0,
         }
+    }
+
+    /// Run `i` of configuration `c` (`spec`), which left `out`: its
+    /// running best checked and kept, its counters added (within the
+    /// limits of a plan, none can overflow). The wall time is the caller's
+    /// to add: a run's own on the CPU, a batch's on a device.
+    pub fn record(
+        &mut self,
+        spec: &RunSpec,
+        c: usize,
+        i: usize,
+        out: RunOutcome,
+    ) -> Result<(), ReproError> {
+        check_running_best(&out.running_best, &spec.checkpoints, U_STAR).map_err(|problem| {
+            ReproError::FailedRun {
+                config: spec.name(),
+                run: i,
+                problem,
+            }
+        })?;
+        self.values[c].push((i, out.running_best));
+        let over = ReproError::Overflow;
+        self.diverged[c] =
+            (self.diverged[c].checked_add(out.diverged)).ok_or(over("diverged chains"))?;
+        self.evaluations[c] =
+            (self.evaluations[c].checked_add(out.evaluations)).ok_or(over("evaluations"))?;
+        self.chain_steps =
+            (self.chain_steps.checked_add(spec.chain_steps())).ok_or(over("chain-steps"))?;
+        Ok(())
     }
 
     /// Both parts' runs (wall times add up), every counter added in
@@ -233,24 +262,9 @@ pub fn run_shard(
                     &mut acc.counts[c],
                     &progress,
                 )?;
-                check_running_best(&out.running_best, &spec.checkpoints, U_STAR).map_err(
-                    |problem| ReproError::FailedRun {
-                        config: spec.name(),
-                        run: i,
-                        problem,
-                    },
-                )?;
-                acc.values[c].push((i, out.running_best));
-                // Within the limits of a plan, none of these can overflow.
-                let over = ReproError::Overflow;
-                acc.diverged[c] =
-                    (acc.diverged[c].checked_add(out.diverged)).ok_or(over("diverged chains"))?;
-                acc.chain_steps =
-                    (acc.chain_steps.checked_add(spec.chain_steps())).ok_or(over("chain-steps"))?;
-                acc.evaluations[c] =
-                    (acc.evaluations[c].checked_add(out.evaluations)).ok_or(over("evaluations"))?;
+                acc.record(spec, c, i, out)?;
                 acc.run_wall[c] = (acc.run_wall[c].checked_add(run_started.elapsed()))
-                    .ok_or(over("run wall times"))?;
+                    .ok_or(ReproError::Overflow("run wall times"))?;
                 Ok::<_, ReproError>(acc)
             },
         )

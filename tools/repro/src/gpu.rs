@@ -27,13 +27,13 @@ use hrla_gpu::{DevicePotential, EnsembleBuilder, Gpu, GpuError, Precision, Start
 use indicatif::ProgressBar;
 
 use crate::config::{Method, RunSpec, StartSpec};
-use crate::engine::U_STAR;
+use crate::engine::{RunOutcome, U_STAR};
 use crate::error::ReproError;
 use crate::exec::{Part, ProtocolResult, finish};
 use crate::protocol::Plan;
 use crate::seed::run_seed;
 use crate::split::Shard;
-use crate::stats::{check_running_best, grid_points};
+use crate::stats::grid_points;
 
 /// Where the chains of a plan run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
@@ -221,21 +221,7 @@ impl GpuBackend {
                 let batch_started = Instant::now();
                 let outcomes = self.run_batch(spec, seed, batch, &mut part.counts[c], bar)?;
                 for (&i, out) in batch.iter().zip(outcomes) {
-                    check_running_best(&out.running_best, &spec.checkpoints, U_STAR).map_err(
-                        |problem| ReproError::FailedRun {
-                            config: spec.name(),
-                            run: i,
-                            problem,
-                        },
-                    )?;
-                    part.values[c].push((i, out.running_best));
-                    let over = ReproError::Overflow;
-                    part.diverged[c] = (part.diverged[c].checked_add(out.diverged))
-                        .ok_or(over("diverged chains"))?;
-                    part.evaluations[c] = (part.evaluations[c].checked_add(out.evaluations))
-                        .ok_or(over("evaluations"))?;
-                    part.chain_steps = (part.chain_steps.checked_add(spec.chain_steps()))
-                        .ok_or(over("chain-steps"))?;
+                    part.record(spec, c, i, out)?;
                 }
                 // The runs of a batch share the device: their wall time is
                 // the batch's, counted once.
@@ -329,13 +315,6 @@ impl GpuBackend {
         }
         Ok(outcomes)
     }
-}
-
-/// What one run on the device leaves (as the CPU's `RunOutcome`).
-struct RunOutcome {
-    running_best: Vec<f64>,
-    diverged: usize,
-    evaluations: u64,
 }
 
 /// An iterate the statistics read: a point of the curve grid (its index)

@@ -303,16 +303,8 @@ pub fn meta(r: &ProtocolResult, notes: &[(&str, String)]) -> String {
     out
 }
 
-/// The error of a failed write or directory creation at `path`.
-fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> ReproError + '_ {
-    move |source| ReproError::Io {
-        path: path.to_path_buf(),
-        source,
-    }
-}
-
 fn write(path: PathBuf, text: &str) -> Result<PathBuf, ReproError> {
-    fs::write(&path, text).map_err(io_error(&path))?;
+    fs::write(&path, text).map_err(ReproError::io(&path))?;
     Ok(path)
 }
 
@@ -326,7 +318,7 @@ pub fn write_all(
     notes: &[(&str, String)],
 ) -> Result<Vec<PathBuf>, ReproError> {
     let dir = dir.join(r.plan.id.name().to_lowercase());
-    fs::create_dir_all(&dir).map_err(io_error(&dir))?;
+    fs::create_dir_all(&dir).map_err(ReproError::io(&dir))?;
     let mut files = vec![
         write(dir.join("summary.csv"), &summary_csv(r))?,
         write(dir.join("summary.md"), &summary_markdown(r))?,

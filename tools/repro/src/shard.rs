@@ -180,17 +180,10 @@ pub fn write(
 ) -> Result<PathBuf, ReproError> {
     let file = path(out, plan, shard);
     if let Some(dir) = file.parent() {
-        fs::create_dir_all(dir).map_err(|source| ReproError::Io {
-            path: dir.to_path_buf(),
-            source,
-        })?;
+        fs::create_dir_all(dir).map_err(ReproError::io(dir))?;
     }
-    fs::write(&file, text(plan, seed, backend, shard, part, threads)).map_err(|source| {
-        ReproError::Io {
-            path: file.clone(),
-            source,
-        }
-    })?;
+    fs::write(&file, text(plan, seed, backend, shard, part, threads))
+        .map_err(ReproError::io(&file))?;
     Ok(file)
 }
 
@@ -313,10 +306,7 @@ fn bits(s: &str) -> Option<f64> {
 /// The checked content of a shard file: its bytes have the right size,
 /// end with a checksum line that matches, and are text.
 fn content(file: &Path, plan: &Plan, seed: u64, backend: Backend) -> Result<String, ReproError> {
-    let io = |source| ReproError::Io {
-        path: file.to_path_buf(),
-        source,
-    };
+    let io = ReproError::io(file);
     let most = most_bytes(plan, seed, backend);
     let handle = fs::File::open(file).map_err(io)?;
     let size = handle.metadata().map_err(io)?.len();
@@ -540,18 +530,10 @@ pub fn merge(
         crate::limits::machine_memory(),
     )?;
     let dir = out.join(plan.id.name().to_lowercase());
-    let entries = fs::read_dir(&dir).map_err(|source| ReproError::Io {
-        path: dir.clone(),
-        source,
-    })?;
+    let entries = fs::read_dir(&dir).map_err(ReproError::io(&dir))?;
     let mut files: Vec<(Shard, PathBuf)> = Vec::new();
     for entry in entries {
-        let path = entry
-            .map_err(|source| ReproError::Io {
-                path: dir.clone(),
-                source,
-            })?
-            .path();
+        let path = entry.map_err(ReproError::io(&dir))?.path();
         let Some(name) = path.file_name().and_then(|n| n.to_str()) else {
             continue;
         };
