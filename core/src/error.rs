@@ -155,6 +155,11 @@ pub enum Error {
         /// Its value.
         value: f64,
     },
+    /// The potential stopped the run: its batch seam answered
+    /// [`Break`](core::ops::ControlFlow::Break) (a user's function failed,
+    /// and the front end that called it keeps the cause). The step that
+    /// asked may be half done, so every later call refuses to go on.
+    Stopped,
 }
 
 /// `Ok` if every `(name, expected, got)` has `got == expected`; otherwise
@@ -213,6 +218,7 @@ impl fmt::Display for Error {
                 "the potential looks unbounded below: chain {chain} reached U = {}",
                 value(v)
             ),
+            Error::Stopped => f.write_str("the potential stopped the run"),
             _ => self.refusal(f),
         }
     }
@@ -293,7 +299,8 @@ impl Error {
             Error::NonFiniteStart { .. }
             | Error::Poisoned
             | Error::AllDiverged { .. }
-            | Error::UnboundedBelow { .. } => Ok(()),
+            | Error::UnboundedBelow { .. }
+            | Error::Stopped => Ok(()),
         }
     }
 }

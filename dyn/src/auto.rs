@@ -94,9 +94,6 @@ pub fn solve(
     let mut storage = Storage::new(n, d)?;
     let mut lent = storage.lend()?;
     let observe = |p: &AutoProgress<'_, f64>| {
-        if pot.failed() {
-            return ControlFlow::Break(());
-        }
         observer(&Progress {
             iteration: p.rounds,
             evaluations: p.evaluations,

@@ -293,15 +293,12 @@ impl Engine {
         }
         let end = steps.map(|k| self.opt.iteration().saturating_add(k));
         let before = self.snapshot();
-        let (user, escape2) = (self.user.clone(), self.escape2);
+        let escape2 = self.escape2;
         let (chains, dim) = (self.opt.chains().len(), self.opt.dim());
         let (mut away, mut ran_out) = (None, false);
         // The layer's own stops look after every step; the caller's
         // observer, as it asked.
         let report = self.opt.run_with(Observe::Always, |p| {
-            if user.as_ref().is_some_and(UserBatch::failed) {
-                return ControlFlow::Break(());
-            }
             away = escape2.and_then(|r2| ran_away(p.chains, r2));
             if away.is_some() {
                 return ControlFlow::Break(());

@@ -1,5 +1,6 @@
 //! A run as plain values, before its dimension is fixed.
 
+use std::ops::ControlFlow;
 use std::sync::Arc;
 
 use hrla::rand_core::Rng;
@@ -74,7 +75,7 @@ impl BatchPotential<f64> for Pot {
         grad: &mut [f64],
         value: &mut [f64],
         skip: &[bool],
-    ) {
+    ) -> ControlFlow<()> {
         match self {
             Self::Builtin(p) => p.values_and_gradients(d, x, grad, value, skip),
             Self::User(p) => p.values_and_gradients(d, x, grad, value, skip),
@@ -85,6 +86,7 @@ impl BatchPotential<f64> for Pot {
                         *value = p.value_and_gradient(x, grad);
                     }
                 }
+                ControlFlow::Continue(())
             }
         }
     }
@@ -106,11 +108,6 @@ impl BatchPotential<f64> for Pot {
 }
 
 impl Pot {
-    /// Whether a user function failed since the last [`finish`](Self::finish).
-    pub(crate) fn failed(&self) -> bool {
-        matches!(self, Self::User(p) if p.failed())
-    }
-
     /// The user function's first error since the last call, if any.
     pub(crate) fn finish(&self) -> Result<(), Error> {
         match self {

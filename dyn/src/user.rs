@@ -4,6 +4,7 @@
 //! batch seam as one `(n, d)` block, and [`hrla::Auto`] its points;
 //! [`UserBatch`] calls the function once on the rows of the live chains.
 
+use std::ops::ControlFlow;
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use crate::Error;
@@ -34,10 +35,12 @@ pub trait BatchFunction: Send + Sync {
 /// The rows of diverged chains (`skip`) are not passed: when every chain
 /// is live the block goes to the function as it is, without a copy;
 /// otherwise the live rows are gathered, and the answers written back to
-/// their chains. After a failure (the function's error, or answers of the
-/// wrong shape), every later evaluation is NaN without a call, so that the
-/// run ends; [`UserBatch::finish`] returns the failure. A clone shares
-/// the function and its state (a failure seen by one is seen by all).
+/// their chains. A failure (the function's error) stops the run (the seam
+/// answers [`ControlFlow::Break`], and the kernel ends with
+/// [`hrla::Error::Stopped`]); so does every later call, without calling
+/// the function, until [`UserBatch::finish`] hands the failure over. A
+/// clone shares the function and its state (a failure seen by one is seen
+/// by all).
 #[derive(Clone)]
 pub struct UserBatch {
     function: Arc<dyn BatchFunction>,
@@ -73,11 +76,6 @@ impl UserBatch {
     pub fn finish(&self) -> Result<(), Error> {
         self.state().error.take().map_or(Ok(()), Err)
     }
-
-    /// Whether an evaluation failed since the last [`finish`](Self::finish).
-    pub fn failed(&self) -> bool {
-        self.state().error.is_some()
-    }
 }
 
 impl hrla::BatchPotential<f64> for UserBatch {
@@ -88,15 +86,16 @@ impl hrla::BatchPotential<f64> for UserBatch {
         grad: &mut [f64],
         value: &mut [f64],
         skip: &[bool],
-    ) {
+    ) -> ControlFlow<()> {
         let mut state = self.state();
+        if state.error.is_some() {
+            return ControlFlow::Break(());
+        }
         let live = skip.iter().filter(|&&s| !s).count();
         if live == 0 {
-            return;
+            return ControlFlow::Continue(());
         }
-        let answered = if state.error.is_some() {
-            Ok(())
-        } else if live == skip.len() {
+        let answered = if live == skip.len() {
             self.function.evaluate(x, d, value, grad)
         } else {
             let BatchState {
@@ -122,14 +121,11 @@ impl hrla::BatchPotential<f64> for UserBatch {
             }
             answered
         };
-        if let Err(e) = answered {
-            state.error.get_or_insert(Error::User(e));
-        }
-        if state.error.is_some() {
-            // Every live chain diverges: the step ends the run, and the
-            // engine reports the failure in place of the divergence.
-            for (v, _) in value.iter_mut().zip(skip).filter(|(_, s)| !**s) {
-                *v = f64::NAN;
+        match answered {
+            Ok(()) => ControlFlow::Continue(()),
+            Err(e) => {
+                state.error = Some(Error::User(e));
+                ControlFlow::Break(())
             }
         }
     }

@@ -173,15 +173,13 @@ fn a_failing_call_ends_the_run_with_its_error() {
         opt.step().unwrap();
         opt.potential().finish().unwrap();
     }
-    // Every live chain gets NaN: the kernel ends the run, and the
-    // function's error is the reason.
-    assert!(matches!(
-        opt.step(),
-        Err(hrla::Error::AllDiverged { chains: N })
-    ));
+    // The seam stops the run, and the function's error is the reason;
+    // the run stays stopped without calling the function again.
+    assert!(matches!(opt.step(), Err(hrla::Error::Stopped)));
     match opt.potential().finish() {
         Err(Error::User(e)) => assert_eq!(e.to_string(), "the model's solver failed"),
         other => panic!("{other:?}"),
     }
+    assert!(matches!(opt.step(), Err(hrla::Error::Stopped)));
     assert_eq!(function.calls.lock().unwrap().len(), 4);
 }

@@ -5,11 +5,12 @@
 //! law; the batch seam is called once per step.
 
 use std::cell::Cell;
+use std::ops::ControlFlow;
 
 use hrla::{
-    AnySampler, BatchPotential, Bounds, Builder, Chain, Error, FlatChains, FlatSlices, FnPotential,
-    Gaussian, Interval, Lbfgs, LbfgsIn, PolishSettings, Potential, Rastrigin, SamplerKind,
-    SlicePotential, Stop, Unbounded,
+    AnySampler, Auto, AutoStorage, BatchPotential, Bounds, Builder, Chain, Error, FlatChains,
+    FlatSlices, FnPotential, Gaussian, Interval, Lbfgs, LbfgsIn, PolishSettings, Potential,
+    Problem, Rastrigin, SamplerKind, SlicePotential, Stop, Unbounded,
 };
 use hrla::{Domain, Float};
 use rand_xoshiro::rand_core::SeedableRng;
@@ -331,7 +332,7 @@ impl BatchPotential<f64> for Batched {
         grad: &mut [f64],
         value: &mut [f64],
         skip: &[bool],
-    ) {
+    ) -> ControlFlow<()> {
         self.calls.set(self.calls.get() + 1);
         assert_eq!(
             (x.len(), grad.len(), skip.len()),
@@ -342,6 +343,7 @@ impl BatchPotential<f64> for Batched {
                 value[i] = SlicePotential::value_and_gradient(&Rastrigin, xi, gi);
             }
         }
+        ControlFlow::Continue(())
     }
 }
 
@@ -898,4 +900,108 @@ fn between_steps_refuses_other_dimensions() {
         .unwrap();
     let (floats, ..) = opt.into_chains().into_storage();
     assert_eq!(bits(&floats[..N * D]), before);
+}
+
+/// Rastrigin through the batch seam for `answers` calls, then a stop (a
+/// user's function that raised, say): every later call stops too.
+struct StopsAfter {
+    answers: u64,
+    calls: Cell<u64>,
+}
+
+impl StopsAfter {
+    fn new(answers: u64) -> Self {
+        Self {
+            answers,
+            calls: Cell::new(0),
+        }
+    }
+}
+
+impl BatchPotential<f64> for StopsAfter {
+    fn values_and_gradients(
+        &self,
+        d: usize,
+        x: &[f64],
+        grad: &mut [f64],
+        value: &mut [f64],
+        skip: &[bool],
+    ) -> ControlFlow<()> {
+        self.calls.set(self.calls.get() + 1);
+        if self.calls.get() > self.answers {
+            return ControlFlow::Break(());
+        }
+        Batched {
+            calls: Cell::new(0),
+        }
+        .values_and_gradients(d, x, grad, value, skip)
+    }
+}
+
+/// A potential that stops the run ends it with `Error::Stopped` wherever it
+/// asks (the start, a step, a restart, a polish, `Auto`), never with a
+/// result, and the run stays failed without calling it again.
+#[test]
+fn a_potential_that_stops_ends_the_run_as_stopped() {
+    let d = 5;
+    let (sampler, start) = (
+        AnySampler::paper(SamplerKind::Hrla, 0.01).unwrap(),
+        Interval::new(-3.0, 3.0).unwrap(),
+    );
+    let build = |answers: u64| {
+        let chains = FlatChains::new(
+            d,
+            vec![0.0; FlatSlices::<f64, Xoshiro256PlusPlus>::floats(N, d)],
+            vec![0; N],
+            vec![false; N],
+            vec![Xoshiro256PlusPlus::seed_from_u64(0); N],
+        )
+        .unwrap();
+        Builder::new(StopsAfter::new(answers), sampler, 2.0, start)
+            .stop(Stop::new().steps(100))
+            .build(chains)
+    };
+    // At the start (one call for every chain's first point).
+    assert!(matches!(build(0), Err(Error::Stopped)));
+    // At a step: the third call (the start, a step, then the stop).
+    let mut opt = build(2).unwrap();
+    opt.step().unwrap();
+    assert!(matches!(opt.step(), Err(Error::Stopped)));
+    let calls = opt.potential().calls.get();
+    assert_eq!(calls, 3);
+    assert!(matches!(opt.step(), Err(Error::Stopped)));
+    assert!(matches!(opt.run(), Err(Error::Stopped)));
+    assert!(matches!(opt.restart(0, &[0.0; 5]), Err(Error::Stopped)));
+    assert_eq!(opt.potential().calls.get(), calls, "no call after the stop");
+    // A restart's evaluation, and a polish's.
+    let mut opt = build(1).unwrap();
+    assert!(matches!(opt.restart(0, &[0.5; 5]), Err(Error::Stopped)));
+    let mut storage = vec![0.0; LbfgsIn::<f64>::floats(d, 4)];
+    let mut lbfgs = LbfgsIn::new(d, 4, &mut storage).unwrap();
+    let mut opt = build(3).unwrap();
+    let settings = PolishSettings::new(50);
+    assert!(matches!(
+        opt.polish(0, &mut lbfgs, settings),
+        Err(Error::Stopped)
+    ));
+    assert!(matches!(opt.step(), Err(Error::Stopped)));
+    // Auto, at its first points and later in the run.
+    let (m, n) = (4, 6);
+    let box5 = Interval::new(-5.0, 5.0).unwrap();
+    for answers in [0, 3, 40, 400] {
+        let mut floats = vec![0.0; AutoStorage::<f64, Xoshiro256PlusPlus>::floats(n, d, m)];
+        let (mut diverged, mut rngs) = (
+            vec![false; n],
+            vec![Xoshiro256PlusPlus::seed_from_u64(0); n],
+        );
+        let mut storage = AutoStorage::new(d, m, &mut floats, &mut diverged, &mut rngs).unwrap();
+        let p = StopsAfter::new(answers);
+        let found = Auto::default().minimize(&Problem::new(&p, &box5, 5_000).seed(1), &mut storage);
+        assert!(matches!(found, Err(Error::Stopped)), "{answers}: {found:?}");
+        assert_eq!(
+            p.calls.get(),
+            answers + 1,
+            "{answers}: no call after the stop"
+        );
+    }
 }

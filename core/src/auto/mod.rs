@@ -307,7 +307,13 @@ impl<F: Float> Auto<F> {
             observer,
         )?
         .with_rules(problem.rules, problem.converge);
-        let termination = match run.solve() {
+        let ended = run.solve();
+        // A stop can read as an infeasible point the method steps over (a
+        // quench that cannot start): it ends the run however it ended.
+        if run.stopped() {
+            return Err(Error::Stopped);
+        }
+        let termination = match ended {
             ControlFlow::Continue(()) => run.ended(),
             ControlFlow::Break(run::Stop::Observer) => Termination::Observer,
             ControlFlow::Break(run::Stop::Target) => Termination::Target,

@@ -3,7 +3,7 @@
 //! const-generic [`Chain`]s and the caller's flat storage run this one
 //! body.
 
-use core::cell::RefCell;
+use core::cell::{Cell, RefCell};
 use core::ops::ControlFlow;
 
 use rand_core::{Rng, SeedableRng};
@@ -211,15 +211,44 @@ impl<'a, F> Buffers<'a, F> {
     }
 }
 
-/// One point at a time through the batch seam: a batch of one.
-pub(super) struct One<'a, P: ?Sized>(pub(super) &'a P);
+/// One point at a time through the batch seam: a batch of one. A stop is
+/// kept in `stopped` and reads as `-inf`, which ends every step of the
+/// method at once (as a potential unbounded below would); the run then
+/// reports [`Error::Stopped`].
+pub(super) struct One<'a, P: ?Sized> {
+    potential: &'a P,
+    stopped: Cell<bool>,
+}
+
+impl<'a, P: ?Sized> One<'a, P> {
+    fn new(potential: &'a P) -> Self {
+        Self {
+            potential,
+            stopped: Cell::new(false),
+        }
+    }
+
+    /// `e`, or [`Error::Stopped`] where the potential stopped the run.
+    fn cause(&self, e: Error) -> Error {
+        if self.stopped.get() {
+            Error::Stopped
+        } else {
+            e
+        }
+    }
+}
 
 impl<F: Float, P: BatchPotential<F> + ?Sized> SlicePotential<F> for One<'_, P> {
     #[inline]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         let mut value = [F::INFINITY];
-        self.0
+        let asked = self
+            .potential
             .values_and_gradients(x.len(), x, grad, &mut value, &[false]);
+        if asked.is_break() {
+            self.stopped.set(true);
+            return -F::INFINITY;
+        }
         value[0]
     }
 }
@@ -512,9 +541,10 @@ where
             base,
             g0,
         } = buffers;
-        let one = One(potential);
+        let one = One::new(potential);
         let (evaluations, best_value) =
-            Self::first_points(&mut *chains, &one, domain, x0, budget, seed, best)?;
+            Self::first_points(&mut *chains, &one, domain, x0, budget, seed, best)
+                .map_err(|e| one.cause(e))?;
         Ok(Self {
             tally: Tally {
                 auto,
@@ -595,6 +625,11 @@ where
     /// Why the run ended when it was not stopped: a rule, or the budget.
     pub(super) fn ended(&self) -> Termination {
         self.ended.unwrap_or(Termination::Evaluations)
+    }
+
+    /// Whether the potential stopped the run.
+    pub(super) fn stopped(&self) -> bool {
+        self.tally.potential.stopped.get()
     }
 
     /// The method: quench the initial points, measure the settings, then

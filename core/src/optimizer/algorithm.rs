@@ -222,7 +222,9 @@ where
         self.failed = Some(Error::Poisoned);
         let result = work(self);
         self.failed = match result {
-            Err(e @ (Error::UnboundedBelow { .. } | Error::AllDiverged { .. })) => Some(e),
+            Err(
+                e @ (Error::UnboundedBelow { .. } | Error::AllDiverged { .. } | Error::Stopped),
+            ) => Some(e),
             _ => None,
         };
         result
@@ -246,6 +248,9 @@ where
         };
         let before = self.chains.best(self.best).value;
         let found = self.executor.sweep(&mut self.chains, &cx);
+        if found.stopped {
+            return Err(Error::Stopped);
+        }
         self.evaluations += found.evaluated;
         self.diverged += found.diverged;
         self.iteration = k;
@@ -510,7 +515,7 @@ where
         }
         self.guarded(|opt| {
             let was_diverged = opt.chains.is_diverged(chain);
-            let value = opt.chains.place(chain, x, &opt.potential, &opt.domain);
+            let value = opt.chains.place(chain, x, &opt.potential, &opt.domain)?;
             let (x, grad, _) = opt.chains.point(chain);
             let verdict = judge(x, value, grad, floor());
             let ok = verdict == Verdict::Feasible;

@@ -10,7 +10,9 @@ use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use super::executor::Executor;
-use super::store::{Best, IntoStore, Origin, Origins, Searches, Starts, Steps, StepsOn, Store};
+use super::store::{
+    Best, Counted, IntoStore, Origin, Origins, Searches, Starts, Steps, StepsOn, Store,
+};
 use super::stream::chain_seed;
 use super::sweep::{Context, LOCKSTEP_F64_FROM, Sweep, Verdict, draw_point, judge};
 use crate::domain::Domain;
@@ -228,13 +230,13 @@ where
         sweep(cx, self, 0)
     }
 
-    fn place(&mut self, c: usize, x: &[F], potential: &P, domain: &B) -> F {
+    fn place(&mut self, c: usize, x: &[F], potential: &P, domain: &B) -> Result<F, Error> {
         let chain = &mut self[c];
         chain.x.copy_from_slice(x);
         chain.y = [F::ZERO; D];
         domain.confine(&mut chain.x, &mut chain.y);
         chain.value = potential.value_and_gradient(&chain.x, &mut chain.grad);
-        chain.value
+        Ok(chain.value)
     }
 }
 
@@ -322,17 +324,11 @@ where
             Origin::Best => chain.best.x,
             Origin::Current => chain.x,
         };
-        let counted = Counted { potential, calls };
+        let counted = Counted::new(potential, calls);
         let done = lbfgs.minimize_in(&counted, domain, &mut x, settings)?;
         self.offer(c, Some(&x), done.value, k);
         Ok(done)
     }
-}
-
-/// A potential whose evaluations are counted.
-struct Counted<'a, P> {
-    potential: &'a P,
-    calls: &'a Cell<u64>,
 }
 
 impl<F: Float, P: Potential<F, D>, const D: usize> Potential<F, D> for Counted<'_, P> {

@@ -20,12 +20,15 @@
 use core::any::{Any, TypeId};
 use core::cell::Cell;
 use core::marker::PhantomData;
+use core::ops::ControlFlow;
 
 use rand_core::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use super::executor::{Executor, Split};
-use super::store::{Best, IntoStore, Origin, Origins, Searches, Starts, Steps, StepsOn, Store};
+use super::store::{
+    Best, Counted, IntoStore, Origin, Origins, Searches, Starts, Steps, StepsOn, Store,
+};
 use super::stream::chain_seed;
 use super::sweep::{Context, LOCKSTEP_F64_FROM, Sweep, Verdict, judge, settle_point};
 use crate::domain::Domain;
@@ -392,7 +395,7 @@ where
     }
 
     /// Evaluated through the batch seam, as a batch of one.
-    fn place(&mut self, c: usize, x: &[F], potential: &P, domain: &B) -> F {
+    fn place(&mut self, c: usize, x: &[F], potential: &P, domain: &B) -> Result<F, Error> {
         let d = self.d;
         let p = self.parts();
         let span = c * d..(c + 1) * d;
@@ -400,8 +403,11 @@ where
         xc.copy_from_slice(x);
         yc.fill(F::ZERO);
         domain.confine(xc, yc);
-        potential.values_and_gradients(d, xc, &mut p.grad[span], &mut p.value[c..=c], &[false]);
-        p.value[c]
+        let grad = &mut p.grad[span];
+        match potential.values_and_gradients(d, xc, grad, &mut p.value[c..=c], &[false]) {
+            ControlFlow::Continue(()) => Ok(p.value[c]),
+            ControlFlow::Break(()) => Err(Error::Stopped),
+        }
     }
 }
 
@@ -486,7 +492,13 @@ where
             domain.confine(x, y);
         }
         diverged.fill(false);
-        potential.values_and_gradients(d, x, grad, value, diverged);
+        if potential
+            .values_and_gradients(d, x, grad, value, diverged)
+            .is_break()
+        {
+            return Err(Error::Stopped);
+        }
+        let mut stopped = false;
         for c in 0..n {
             let span = c * d..(c + 1) * d;
             let (xc, yc) = (&mut x[span.clone()], &mut y[span.clone()]);
@@ -502,10 +514,19 @@ where
                     start.initial_point(c, rng, xc);
                     yc.fill(F::ZERO);
                     domain.confine(xc, yc);
-                    potential.values_and_gradients(d, xc, grad, &mut value[c..=c], &[false]);
+                    let one = &mut value[c..=c];
+                    if potential
+                        .values_and_gradients(d, xc, grad, one, &[false])
+                        .is_break()
+                    {
+                        stopped = true;
+                        // Below the floor: the redraws end at once.
+                        return -F::INFINITY;
+                    }
                     value[c]
                 },
-            )?;
+            )
+            .map_err(|e| if stopped { Error::Stopped } else { e })?;
         }
         best_x.copy_from_slice(x);
         best_value.copy_from_slice(value);
@@ -550,32 +571,36 @@ where
         k: u64,
         calls: &Cell<u64>,
     ) -> Result<Polished<F>, Error> {
-        let counted = Counted { potential, calls };
+        let counted = Counted::new(potential, calls);
         let start = match from {
             Origin::Best => FlatChains::best(self, c).x,
             Origin::Current => self.x(c),
         };
         let (done, x) = lbfgs.minimize_from(&counted, domain, start, settings);
+        if counted.stopped.get() {
+            return Err(Error::Stopped);
+        }
         let done = done?;
         self.offer(c, Some(x), done.value, k);
         Ok(done)
     }
 }
 
-/// A potential whose evaluations are counted.
-struct Counted<'a, P> {
-    potential: &'a P,
-    calls: &'a Cell<u64>,
-}
-
-/// One point at a time through the batch seam: a batch of one.
+/// One point at a time through the batch seam: a batch of one. A stop is
+/// an infinite value to the search, which then ends, and is kept for its
+/// caller.
 impl<F: Float, P: BatchPotential<F>> SlicePotential<F> for Counted<'_, P> {
     #[inline]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         self.calls.set(self.calls.get() + 1);
         let mut value = [F::INFINITY];
-        self.potential
+        let asked = self
+            .potential
             .values_and_gradients(x.len(), x, grad, &mut value, &[false]);
+        if asked.is_break() {
+            self.stopped.set(true);
+            return F::INFINITY;
+        }
         value[0]
     }
 }
@@ -626,6 +651,9 @@ where
             }
         }
         evaluate_group(cx, chains, first..end, offset, &mut found);
+        if found.stopped {
+            break;
+        }
         first = end;
     }
     found
@@ -656,13 +684,17 @@ fn evaluate_group<F, K, P, B, R>(
             domain.confine(x, y);
         }
     }
-    potential.values_and_gradients(
+    let asked = potential.values_and_gradients(
         d,
         &chains.x[points.clone()],
         &mut chains.grad[points],
         &mut chains.value[group.clone()],
         &chains.diverged[group.clone()],
     );
+    if asked.is_break() {
+        found.stopped = true;
+        return;
+    }
     for c in group {
         if chains.diverged[c] {
             continue;

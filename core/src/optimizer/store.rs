@@ -91,8 +91,9 @@ pub trait Steps<F: Float, P, B>: Store<F> {
     /// Steps every live chain and evaluates it at its new point.
     fn sweep<K: Kernel<F>>(&mut self, cx: &Context<'_, K, P, B, F>) -> Sweep<F>;
     /// Moves chain `c` to `x` (of the store's dimension; confined, zero
-    /// velocity) and evaluates it there: its value.
-    fn place(&mut self, c: usize, x: &[F], potential: &P, domain: &B) -> F;
+    /// velocity) and evaluates it there: its value, or
+    /// [`Error::Stopped`] when the potential stopped the run.
+    fn place(&mut self, c: usize, x: &[F], potential: &P, domain: &B) -> Result<F, Error>;
 }
 
 /// [`Steps::sweep`] in an executor's parts.
@@ -152,6 +153,25 @@ pub trait Searches<F: Float, P, B, L>: Store<F> {
         k: u64,
         calls: &Cell<u64>,
     ) -> Result<Polished<F>, Error>;
+}
+
+/// A potential whose evaluations a [`Searches::search`] counts in its
+/// `calls`; each store makes it a potential of its own kind. `stopped`:
+/// whether the potential stopped the run (a batch potential can).
+pub(crate) struct Counted<'a, P> {
+    pub potential: &'a P,
+    pub calls: &'a Cell<u64>,
+    pub stopped: Cell<bool>,
+}
+
+impl<'a, P> Counted<'a, P> {
+    pub fn new(potential: &'a P, calls: &'a Cell<u64>) -> Self {
+        Self {
+            potential,
+            calls,
+            stopped: Cell::new(false),
+        }
+    }
 }
 
 /// Where a step's chains run: [`Serial`] on the calling thread, any

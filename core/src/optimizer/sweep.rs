@@ -47,6 +47,9 @@ pub struct Sweep<F> {
     pub diverged: usize,
     /// The first chain whose potential fell below the floor, with its value.
     pub unbounded: Option<(usize, F)>,
+    /// Whether the potential stopped the run (the chains after the group
+    /// that asked are left unstepped).
+    pub stopped: bool,
 }
 
 impl<F: Float> Sweep<F> {
@@ -55,6 +58,7 @@ impl<F: Float> Sweep<F> {
         evaluated: 0,
         diverged: 0,
         unbounded: None,
+        stopped: false,
     };
 
     /// The findings of this sweep followed by those of the chains after it.
@@ -69,6 +73,7 @@ impl<F: Float> Sweep<F> {
             evaluated: self.evaluated + later.evaluated,
             diverged: self.diverged + later.diverged,
             unbounded: self.unbounded.or(later.unbounded),
+            stopped: self.stopped | later.stopped,
         }
     }
 }

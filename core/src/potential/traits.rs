@@ -1,6 +1,8 @@
 //! What a potential is: the [`Potential`] trait, and [`KnownMinimum`] for
 //! potentials whose global minimum is known.
 
+use core::ops::ControlFlow;
+
 use crate::float::Float;
 
 /// A smooth potential `U` on `R^D` with its gradient.
@@ -103,11 +105,17 @@ impl<F: Float, P: SlicePotential<F> + ?Sized> SlicePotential<F> for &P {
 /// leave its gradient and value alone (they are not read). A non-finite
 /// value or gradient is allowed: the optimiser marks the chain diverged.
 ///
+/// A potential that cannot answer (a user's function raised, a device was
+/// lost) answers [`ControlFlow::Break`]: the run ends with
+/// [`Error::Stopped`](crate::Error::Stopped), the group's values unread,
+/// and the caller that gave the potential keeps the cause.
+///
 /// Every [`SlicePotential`] is one, evaluating the points one by one;
 /// implement this trait directly (and not [`SlicePotential`]) for a
 /// potential that is cheaper per batch.
 pub trait BatchPotential<F: Float> {
-    /// Writes the values and gradients of the group's points.
+    /// Writes the values and gradients of the group's points, or stops
+    /// the run.
     fn values_and_gradients(
         &self,
         d: usize,
@@ -115,7 +123,7 @@ pub trait BatchPotential<F: Float> {
         grad: &mut [F],
         value: &mut [F],
         skip: &[bool],
-    );
+    ) -> ControlFlow<()>;
 
     /// The dimension the potential was made for, if it has one.
     fn batch_dimension(&self) -> Option<usize> {
@@ -142,13 +150,14 @@ impl<F: Float, P: SlicePotential<F> + ?Sized> BatchPotential<F> for P {
         grad: &mut [F],
         value: &mut [F],
         skip: &[bool],
-    ) {
+    ) -> ControlFlow<()> {
         let points = x.chunks_exact(d).zip(grad.chunks_exact_mut(d));
         for (((x, grad), value), &skip) in points.zip(value.iter_mut()).zip(skip) {
             if !skip {
                 *value = self.value_and_gradient(x, grad);
             }
         }
+        ControlFlow::Continue(())
     }
 
     fn batch_dimension(&self) -> Option<usize> {
