@@ -415,8 +415,9 @@ def minimize(
 
     Without a gradient (``jac`` by finite differences) and with ``D <=
     ENSEMBLE_MAX_DIM`` (20), ``"auto"`` is two phases: :class:`Auto` with
-    the first ``100 D`` calls of ``fun`` (at least two gradients a chain),
-    where its quenched starts lead on the bbob benchmark, then the layer's
+    the first ``max(100, 15 D) D`` calls of ``fun`` (at least two gradients
+    a chain; from ``D = 7`` on, about ``15 D`` gradients, enough for a
+    quench to end), where its quenched starts lead on the bbob benchmark, then the layer's
     gradient-free ensemble with the rest: Langevin particles in their own
     whitened frame, driven by the gradient of a quadratic model fitted to
     their values (no finite differences), restarted with twice the
@@ -636,15 +637,18 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
     # Without a gradient, Auto's default leads the field's benchmark only
     # early (bbob: up to about 100 D calls); the ensemble, which needs
     # values only, leads from there. So Auto runs first with the calls of
-    # ENSEMBLE_CALLS D (at least two gradients a chain), and the ensemble
-    # with the rest (docs/QUALITY.md, "Black-box: COCO bbob").
+    # max(ENSEMBLE_CALLS, ENSEMBLE_GRADIENTS D) D (at least two gradients a
+    # chain; in many dimensions, enough for a quench of O(D) iterations of
+    # D + 1 calls each to end), and the ensemble with the rest
+    # (docs/QUALITY.md, "Black-box: COCO bbob").
     # hrla.Auto(...) as the method runs Auto alone.
     ensemble = (settings is None and objective is not None and objective.scheme is not None
                 and size is not None and size <= ENSEMBLE_MAX_DIM)
     whole = budget
     if ensemble:
         assert size is not None
-        share = max(ENSEMBLE_CALLS * size // spend.cost - spend.spare, 1)
+        calls = max(ENSEMBLE_CALLS, ENSEMBLE_GRADIENTS * size) * size
+        share = max(calls // spend.cost - spend.spare, 1)
         budget = min(budget, max(share, 2 * (chains or Auto.chains_for(share))))
     # The limits as the run's own rules, which take only finite numbers:
     # the largest float stands for inf (target=inf: any finite value
@@ -691,8 +695,10 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
 
 
 #: Auto's share of a run without a gradient, in calls of ``fun`` per
-#: coordinate, before the ensemble takes the rest.
+#: coordinate, before the ensemble takes the rest: ENSEMBLE_CALLS, or
+#: ENSEMBLE_GRADIENTS D where that is more (from D = 7 on).
 ENSEMBLE_CALLS = 100
+ENSEMBLE_GRADIENTS = 15
 
 #: The ensemble's ends as ``hrla.minimize`` names them.
 _ENSEMBLE_ENDS = {"Budget": "Evaluations", "Converged": "Converged", "Target": "Target", "Stalled": "Stalled",
