@@ -587,8 +587,8 @@ where
 }
 
 /// One point at a time through the batch seam: a batch of one. A stop is
-/// an infinite value to the search, which then ends, and is kept for its
-/// caller.
+/// kept for the search's caller and reads as `-inf`, which ends the search
+/// at once (as a potential unbounded below would).
 impl<F: Float, P: BatchPotential<F>> SlicePotential<F> for Counted<'_, P> {
     #[inline]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
@@ -599,7 +599,7 @@ impl<F: Float, P: BatchPotential<F>> SlicePotential<F> for Counted<'_, P> {
             .values_and_gradients(x.len(), x, grad, &mut value, &[false]);
         if asked.is_break() {
             self.stopped.set(true);
-            return F::INFINITY;
+            return -F::INFINITY;
         }
         value[0]
     }
