@@ -18,6 +18,7 @@ use crate::float::Float;
 use crate::optimizer::{Chain, Stop as Rules, Termination, chain_seed, draw_point};
 use crate::optimizer::{Verdict, judge};
 use crate::polish::{PolishEnd, PolishSettings, Polished, Quencher, Scale};
+use crate::potential::traits::one_point;
 use crate::potential::{BatchPotential, SlicePotential};
 use crate::sampler::{Hrla, Kernel, OuKernel, Sampler};
 
@@ -211,10 +212,9 @@ impl<'a, F> Buffers<'a, F> {
     }
 }
 
-/// One point at a time through the batch seam: a batch of one. A stop is
-/// kept in `stopped` and reads as `-inf`, which ends every step of the
-/// method at once (as a potential unbounded below would); the run then
-/// reports [`Error::Stopped`].
+/// One point at a time through the batch seam ([`one_point`]): a stop ends
+/// every step of the method at once, and the run reports
+/// [`Error::Stopped`].
 pub(super) struct One<'a, P: ?Sized> {
     potential: &'a P,
     stopped: Cell<bool>,
@@ -241,15 +241,7 @@ impl<'a, P: ?Sized> One<'a, P> {
 impl<F: Float, P: BatchPotential<F> + ?Sized> SlicePotential<F> for One<'_, P> {
     #[inline]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
-        let mut value = [F::INFINITY];
-        let asked = self
-            .potential
-            .values_and_gradients(x.len(), x, grad, &mut value, &[false]);
-        if asked.is_break() {
-            self.stopped.set(true);
-            return -F::INFINITY;
-        }
-        value[0]
+        one_point(self.potential, x, grad, &self.stopped)
     }
 }
 

@@ -37,6 +37,7 @@ use crate::float::Float;
 use crate::lanes;
 use crate::lockstep::{LANES, Xoshiro256Lanes};
 use crate::polish::{LbfgsIn, PolishSettings, Polished};
+use crate::potential::traits::one_point;
 use crate::potential::{BatchPotential, SlicePotential};
 use crate::sampler::{ChainState, Kernel};
 use crate::start::Start;
@@ -586,22 +587,13 @@ where
     }
 }
 
-/// One point at a time through the batch seam: a batch of one. A stop is
-/// kept for the search's caller and reads as `-inf`, which ends the search
-/// at once (as a potential unbounded below would).
+/// One point at a time through the batch seam ([`one_point`]): a stop ends
+/// the search at once, and its caller reports [`Error::Stopped`].
 impl<F: Float, P: BatchPotential<F>> SlicePotential<F> for Counted<'_, P> {
     #[inline]
     fn value_and_gradient(&self, x: &[F], grad: &mut [F]) -> F {
         self.calls.set(self.calls.get() + 1);
-        let mut value = [F::INFINITY];
-        let asked = self
-            .potential
-            .values_and_gradients(x.len(), x, grad, &mut value, &[false]);
-        if asked.is_break() {
-            self.stopped.set(true);
-            return -F::INFINITY;
-        }
-        value[0]
+        one_point(self.potential, x, grad, &self.stopped)
     }
 }
 

@@ -1,6 +1,7 @@
 //! What a potential is: the [`Potential`] trait, and [`KnownMinimum`] for
 //! potentials whose global minimum is known.
 
+use core::cell::Cell;
 use core::ops::ControlFlow;
 
 use crate::float::Float;
@@ -167,4 +168,27 @@ impl<F: Float, P: SlicePotential<F> + ?Sized> BatchPotential<F> for P {
     fn chains_per_call(&self) -> Option<usize> {
         Some(crate::lockstep::LANES)
     }
+}
+
+/// `U(x)` and `∇U(x)` through the batch seam, as a batch of one, for the
+/// callers that take one point at a time (a search, `Auto`). A stop is
+/// kept in `stopped` and reads as `-inf`, which ends the caller's work at
+/// once (as a potential unbounded below would) before it reports
+/// [`Error::Stopped`](crate::Error::Stopped).
+#[inline]
+pub(crate) fn one_point<F: Float, P: BatchPotential<F> + ?Sized>(
+    potential: &P,
+    x: &[F],
+    grad: &mut [F],
+    stopped: &Cell<bool>,
+) -> F {
+    let mut value = [F::INFINITY];
+    if potential
+        .values_and_gradients(x.len(), x, grad, &mut value, &[false])
+        .is_break()
+    {
+        stopped.set(true);
+        return -F::INFINITY;
+    }
+    value[0]
 }
