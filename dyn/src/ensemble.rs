@@ -46,8 +46,14 @@
 //! `max(8, ceil(population P / 2) + 1)`, `P = 1 + d + d(d+1)/2` the model's
 //! parameters.
 //!
+//! A restart that ends otherwise (the stall, or a frame or fit that breaks
+//! down) with most of its particles on one point of its best value ended
+//! by agreement too: a minimum on the box's boundary, where the clipping
+//! pins the particles that reach it while the rest never join them (a
+//! slope's corner).
+//!
 //! **Convergence** ([`Ensemble::converge`]): the run ends once two restarts
-//! that ended by agreement (values or positions, not the stall) reached
+//! that ended by agreement (values, positions or pinned, not the stall) reached
 //! the best value, each to its last generation's spread of values, plus
 //! `1e-12` of the spread of `U` over the first generation and `1e-11` of
 //! `|U|` there (a restart's own agreement, `1e-12` of its values' mean,
@@ -410,21 +416,39 @@ impl Ensemble {
             if sd_f <= 1e-12 * (mean_f.abs() + 1e-300) || widest < 1e-12 * width {
                 return Ok(Ok((Restart::Agreed { spread: sd_f }, run_best)));
             }
+            // A minimum on the box's boundary: the clipping pins the
+            // particles that reach it to one point, which the others may
+            // never join. A restart that ends otherwise with most particles
+            // there, on its best value, ended by agreement too.
+            let other = || {
+                let pinned = history.last().map_or(0, |(xs, fs)| {
+                    let mut at = xs.chunks_exact(d).zip(fs);
+                    let mut at = at.by_ref().filter(|&(_, &v)| v == run_best).map(|(p, _)| p);
+                    at.next()
+                        .map_or(0, |first| 1 + at.filter(|p| *p == first).count())
+                });
+                let restart = if 2 * pinned > n {
+                    Restart::Agreed { spread: sd_f }
+                } else {
+                    Restart::Other
+                };
+                Ok(Ok((restart, run_best)))
+            };
             if since > stall || !(trace.is_finite() && trace > 0.0) {
-                return Ok(Ok((Restart::Other, run_best)));
+                return other();
             }
             for i in 0..d {
                 c[i * d + i] += 1e-12 * trace / d as f64;
             }
             if !cholesky(&mut c, d) {
-                return Ok(Ok((Restart::Other, run_best)));
+                return other();
             }
             let l = c;
             let Some(drift) = self.drift(&history, &m, &l, n, d, kappa) else {
-                return Ok(Ok((Restart::Other, run_best)));
+                return other();
             };
             let Some((kernel, reach)) = step_kernel(&drift.curvature, d) else {
-                return Ok(Ok((Restart::Other, run_best)));
+                return other();
             };
             // The drift capped at 3 sqrt(d) whitened units a step.
             let cap = 3.0 * (d as f64).sqrt() / reach.max(1e-300);
@@ -838,6 +862,24 @@ mod tests {
         };
         let s = run(ackley, 10, 150_000, 1, Ensemble::default());
         assert!(s.value < 1e-9, "{s:?}");
+        assert_eq!(s.end, EnsembleEnd::Converged, "{s:?}");
+    }
+
+    #[test]
+    fn a_minimum_on_the_boxs_boundary_converges() {
+        // A slope's minimum is the box's corner, a bowl centred outside the
+        // box in one coordinate has it on a face: the clipping pins the
+        // particles that reach it there, and the restarts agree.
+        let slope = |x: &[f64]| x.iter().sum::<f64>();
+        let s = run(slope, 5, 50_000, 1, Ensemble::default());
+        assert_eq!(s.x, vec![-5.0; 5]);
+        assert_eq!(s.end, EnsembleEnd::Converged, "{s:?}");
+        let face = |x: &[f64]| {
+            (x[0] - 7.0).powi(2) + x[1..].iter().map(|t| (t - 0.3).powi(2)).sum::<f64>()
+        };
+        let s = run(face, 5, 50_000, 1, Ensemble::default());
+        assert_eq!(s.x[0], 5.0, "{s:?}");
+        assert!((s.value - 4.0).abs() < 1e-9, "{s:?}");
         assert_eq!(s.end, EnsembleEnd::Converged, "{s:?}");
     }
 
