@@ -422,8 +422,8 @@ impl Ensemble {
             // there, on its best value, ended by agreement too.
             let other = || {
                 let pinned = history.last().map_or(0, |(xs, fs)| {
-                    let mut at = xs.chunks_exact(d).zip(fs);
-                    let mut at = at.by_ref().filter(|&(_, &v)| v == run_best).map(|(p, _)| p);
+                    let at = xs.chunks_exact(d).zip(fs);
+                    let mut at = at.filter(|&(_, &v)| v == run_best).map(|(p, _)| p);
                     at.next()
                         .map_or(0, |first| 1 + at.filter(|p| *p == first).count())
                 });

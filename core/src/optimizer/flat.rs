@@ -499,7 +499,7 @@ where
         {
             return Err(Error::Stopped);
         }
-        let mut stopped = false;
+        let stopped = Cell::new(false);
         for c in 0..n {
             let span = c * d..(c + 1) * d;
             let (xc, yc) = (&mut x[span.clone()], &mut y[span.clone()]);
@@ -515,19 +515,12 @@ where
                     start.initial_point(c, rng, xc);
                     yc.fill(F::ZERO);
                     domain.confine(xc, yc);
-                    let one = &mut value[c..=c];
-                    if potential
-                        .values_and_gradients(d, xc, grad, one, &[false])
-                        .is_break()
-                    {
-                        stopped = true;
-                        // Below the floor: the redraws end at once.
-                        return -F::INFINITY;
-                    }
-                    value[c]
+                    // A stop reads as -inf, below the floor: the redraws
+                    // end at once.
+                    one_point(potential, xc, grad, &stopped)
                 },
             )
-            .map_err(|e| if stopped { Error::Stopped } else { e })?;
+            .map_err(|e| if stopped.get() { Error::Stopped } else { e })?;
         }
         best_x.copy_from_slice(x);
         best_value.copy_from_slice(value);
