@@ -35,6 +35,16 @@
 //! `cool_every` generations without a new best, `kappa` is multiplied by
 //! `cool`, and a spread ensemble contracts.
 //!
+//! **Travel.** Far from a minimum along a narrow valley, the model's pull
+//! moves the ensemble's mean by many of its own widths a generation while
+//! the contraction goes on, so the ensemble shrinks faster than it
+//! travels and crawls (on an ill-conditioned bowl it stops improving short
+//! of the minimum). While the mean moves more than half the drift's cap
+//! (`1.5 sqrt(d)` whitened units) from one generation to the next,
+//! `kappa` is halved each generation, a warmer law that the ensemble
+//! widens towards (CMA-ES's step-size rule grows its step on long paths in
+//! the same way); once it moves less, the factor doubles back to 1.
+//!
 //! **Restarts** (IPOP's rule): when the generation's values agree to `1e-12`
 //! of their mean, the ensemble's widest standard deviation is below `1e-12`
 //! of the box, or the restart's best has not improved (by `1e-12`,
@@ -84,6 +94,9 @@ const MEMORY: usize = 2;
 const AGREEING: usize = 2;
 /// The ridge on the model's non-isotropic curvature, per fitted point.
 const RIDGE: f64 = 0.05;
+/// The mean's move a generation, in whitened units per `sqrt(d)`, beyond
+/// which the ensemble is travelling: half the drift's cap.
+const TRAVEL: f64 = 1.5;
 
 /// The settings of the ensemble solver (the module docs give the method).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -384,6 +397,8 @@ impl Ensemble {
         let mut history: Vec<(Vec<f64>, Vec<f64>)> = Vec::with_capacity(MEMORY);
         let (mut run_best, mut since) = (f64::INFINITY, 0_u32);
         let mut kappa = self.spread * (d as f64 / 2.0).sqrt();
+        // The temperature's factor while the ensemble travels (module docs).
+        let (mut warm, mut last_mean) = (1.0_f64, None::<Vec<f64>>);
         let stall = 20 + 3 * d as u32;
         loop {
             let f = match run.evaluate(&x, d)? {
@@ -444,7 +459,16 @@ impl Ensemble {
                 return other();
             }
             let l = c;
-            let Some(drift) = self.drift(&history, &m, &l, n, d, kappa) else {
+            if let Some(last) = last_mean.replace(m.clone()) {
+                let mut moved: Vec<f64> = m.iter().zip(&last).map(|(a, b)| a - b).collect();
+                solve_lower(&l, d, &mut moved);
+                warm = if dot(&moved, &moved) > TRAVEL * TRAVEL * d as f64 {
+                    warm / 2.0
+                } else {
+                    (warm * 2.0).min(1.0)
+                };
+            }
+            let Some(drift) = self.drift(&history, &m, &l, n, d, kappa * warm) else {
                 return other();
             };
             let Some((kernel, reach)) = step_kernel(&drift.curvature, d) else {
@@ -845,6 +869,25 @@ mod tests {
         // first's population (`P = 21` parameters at d = 5: 22 particles),
         // not twice it.
         assert_eq!((s.restarts, s.population), (1, 22), "{s:?}");
+    }
+
+    #[test]
+    fn an_ill_conditioned_bowl_is_travelled_to_its_minimum() {
+        // A discus of condition 1e6 at d = 10, rotated by a reflection and
+        // centred off the origin: the ensemble contracts across the stiff
+        // direction long before it reaches the minimum, so it must widen
+        // while its mean travels.
+        let d = 10;
+        let f = |x: &[f64]| {
+            let c = |i: usize| 3.0 - 0.6 * i as f64;
+            let u: Vec<f64> = (0..d).map(|i| x[i] - c(i)).collect();
+            let w = 1.0 / (d as f64).sqrt();
+            let along = u.iter().sum::<f64>() * w;
+            let y: Vec<f64> = u.iter().map(|ui| ui - 2.0 * along * w).collect();
+            1e6 * y[0] * y[0] + y[1..].iter().map(|t| t * t).sum::<f64>()
+        };
+        let s = run(f, d, 60_000, 1, Ensemble::default());
+        assert!(s.value < 1e-8, "{s:?}");
     }
 
     #[test]
