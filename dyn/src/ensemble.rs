@@ -56,6 +56,16 @@
 //! `max(8, ceil(population P / 2) + 1)`, `P = 1 + d + d(d+1)/2` the model's
 //! parameters.
 //!
+//! **Local restarts** (BIPOP's second regime): after the first two
+//! restarts, a restart is local whenever the local ones have spent fewer
+//! calls than the others. A local restart draws `u` uniform in `[0, 1)`
+//! and `max(n0, n0 (n / n0)^(u^2))` particles (`n0` the first population,
+//! `n` the current one, which it leaves unchanged), normal around a
+//! uniform point of the box with a standard deviation of `0.03 * 10^(-2u)`
+//! of each side, clipped to the box: many small searches, where the large
+//! ones average over a landscape whose structure is local (Katsuura's,
+//! Weierstrass's and Gallagher's functions).
+//!
 //! A restart that ends otherwise (the stall, or a frame or fit that breaks
 //! down) with most of its particles on one point of its best value ended
 //! by agreement too: a minimum on the box's boundary, where the clipping
@@ -75,8 +85,8 @@
 
 use std::ops::ControlFlow;
 
-use hrla::rand_core::SeedableRng;
-use hrla::{Bounds, Hrla, HrlaParams, Kernel, Sampler, Sides};
+use hrla::rand_core::{Rng, SeedableRng};
+use hrla::{Bounds, Hrla, HrlaParams, Kernel, Sampler, Sides, StandardNormal};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::linalg::{
@@ -94,6 +104,9 @@ const MEMORY: usize = 2;
 const AGREEING: usize = 2;
 /// The ridge on the model's non-isotropic curvature, per fitted point.
 const RIDGE: f64 = 0.05;
+/// A local restart's largest standard deviation, in units of the box's
+/// sides.
+const LOCAL: f64 = 0.03;
 /// The mean's move a generation, in whitened units per `sqrt(d)`, beyond
 /// which the ensemble is travelling: half the drift's cap.
 const TRAVEL: f64 = 1.5;
@@ -298,10 +311,22 @@ impl Ensemble {
         let parameters = 1 + d + d * (d + 1) / 2;
         let mut n =
             8.max((self.population * parameters as f64 / MEMORY as f64).ceil() as usize + 1);
+        let first = n;
         // The best value of each restart that converged, and its spread.
         let mut agreed: Vec<(f64, f64)> = Vec::new();
+        // The calls of the large and the local restarts, and whether the
+        // next one is local (module docs).
+        let (mut large, mut local, mut next_local) = (0_u64, 0_u64, false);
         let end = loop {
-            let (restart, run_best) = match self.restart(&mut run, n)? {
+            let before = run.evaluations;
+            let (size, spread) = if next_local {
+                let u = (Rng::next_u64(&mut run.rng) >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+                let size = (first as f64 * (n as f64 / first as f64).powf(u * u)).floor() as usize;
+                (size.max(first), Some(LOCAL * 10f64.powf(-2.0 * u)))
+            } else {
+                (n, None)
+            };
+            let (restart, run_best) = match self.restart(&mut run, size, spread)? {
                 Ok(r) => r,
                 Err(end) => break end,
             };
@@ -320,13 +345,20 @@ impl Ensemble {
                 agreed.push((run_best, spread));
             }
             run.restarts += 1;
-            // The restart after the first agreement keeps the population:
-            // it can confirm that agreement for the cost of one more
-            // restart, where a doubled one costs two (docs/QUALITY.md).
-            let confirming = matches!(restart, Restart::Agreed { .. }) && agreed.len() == 1;
-            if !confirming {
-                n = n.saturating_mul(2);
+            if next_local {
+                local += run.evaluations - before;
+            } else {
+                large += run.evaluations - before;
+                // The restart after the first agreement keeps the
+                // population: it can confirm that agreement for the cost of
+                // one more restart, where a doubled one costs two
+                // (docs/QUALITY.md).
+                let confirming = matches!(restart, Restart::Agreed { .. }) && agreed.len() == 1;
+                if !confirming {
+                    n = n.saturating_mul(2);
+                }
             }
+            next_local = run.restarts >= 2 && local < large;
         };
         if run.best_x.is_empty() {
             return Err(Error::Kernel(hrla::Error::AllDiverged { chains: n }));
@@ -379,6 +411,7 @@ impl Ensemble {
         &self,
         run: &mut Run<'_, V, O>,
         n: usize,
+        local: Option<f64>,
     ) -> Result<Result<(Restart, f64), EnsembleEnd>, Error>
     where
         V: FnMut(&[f64], usize, &mut [f64]) -> Result<(), UserError>,
@@ -389,8 +422,21 @@ impl Ensemble {
         let d = lo.len();
         let width = lo.iter().zip(hi).map(|(l, h)| h - l).fold(0.0, f64::max);
         let mut x = vec![0.0; n * d];
+        let mut centre = vec![0.0; d];
+        if local.is_some() {
+            bounds.uniform(&mut run.rng, &mut centre);
+        }
         for row in x.chunks_exact_mut(d) {
-            bounds.uniform(&mut run.rng, row);
+            match local {
+                // Normal around the centre, `sd` of each side.
+                Some(sd) => {
+                    for (k, xk) in row.iter_mut().enumerate() {
+                        let z = f64::standard_normal(&mut run.rng);
+                        *xk = (centre[k] + sd * (hi[k] - lo[k]) * z).clamp(lo[k], hi[k]);
+                    }
+                }
+                None => bounds.uniform(&mut run.rng, row),
+            }
         }
         let mut y = vec![0.0; n * d];
         // The last MEMORY generations' points and values, oldest first.
@@ -779,6 +825,7 @@ fn step_kernel(h: &[f64], d: usize) -> Option<(hrla::OuKernel<f64>, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     fn run(
         f: impl Fn(&[f64]) -> f64,
@@ -888,6 +935,29 @@ mod tests {
         };
         let s = run(f, d, 60_000, 1, Ensemble::default());
         assert!(s.value < 1e-8, "{s:?}");
+    }
+
+    #[test]
+    fn local_restarts_find_a_weierstrass_minimum() {
+        // Weierstrass's function (bbob's f16 unrotated, shifted): rugged at
+        // every scale and periodic, with no bowl for a large ensemble's
+        // model to follow. Its minima, 0, are reached by 7 of these 10
+        // seeds with local restarts and by 2 without them.
+        let d = 5;
+        let term = |t: f64| {
+            (0..12)
+                .map(|k| 0.5f64.powi(k) * (2.0 * PI * 3f64.powi(k) * (t + 0.5)).cos())
+                .sum::<f64>()
+        };
+        let f0 = term(0.0);
+        let f = |x: &[f64]| {
+            let s = x.iter().map(|&t| term(t - 0.37) - f0).sum::<f64>() / d as f64;
+            10.0 * s * s * s
+        };
+        let reached = (1..=10)
+            .filter(|&seed| run(f, d, 50_000, seed, Ensemble::default()).value < 1e-2)
+            .count();
+        assert!(reached >= 6, "{reached} of 10");
     }
 
     #[test]

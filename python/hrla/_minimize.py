@@ -422,8 +422,9 @@ def minimize(
     whitened frame, driven by the gradient of a quadratic model fitted to
     their values (no finite differences), restarted with twice the
     particles when they agree or stall, but with as many after the first
-    agreement, which the next restart may confirm (the crate
-    ``hrla-dyn``'s ``Ensemble`` gives the method). Its generations are ``nit``'s
+    agreement, which the next restart may confirm, and from the third
+    restart on alternating with small local restarts that spend as many
+    calls (the crate ``hrla-dyn``'s ``Ensemble`` gives the method). Its generations are ``nit``'s
     iterations after Auto's rounds, each one batch of ``fun`` through
     ``workers`` or ``vectorized``; the run has converged when two restarts
     agreed on the best value (``converge=False``: never); ``target``,
