@@ -320,9 +320,8 @@ impl Ensemble {
         let end = loop {
             let before = run.evaluations;
             let (size, spread) = if next_local {
-                let u = (Rng::next_u64(&mut run.rng) >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
-                let size = (first as f64 * (n as f64 / first as f64).powf(u * u)).floor() as usize;
-                (size.max(first), Some(LOCAL * 10f64.powf(-2.0 * u)))
+                let (size, spread) = local_size(&mut run.rng, first, n);
+                (size, Some(spread))
             } else {
                 (n, None)
             };
@@ -421,23 +420,7 @@ impl Ensemble {
         let (lo, hi) = (bounds.lo(), bounds.hi());
         let d = lo.len();
         let width = lo.iter().zip(hi).map(|(l, h)| h - l).fold(0.0, f64::max);
-        let mut x = vec![0.0; n * d];
-        let mut centre = vec![0.0; d];
-        if local.is_some() {
-            bounds.uniform(&mut run.rng, &mut centre);
-        }
-        for row in x.chunks_exact_mut(d) {
-            match local {
-                // Normal around the centre, `sd` of each side.
-                Some(sd) => {
-                    for (k, xk) in row.iter_mut().enumerate() {
-                        let z = f64::standard_normal(&mut run.rng);
-                        *xk = (centre[k] + sd * (hi[k] - lo[k]) * z).clamp(lo[k], hi[k]);
-                    }
-                }
-                None => bounds.uniform(&mut run.rng, row),
-            }
-        }
+        let mut x = draw(&bounds, &mut run.rng, n, local);
         let mut y = vec![0.0; n * d];
         // The last MEMORY generations' points and values, oldest first.
         let mut history: Vec<(Vec<f64>, Vec<f64>)> = Vec::with_capacity(MEMORY);
@@ -517,29 +500,8 @@ impl Ensemble {
             let Some(drift) = self.drift(&history, &m, &l, n, d, kappa * warm) else {
                 return other();
             };
-            let Some((kernel, reach)) = step_kernel(&drift.curvature, d) else {
+            if step(drift, &m, &l, &bounds, &mut x, &mut y, &mut run.rng).is_none() {
                 return other();
-            };
-            // The drift capped at 3 sqrt(d) whitened units a step.
-            let cap = 3.0 * (d as f64).sqrt() / reach.max(1e-300);
-            let mut z = drift.z;
-            let mut g = drift.gradient;
-            for ((zi, yi), gi) in z
-                .chunks_exact_mut(d)
-                .zip(y.chunks_exact_mut(d))
-                .zip(g.chunks_exact_mut(d))
-            {
-                let norm = dot(gi, gi).sqrt();
-                if norm > cap {
-                    gi.iter_mut().for_each(|v| *v *= cap / norm);
-                }
-                kernel.step_slice(zi, yi, gi, &mut run.rng);
-            }
-            for (xi, zi) in x.chunks_exact_mut(d).zip(z.chunks_exact(d)) {
-                for k in 0..d {
-                    let v = m[k] + dot(&l[k * d..k * d + k + 1], &zi[..k + 1]);
-                    xi[k] = v.clamp(lo[k], hi[k]);
-                }
             }
         }
     }
@@ -600,6 +562,82 @@ impl Ensemble {
             curvature: h,
         })
     }
+}
+
+/// HRLA's exact step of every particle in the frame `(m, L)` with the
+/// frozen model gradient, the drift capped at `3 sqrt(d)` whitened units,
+/// and the new positions clipped to the box; `None` where the model's
+/// curvature gives no kernel.
+fn step(
+    drift: Drift,
+    m: &[f64],
+    l: &[f64],
+    bounds: &Bounds<f64, &[f64]>,
+    x: &mut [f64],
+    y: &mut [f64],
+    rng: &mut impl Rng,
+) -> Option<()> {
+    let (lo, hi) = (bounds.lo(), bounds.hi());
+    let d = lo.len();
+    let (kernel, reach) = step_kernel(&drift.curvature, d)?;
+    let cap = 3.0 * (d as f64).sqrt() / reach.max(1e-300);
+    let mut z = drift.z;
+    let mut g = drift.gradient;
+    for ((zi, yi), gi) in z
+        .chunks_exact_mut(d)
+        .zip(y.chunks_exact_mut(d))
+        .zip(g.chunks_exact_mut(d))
+    {
+        let norm = dot(gi, gi).sqrt();
+        if norm > cap {
+            gi.iter_mut().for_each(|v| *v *= cap / norm);
+        }
+        kernel.step_slice(zi, yi, gi, rng);
+    }
+    for (xi, zi) in x.chunks_exact_mut(d).zip(z.chunks_exact(d)) {
+        for k in 0..d {
+            let v = m[k] + dot(&l[k * d..k * d + k + 1], &zi[..k + 1]);
+            xi[k] = v.clamp(lo[k], hi[k]);
+        }
+    }
+    Some(())
+}
+
+/// A local restart's population and standard deviation (module docs):
+/// `u` uniform in `[0, 1)` sets both.
+fn local_size(rng: &mut impl Rng, first: usize, n: usize) -> (usize, f64) {
+    let u = (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+    let size = (first as f64 * (n as f64 / first as f64).powf(u * u)).floor() as usize;
+    (size.max(first), LOCAL * 10f64.powf(-2.0 * u))
+}
+
+/// A restart's `n` particles: uniform in the box, or for a local restart
+/// normal around a uniform point with `sd` of each side, clipped.
+fn draw(
+    bounds: &Bounds<f64, &[f64]>,
+    rng: &mut impl Rng,
+    n: usize,
+    local: Option<f64>,
+) -> Vec<f64> {
+    let (lo, hi) = (bounds.lo(), bounds.hi());
+    let d = lo.len();
+    let mut x = vec![0.0; n * d];
+    let mut centre = vec![0.0; d];
+    if local.is_some() {
+        bounds.uniform(rng, &mut centre);
+    }
+    for row in x.chunks_exact_mut(d) {
+        match local {
+            Some(sd) => {
+                for (k, xk) in row.iter_mut().enumerate() {
+                    let z = f64::standard_normal(rng);
+                    *xk = (centre[k] + sd * (hi[k] - lo[k]) * z).clamp(lo[k], hi[k]);
+                }
+            }
+            None => bounds.uniform(rng, row),
+        }
+    }
+    x
 }
 
 /// The current generation in whitened units, its model gradient, and the
