@@ -56,6 +56,12 @@
 //! `max(8, ceil(population P / 2) + 1)`, `P = 1 + d + d(d+1)/2` the model's
 //! parameters.
 //!
+//! A restart that ends otherwise (the stall, or a frame or fit that breaks
+//! down) with most of its particles on one point of its best value ended
+//! by agreement too: a minimum on the box's boundary, where the clipping
+//! pins the particles that reach it while the rest never join them (a
+//! slope's corner).
+//!
 //! **Local restarts** (BIPOP's second regime): after the first two
 //! restarts, a restart is local whenever the local ones have spent fewer
 //! calls than the others. A local restart draws `u` uniform in `[0, 1)`
@@ -65,12 +71,6 @@
 //! of each side, clipped to the box: many small searches, where the large
 //! ones average over a landscape whose structure is local (Katsuura's,
 //! Weierstrass's and Gallagher's functions).
-//!
-//! A restart that ends otherwise (the stall, or a frame or fit that breaks
-//! down) with most of its particles on one point of its best value ended
-//! by agreement too: a minimum on the box's boundary, where the clipping
-//! pins the particles that reach it while the rest never join them (a
-//! slope's corner).
 //!
 //! **Convergence** ([`Ensemble::converge`]): the run ends once two restarts
 //! that ended by agreement (values, positions or pinned, not the stall) reached
@@ -622,13 +622,14 @@ fn draw(
     let (lo, hi) = (bounds.lo(), bounds.hi());
     let d = lo.len();
     let mut x = vec![0.0; n * d];
-    let mut centre = vec![0.0; d];
-    if local.is_some() {
+    let local = local.map(|sd| {
+        let mut centre = vec![0.0; d];
         bounds.uniform(rng, &mut centre);
-    }
+        (centre, sd)
+    });
     for row in x.chunks_exact_mut(d) {
-        match local {
-            Some(sd) => {
+        match &local {
+            Some((centre, sd)) => {
                 for (k, xk) in row.iter_mut().enumerate() {
                     let z = f64::standard_normal(rng);
                     *xk = (centre[k] + sd * (hi[k] - lo[k]) * z).clamp(lo[k], hi[k]);
