@@ -426,8 +426,9 @@ def minimize(
     restart on alternating with small local restarts that spend as many
     calls (the crate ``hrla-dyn``'s ``Ensemble`` gives the method). Its generations are ``nit``'s
     iterations after Auto's rounds, each one batch of ``fun`` through
-    ``workers`` or ``vectorized``; the run has converged when two restarts
-    agreed on the best value (``converge=False``: never); ``target``,
+    ``workers`` or ``vectorized``; the run has converged when two large
+    restarts agreed on the best value at one point, or three at different
+    points (``converge=False``: never); ``target``,
     ``maxiter``, ``maxtime``, the callback and Ctrl-C end it as they end
     Auto. ``method=hrla.Auto()`` runs Auto alone.
 
@@ -716,7 +717,7 @@ def _ensemble(objective: _objective.Objective, box: Box, dim: int, calls: int, s
     the layer's rules end it as they end Auto (``target``, ``stall`` and
     ``maxiter`` over the run's iterations, a stall window reaching back
     into Auto's rounds measuring the fall from Auto's best); ``converge``
-    switches the ensemble's own rule (two restarts agree) on or off."""
+    switches the ensemble's own rule (restarts agree) on or off."""
     lb, ub = (np.broadcast_to(np.asarray(side, dtype=np.float64), dim) for side in _sides(box, dim))
 
     def watch(generation: int, evaluations: int, best: float, at: Optional[np.ndarray] = None) -> bool:
@@ -852,7 +853,7 @@ def _message(kernel: str, termination: str, r: OptimizeResult, budget_note: str,
         rounds, generations = ensemble
         spent = f"{rounds} rounds, then {generations} generations of the ensemble"
         if termination == "Converged":
-            reason = "converged (two restarts of the ensemble agreed on the best value)"
+            reason = "converged (restarts of the ensemble agreed on the best value)"
     text = (f"{reason}: best f = {float(r['fun'])!r} after {r['nfev']} calls of fun "
             f"({r['njev']} gradients) in {spent}")
     k, n = r["diverged_chains"], r["chains"]
