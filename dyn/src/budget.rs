@@ -1,6 +1,8 @@
-//! How a sampler's run shares an evaluation budget between the chains'
-//! steps and the polish of the best point at its end: one rule for every
-//! front end.
+//! How a run shares its budget, one rule for every front end: a sampler's
+//! run between the chains' steps and the polish of the best point at its
+//! end ([`split`]); a run without a gradient between `Auto`, on gradients
+//! by finite differences, and the gradient-free ensemble after it
+//! ([`auto_share`]).
 
 /// A sampler run's shares of its budget, in evaluations.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,6 +39,39 @@ pub fn split(budget: u64, chains: usize, polish: Option<u64>, x0: bool) -> Optio
     })
 }
 
+/// `Auto`'s share of a run without a gradient, in calls of `U` per
+/// coordinate, before the ensemble takes the rest: `ENSEMBLE_CALLS`, or
+/// [`ENSEMBLE_GRADIENTS`] `d` where that is more (from `d = 7` on). On
+/// bbob `Auto`'s quenches lead up to about `100 d` calls and the ensemble
+/// from there (docs/QUALITY.md, "Black-box: COCO bbob").
+pub const ENSEMBLE_CALLS: u64 = 100;
+/// See [`ENSEMBLE_CALLS`]: in many dimensions, enough gradients for a
+/// quench of `O(d)` iterations to end.
+pub const ENSEMBLE_GRADIENTS: u64 = 15;
+
+/// `Auto`'s budget, in gradients, in a run of `budget` gradients of `cost`
+/// calls of `U` each (`1 + d` for forward differences), `spare` of them
+/// kept back by the caller, whose ensemble takes the rest; `chains` is
+/// `Auto`'s (none: [`hrla::Auto::chains_for`] its share). At least two
+/// gradients a chain, and never more than `budget`. `None` where the
+/// ensemble takes no part: `d` beyond [`Ensemble::MAX_DIM`](crate::Ensemble::MAX_DIM).
+pub fn auto_share(
+    budget: u64,
+    d: usize,
+    cost: u64,
+    spare: u64,
+    chains: Option<usize>,
+) -> Option<u64> {
+    if d > crate::Ensemble::MAX_DIM {
+        return None;
+    }
+    let d = d as u64;
+    let calls = ENSEMBLE_CALLS.max(ENSEMBLE_GRADIENTS * d) * d;
+    let share = (calls / cost.max(1)).saturating_sub(spare).max(1);
+    let chains = chains.unwrap_or_else(|| hrla::Auto::<f64>::chains_for(share)) as u64;
+    Some(budget.min(share.max(2 * chains)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -66,5 +101,19 @@ mod tests {
         );
         assert_eq!(split(100, 10, Some(95), false), None);
         assert_eq!(split(20, 10, Some(5), false), None);
+    }
+
+    #[test]
+    fn auto_takes_its_share_of_a_run_without_a_gradient() {
+        // d = 4, forward differences (5 calls a gradient), one kept back:
+        // 100 d = 400 calls, 80 gradients, 79 with the spare out.
+        assert_eq!(auto_share(25_000, 4, 5, 1, None), Some(79));
+        // From d = 7 on, 15 d calls per coordinate: d = 10, 1 500 calls.
+        assert_eq!(auto_share(1_000_000, 10, 11, 1, None), Some(1_500 / 11 - 1));
+        // At least two gradients a chain, never beyond the budget.
+        assert_eq!(auto_share(25_000, 1, 1_000, 1, Some(8)), Some(16));
+        assert_eq!(auto_share(10, 4, 5, 1, None), Some(10));
+        // Beyond the ensemble's dimensions, Auto runs alone.
+        assert_eq!(auto_share(25_000, 21, 22, 1, None), None);
     }
 }

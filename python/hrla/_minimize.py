@@ -11,8 +11,8 @@ from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tu
 import numpy as np
 
 from . import _objective
-from ._hrla import (ENSEMBLE_MAX_DIM, Auto, DivergedError, Hrla, Interval, Ola, Optimizer, PolishSettings,
-                    Potential, Stop, Ula, ensemble_minimize, split_budget)
+from ._hrla import (Auto, DivergedError, Hrla, Interval, Ola, Optimizer, PolishSettings, Potential, Stop, Ula,
+                    auto_share, ensemble_minimize, split_budget)
 
 #: The clock of ``maxtime`` and of the progress line's rate (seconds); a
 #: test may replace it with a fake one.
@@ -636,22 +636,17 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
 
     w = _Watch("auto", maxtime=maxtime, callback=callback, disp=disp, nfev=nfev)
     observed = maxtime is not None or callback is not None or disp
-    # Without a gradient, Auto's default leads the field's benchmark only
-    # early (bbob: up to about 100 D calls); the ensemble, which needs
-    # values only, leads from there. So Auto runs first with the calls of
-    # max(ENSEMBLE_CALLS, ENSEMBLE_GRADIENTS D) D (at least two gradients a
-    # chain; in many dimensions, enough for a quench of O(D) iterations of
-    # D + 1 calls each to end), and the ensemble with the rest
-    # (docs/QUALITY.md, "Black-box: COCO bbob").
-    # hrla.Auto(...) as the method runs Auto alone.
-    ensemble = (settings is None and objective is not None and objective.scheme is not None
-                and size is not None and size <= ENSEMBLE_MAX_DIM)
+    # Without a gradient, Auto runs first with its share and the ensemble,
+    # which needs values only, with the rest (the layer's rule,
+    # hrla_dyn::budget::auto_share). hrla.Auto(...) as the method runs
+    # Auto alone.
+    share = None
+    if settings is None and objective is not None and objective.scheme is not None and size is not None:
+        share = auto_share(budget, size, spend.cost, spend.spare, chains)
+    ensemble = share is not None
     whole = budget
-    if ensemble:
-        assert size is not None
-        calls = max(ENSEMBLE_CALLS, ENSEMBLE_GRADIENTS * size) * size
-        share = max(calls // spend.cost - spend.spare, 1)
-        budget = min(budget, max(share, 2 * (chains or Auto.chains_for(share))))
+    if share is not None:
+        budget = share
     # The limits as the run's own rules, which take only finite numbers:
     # the largest float stands for inf (target=inf: any finite value
     # reaches it; stall's tolerance inf: the run stalls after its window).
@@ -695,12 +690,6 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
         holds_basins=True, kernel_message=s.message, ensemble=phases,
     )
 
-
-#: Auto's share of a run without a gradient, in calls of ``fun`` per
-#: coordinate, before the ensemble takes the rest: ENSEMBLE_CALLS, or
-#: ENSEMBLE_GRADIENTS D where that is more (from D = 7 on).
-ENSEMBLE_CALLS = 100
-ENSEMBLE_GRADIENTS = 15
 
 #: The ensemble's ends as ``hrla.minimize`` names them.
 _ENSEMBLE_ENDS = {"Budget": "Evaluations", "Converged": "Converged", "Target": "Target", "Stalled": "Stalled",

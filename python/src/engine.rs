@@ -387,7 +387,24 @@ fn split_budget(
     hrla_dyn::budget::split(budget, chains, polish, x0).map(|s| (s.steps, s.polish))
 }
 
+/// `Auto`'s budget, in gradients, in a run without a gradient of `budget`
+/// gradients of `cost` calls each (`spare` kept back), whose ensemble
+/// takes the rest; `None` where the ensemble takes no part (`dim` beyond
+/// `ENSEMBLE_MAX_DIM`).
+#[pyfunction]
+#[pyo3(signature = (budget, dim, cost, spare, chains = None))]
+fn auto_share(
+    budget: u64,
+    dim: usize,
+    cost: u64,
+    spare: u64,
+    chains: Option<usize>,
+) -> Option<u64> {
+    hrla_dyn::budget::auto_share(budget, dim, cost, spare, chains)
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyOptimizer>()?;
-    m.add_function(wrap_pyfunction!(split_budget, m)?)
+    m.add_function(wrap_pyfunction!(split_budget, m)?)?;
+    m.add_function(wrap_pyfunction!(auto_share, m)?)
 }

@@ -398,7 +398,9 @@ fn no_twin_of_the_optimiser() {
 
 /// Python's watch of a run keeps only what is Python's own (the time
 /// limit, the callback, the progress line): the target, stall and round
-/// limits are the kernel's rules, for `auto` as for the samplers.
+/// limits are the kernel's rules, for `auto` as for the samplers. How a
+/// budget is shared (a sampler's polish, `Auto`'s share before the
+/// ensemble) is the layer's too (`hrla_dyn::budget`).
 #[test]
 fn python_keeps_no_stopping_rule_of_its_own() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -410,5 +412,14 @@ fn python_keeps_no_stopping_rule_of_its_own() {
     let watch = &src[start..end];
     for rule in ["self.target", "self.stall", "self.maxiter", "by_round"] {
         assert!(!watch.contains(rule), "_Watch still checks {rule}");
+    }
+    for share in ["ENSEMBLE_CALLS", "ENSEMBLE_GRADIENTS", "POLISH"] {
+        assert!(!src.contains(share), "_minimize.py keeps {share}");
+    }
+    for rule in ["auto_share(", "split_budget("] {
+        assert!(
+            src.contains(rule),
+            "_minimize.py does not ask the layer's {rule}"
+        );
     }
 }
