@@ -66,11 +66,16 @@
 //! restarts, a restart is local whenever the local ones have spent fewer
 //! calls than the others. A local restart draws `u` uniform in `[0, 1)`
 //! and `max(n0, n0 (n / n0)^(u^2))` particles (`n0` the first population,
-//! `n` the current one, which it leaves unchanged), normal around a
-//! uniform point of the box with a standard deviation of `0.03 * 10^(-2u)`
-//! of each side, clipped to the box: many small searches, where the large
-//! ones average over a landscape whose structure is local (Katsuura's,
-//! Weierstrass's and Gallagher's functions).
+//! `n` the current one, which it leaves unchanged), normal with a
+//! standard deviation of `0.03 * 10^(-2u)` of each side, clipped to the
+//! box: many small searches, where the large ones average over a landscape
+//! whose structure is local (Katsuura's, Weierstrass's and Gallagher's
+//! functions). The local restarts take turns: the first around a uniform
+//! point of the box, the second around the run's best point, and so on. A
+//! large restart's best point is often a lucky draw in a basin better than
+//! the one the restart then converges to; a search around it finishes
+//! that basin (on bbob at `d = 2`, runs ended `1e-3` to `1e-1` above the
+//! minimum with their best point in its basin).
 //!
 //! **Convergence** ([`Ensemble::converge`]): the run ends once two large
 //! restarts that ended by agreement (values, positions or pinned, not the
@@ -359,15 +364,19 @@ impl Ensemble {
         // The calls of the large and the local restarts, and whether the
         // next one is local (module docs).
         let (mut large, mut local, mut next_local) = (0_u64, 0_u64, false);
+        let mut locals = 0_u64;
         let end = loop {
             let before = run.evaluations;
-            let (size, spread) = if next_local {
-                let (size, spread) = local_size(&mut run.rng, first, n);
-                (size, Some(spread))
+            let (size, local_draw) = if next_local {
+                let (size, sd) = local_size(&mut run.rng, first, n);
+                // Every second local restart searches around the best point.
+                let centre = (locals % 2 == 1).then(|| run.best_x.clone());
+                locals += 1;
+                (size, Some((sd, centre)))
             } else {
                 (n, None)
             };
-            let (restart, run_best) = match self.restart(&mut run, size, spread)? {
+            let (restart, run_best) = match self.restart(&mut run, size, local_draw)? {
                 Ok(r) => r,
                 Err(end) => break end,
             };
@@ -448,13 +457,14 @@ impl Ensemble {
         Ok(())
     }
 
-    /// One restart of `n` particles drawn uniformly in the box: how it
-    /// ended and its best, or the run's end.
+    /// One restart of `n` particles, drawn uniformly in the box or as a
+    /// local restart's (see [`draw`]): how it ended and its best, or the
+    /// run's end.
     fn restart<V, O>(
         &self,
         run: &mut Run<'_, V, O>,
         n: usize,
-        local: Option<f64>,
+        local: Option<Local>,
     ) -> Result<Result<(Restart, f64), EnsembleEnd>, Error>
     where
         V: FnMut(&[f64], usize, &mut [f64]) -> Result<(), UserError>,
@@ -666,20 +676,27 @@ fn local_size(rng: &mut impl Rng, first: usize, n: usize) -> (usize, f64) {
     (size.max(first), LOCAL * 10f64.powf(-2.0 * u))
 }
 
+/// A local restart's standard deviation, in units of each side, and its
+/// centre (none: a uniform point of the box).
+type Local = (f64, Option<Vec<f64>>);
+
 /// A restart's `n` particles: uniform in the box, or for a local restart
-/// normal around a uniform point with `sd` of each side, clipped.
+/// normal around its centre with its standard deviation, clipped.
 fn draw(
     bounds: &Bounds<f64, &[f64]>,
     rng: &mut impl Rng,
     n: usize,
-    local: Option<f64>,
+    local: Option<Local>,
 ) -> Vec<f64> {
     let (lo, hi) = (bounds.lo(), bounds.hi());
     let d = lo.len();
     let mut x = vec![0.0; n * d];
-    let local = local.map(|sd| {
-        let mut centre = vec![0.0; d];
-        bounds.uniform(rng, &mut centre);
+    let local = local.map(|(sd, centre)| {
+        let centre = centre.filter(|c| c.len() == d).unwrap_or_else(|| {
+            let mut centre = vec![0.0; d];
+            bounds.uniform(rng, &mut centre);
+            centre
+        });
         (centre, sd)
     });
     for row in x.chunks_exact_mut(d) {
@@ -1035,7 +1052,7 @@ mod tests {
     fn local_restarts_find_a_weierstrass_minimum() {
         // Weierstrass's function (bbob's f16 unrotated, shifted): rugged at
         // every scale and periodic, with no bowl for a large ensemble's
-        // model to follow. Its minima, 0, are reached by 7 of these 10
+        // model to follow. Its minima, 0, are reached by 8 of these 10
         // seeds with local restarts and by 2 without them.
         let d = 5;
         let term = |t: f64| {
@@ -1055,13 +1072,35 @@ mod tests {
     }
 
     #[test]
+    fn a_search_around_the_best_point_finishes_its_basin() {
+        // Schwefel's function, deceptive: its minimum lies near a corner,
+        // far from the next best basins, so a large restart's best point
+        // there is a lucky draw and the restart converges elsewhere. The
+        // local restarts around the best point finish that basin.
+        let schwefel = |x: &[f64]| {
+            let s: f64 = x
+                .iter()
+                .map(|t| 100.0 * t * (100.0 * t.abs()).sqrt().sin())
+                .sum();
+            418.982_887_272_433_8 * x.len() as f64 - s
+        };
+        let reached = (1..=30)
+            .filter(|&seed| run(schwefel, 2, 20_000, seed, Ensemble::default()).value < 1e-6)
+            .count();
+        // 23 of these 30 seeds reach the minimum, 7 without the searches
+        // around the best point; 16 is three binomial standard errors
+        // (2.3) below 23 and three (2.1) above 7.
+        assert!(reached >= 16, "{reached} of 30");
+    }
+
+    #[test]
     fn restarts_that_agree_on_symmetric_local_minima_do_not_converge() {
         // Rastrigin's function has 2 d local minima of value 0.995 around
         // its minimum, 0. Two restarts that end on two of them agree on
         // the value. Were two restarts of any kind enough, 8 of these 30
         // seeds would end there as converged and 20 reach 0; asking a
         // third agreement of different points and counting large restarts
-        // only, 3 and 24.
+        // only, 4 and 25.
         let d = 4;
         let rastrigin = |x: &[f64]| {
             let s: f64 = x.iter().map(|t| t * t - 10.0 * (2.0 * PI * t).cos()).sum();
@@ -1335,7 +1374,7 @@ mod tests {
             };
             let (lo, hi) = ([-5.0 * s; 3], [5.0 * s; 3]);
             Ensemble::default()
-                .minimize(&lo, &hi, 20_000, 10, EnsembleRules::default(), values, go)
+                .minimize(&lo, &hi, 40_000, 10, EnsembleRules::default(), values, go)
                 .unwrap()
         };
         let base = solve(1.0, 1.0);
