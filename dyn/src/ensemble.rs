@@ -90,7 +90,11 @@
 //! minimum), so a third must agree; a function with several global minima
 //! converges for the cost of that restart. A local restart is no
 //! evidence: it searches a small region, where it finds a local minimum of
-//! the best value as readily as the minimum.
+//! the best value as readily as the minimum. An earlier phase's best point
+//! ([`EnsembleRules::known_at`]; `hrla.minimize` passes `Auto`'s, the best
+//! of its quenches from uniform starts) is: a large restart that ends by
+//! agreement at it, at the best value, ends the run, for the cost of one
+//! restart rather than two.
 //!
 //! Nothing but the stop depends on the budget: a run's first `B`
 //! evaluations are those of any longer run with the same seed.
@@ -164,11 +168,12 @@ impl Default for Ensemble {
 
 /// The caller's rules that end an ensemble run besides its budget, all
 /// off by default. A run may continue an earlier phase (another solver's
-/// run on the same problem): `elapsed` iterations that reached `known`;
-/// the rules then count iterations from the earlier phase's start and read
-/// the lower of `known` and the run's best.
+/// run on the same problem): `elapsed` iterations that reached `known` at
+/// `known_at`; the rules then count iterations from the earlier phase's
+/// start and read the lower of `known` and the run's best, and the
+/// convergence rule counts `known_at` as a large restart's point.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct EnsembleRules {
+pub struct EnsembleRules<'a> {
     /// End once the best value is at or below this.
     pub target: Option<f64>,
     /// `(window, tolerance)`: end once the best has not fallen by more
@@ -181,9 +186,12 @@ pub struct EnsembleRules {
     pub elapsed: u64,
     /// The earlier phase's best value (`inf`: none).
     pub known: f64,
+    /// The earlier phase's best point (empty: none): one large restart
+    /// that ends by agreement at it converges the run (module docs).
+    pub known_at: &'a [f64],
 }
 
-impl Default for EnsembleRules {
+impl Default for EnsembleRules<'_> {
     fn default() -> Self {
         Self {
             target: None,
@@ -191,6 +199,7 @@ impl Default for EnsembleRules {
             iterations: None,
             elapsed: 0,
             known: f64::INFINITY,
+            known_at: &[],
         }
     }
 }
@@ -262,19 +271,23 @@ fn converged<V, O>(earlier: &[Agreement], new: &Agreement, run: &Run<'_, V, O>) 
         return false;
     }
     let (lo, hi) = (run.bounds.lo(), run.bounds.hi());
-    let same = |a: &&Agreement| {
-        let mut sides = a.at.iter().zip(&new.at).zip(lo.iter().zip(hi));
-        !new.at.is_empty() && sides.all(|((p, q), (l, h))| (p - q).abs() <= SAME * (h - l))
+    let same = |at: &[f64]| {
+        let mut sides = at.iter().zip(&new.at).zip(lo.iter().zip(hi));
+        !at.is_empty()
+            && at.len() == new.at.len()
+            && sides.all(|((p, q), (l, h))| (p - q).abs() <= SAME * (h - l))
     };
     let agreeing = earlier.iter().filter(at_best);
-    agreeing.clone().any(|a| same(&a)) || agreeing.count() + 1 >= AGREEING_APART
+    same(run.rules.known_at)
+        || agreeing.clone().any(|a| same(&a.at))
+        || agreeing.count() + 1 >= AGREEING_APART
 }
 
 /// The run's state across restarts.
 struct Run<'f, V, O> {
     bounds: Bounds<f64, &'f [f64]>,
     budget: u64,
-    rules: EnsembleRules,
+    rules: EnsembleRules<'f>,
     /// The best after each iteration of the stall window, oldest first.
     bests: std::collections::VecDeque<f64>,
     values: V,
@@ -307,7 +320,8 @@ impl Ensemble {
     ///
     /// Refused: a box that [`hrla::Bounds::new`] refuses, more than
     /// [`MAX_DIM`](Self::MAX_DIM) coordinates, a budget of 0, settings that
-    /// are not finite and positive (`cool >= 1`, `cool_every >= 1`). A run
+    /// are not finite and positive (`cool >= 1`, `cool_every >= 1`), a
+    /// [`known_at`](EnsembleRules::known_at) that is not `d` finite numbers. A run
     /// that saw no finite value is [`hrla::Error::AllDiverged`], one whose
     /// best fell below `-sqrt(f64::MAX)` [`hrla::Error::UnboundedBelow`]:
     /// never a result.
@@ -339,6 +353,20 @@ impl Ensemble {
         }
         if budget == 0 {
             return Err(Error::Kernel(hrla::Error::Zero { name: "budget" }));
+        }
+        let known_at = rules.known_at;
+        if !known_at.is_empty() && known_at.len() != d {
+            return Err(Error::Kernel(hrla::Error::Length {
+                name: "known_at",
+                expected: d,
+                got: known_at.len(),
+            }));
+        }
+        if let Some(&value) = known_at.iter().find(|v| !v.is_finite()) {
+            return Err(Error::Kernel(hrla::Error::NotFinite {
+                name: "known_at",
+                value,
+            }));
         }
         let mut run = Run {
             bounds,
@@ -1030,6 +1058,44 @@ mod tests {
     }
 
     #[test]
+    fn one_restart_at_an_earlier_phases_point_converges() {
+        // The ellipsoid's minimum handed over as an earlier phase's best
+        // point: the first large restart that agrees there ends the run,
+        // where alone it needs a second. A point elsewhere is no evidence.
+        let f = |x: &[f64]| {
+            let (u, v) = (x[0] + x[1] - 1.0, x[0] - x[1] + 0.5);
+            u * u + 1e4 * v * v + x[2..].iter().map(|t| (t - 0.3) * (t - 0.3)).sum::<f64>()
+        };
+        let (lo, hi) = ([-5.0; 4], [5.0; 4]);
+        let values = |x: &[f64], d: usize, out: &mut [f64]| {
+            for (row, o) in x.chunks_exact(d).zip(out.iter_mut()) {
+                *o = f(row);
+            }
+            Ok(())
+        };
+        let go = |_: &Progress<'_>| ControlFlow::Continue(());
+        let solve = |known_at: &[f64]| {
+            let rules = EnsembleRules {
+                known_at,
+                ..EnsembleRules::default()
+            };
+            Ensemble::default()
+                .minimize(&lo, &hi, 100_000, 1, rules, values, go)
+                .unwrap()
+        };
+        let alone = solve(&[]);
+        let handed = solve(&[0.25, 0.75, 0.3, 0.3]);
+        let elsewhere = solve(&[0.25, 0.75, 0.3, 1.3]);
+        for s in [&alone, &handed, &elsewhere] {
+            assert!(s.value < 1e-10, "{s:?}");
+            assert_eq!(s.end, EnsembleEnd::Converged, "{s:?}");
+        }
+        assert_eq!((alone.restarts, handed.restarts), (1, 0));
+        assert!(handed.evaluations < alone.evaluations);
+        assert_eq!(elsewhere, alone);
+    }
+
+    #[test]
     fn an_ill_conditioned_bowl_is_travelled_to_its_minimum() {
         // A discus of condition 1e6 at d = 10, rotated by a reflection and
         // centred off the origin: the ensemble contracts across the stiff
@@ -1225,6 +1291,10 @@ mod tests {
             },
         ] {
             assert!(bad.minimize(&[0.0], &[1.0], 10, 0, none, ok, go).is_err());
+        }
+        for known_at in [&[0.5, 0.5][..], &[f64::NAN]] {
+            let rules = EnsembleRules { known_at, ..none };
+            assert!(e.minimize(&[0.0], &[1.0], 10, 0, rules, ok, go).is_err());
         }
         let nan = |_: &[f64], _: usize, out: &mut [f64]| {
             out.fill(f64::NAN);

@@ -240,14 +240,15 @@ def ensemble_minimize(values: Callable[[npt.NDArray[np.float64]], npt.ArrayLike]
                       budget: int, seed: int, observer: Optional[Callable[..., object]] = None, with_x: bool = False,
                       target: Optional[float] = None, stall: Optional[Tuple[int, float]] = None,
                       iterations: Optional[int] = None, elapsed: int = 0, known: float = ...,
-                      spread: float = 6.0, population: float = 2.0, cool: float = 1.5, cool_every: int = 10,
+                      known_at: Optional[Sequence[float]] = None, spread: float = 6.0, population: float = 2.0, cool: float = 1.5, cool_every: int = 10,
                       converge: bool = True) -> Tuple[npt.NDArray[np.float64], float, int, int, int, int, str]:
     """The layer's gradient-free ensemble solver on ``values(X (n, d)) ->
     U (n,)`` in the box ``[lo, hi]``: ``(x, value, evaluations,
     generations, restarts, population, end)``, ``end`` one of
     ``"Budget"``, ``"Converged"``, ``"Observer"``, ``"Target"``,
     ``"Stalled"``, ``"Iterations"``; the rules count ``elapsed``
-    iterations of an earlier phase that reached ``known``."""
+    iterations of an earlier phase that reached ``known`` at ``known_at``,
+    and one large restart that agrees at ``known_at`` converges the run."""
 
 def split_budget(budget: int, chains: int, polish: Optional[int] = None,
                  x0: bool = False) -> Optional[Tuple[Optional[int], int]]: ...

@@ -424,11 +424,12 @@ def minimize(
     particles when they agree or stall, but with as many after the first
     agreement, which the next restart may confirm, and from the third
     restart on alternating with small local restarts that spend as many
-    calls (the crate ``hrla-dyn``'s ``Ensemble`` gives the method). Its generations are ``nit``'s
+    calls, half of them around the best point so far (the crate
+    ``hrla-dyn``'s ``Ensemble`` gives the method). Its generations are ``nit``'s
     iterations after Auto's rounds, each one batch of ``fun`` through
-    ``workers`` or ``vectorized``; the run has converged when two large
-    restarts agreed on the best value at one point, or three at different
-    points (``converge=False``: never); ``target``,
+    ``workers`` or ``vectorized``; the run has converged when a large
+    restart agreed on the best value at Auto's best point, two at one point,
+    or three at different points (``converge=False``: never); ``target``,
     ``maxiter``, ``maxtime``, the callback and Ctrl-C end it as they end
     Auto. ``method=hrla.Auto()`` runs Auto alone.
 
@@ -706,7 +707,8 @@ def _ensemble(objective: _objective.Objective, box: Box, dim: int, calls: int, s
     the layer's rules end it as they end Auto (``target``, ``stall`` and
     ``maxiter`` over the run's iterations, a stall window reaching back
     into Auto's rounds measuring the fall from Auto's best); ``converge``
-    switches the ensemble's own rule (restarts agree) on or off."""
+    switches the ensemble's own rule (restarts agree, one of them at Auto's
+    ``x`` or each other's) on or off."""
     lb, ub = (np.broadcast_to(np.asarray(side, dtype=np.float64), dim) for side in _sides(box, dim))
 
     def watch(generation: int, evaluations: int, best: float, at: Optional[np.ndarray] = None) -> bool:
@@ -716,7 +718,8 @@ def _ensemble(objective: _objective.Objective, box: Box, dim: int, calls: int, s
     try:
         ex, ev, _, generations, _, _, end = ensemble_minimize(
             objective.values, lb.tolist(), ub.tolist(), calls, seed, observer=watch, with_x=with_x,
-            target=target, stall=stall, iterations=maxiter, elapsed=nit, known=value, converge=converge)
+            target=target, stall=stall, iterations=maxiter, elapsed=nit, known=value, known_at=x.tolist(),
+            converge=converge)
     except DivergedError:
         # No finite value in the ensemble's share: Auto's answer stands.
         return x, value, nit, "Evaluations"

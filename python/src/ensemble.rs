@@ -38,7 +38,8 @@ fn call(
 
 /// The ensemble solver on `values(X (n, d)) -> U (n,)` in the box `[lo,
 /// hi]`, with the rules of [`EnsembleRules`] (`target`, `stall`,
-/// `iterations`, after `elapsed` iterations that reached `known`): `(x,
+/// `iterations`, after `elapsed` iterations that reached `known` at
+/// `known_at`): `(x,
 /// value, evaluations, generations, restarts, population, end)` with `end`
 /// one of `"Budget"`, `"Converged"`, `"Observer"`, `"Target"`,
 /// `"Stalled"`, `"Iterations"`.
@@ -46,7 +47,7 @@ fn call(
 /// generation (with `x` when `with_x`); a true answer ends the run.
 /// Ctrl-C is looked for after every generation.
 #[pyfunction]
-#[pyo3(signature = (values, lo, hi, budget, seed, observer=None, with_x=false, target=None, stall=None, iterations=None, elapsed=0, known=f64::INFINITY, spread=6.0, population=2.0, cool=1.5, cool_every=10, converge=true))]
+#[pyo3(signature = (values, lo, hi, budget, seed, observer=None, with_x=false, target=None, stall=None, iterations=None, elapsed=0, known=f64::INFINITY, known_at=None, spread=6.0, population=2.0, cool=1.5, cool_every=10, converge=true))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub fn ensemble_minimize<'py>(
     py: Python<'py>,
@@ -62,6 +63,7 @@ pub fn ensemble_minimize<'py>(
     iterations: Option<u64>,
     elapsed: u64,
     known: f64,
+    known_at: Option<Vec<f64>>,
     spread: f64,
     population: f64,
     cool: f64,
@@ -96,6 +98,7 @@ pub fn ensemble_minimize<'py>(
             iterations,
             elapsed,
             known,
+            known_at: known_at.as_deref().unwrap_or(&[]),
         };
         let found = settings.minimize(&lo, &hi, budget, seed, rules, evaluate, watch);
         if let Some(e) = stopped {
