@@ -92,9 +92,9 @@
 //! evidence: it searches a small region, where it finds a local minimum of
 //! the best value as readily as the minimum. An earlier phase's best point
 //! ([`EnsembleRules::known_at`]; `hrla.minimize` passes `Auto`'s, the best
-//! of its quenches from uniform starts) is: a large restart that ends by
-//! agreement at it, at the best value, ends the run, for the cost of one
-//! restart rather than two.
+//! of its quenches from uniform starts) is evidence: a large restart that
+//! ends by agreement at it, at the best value, ends the run, for the cost
+//! of one restart rather than two.
 //!
 //! Nothing but the stop depends on the budget: a run's first `B`
 //! evaluations are those of any longer run with the same seed.

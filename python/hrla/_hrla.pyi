@@ -240,7 +240,8 @@ def ensemble_minimize(values: Callable[[npt.NDArray[np.float64]], npt.ArrayLike]
                       budget: int, seed: int, observer: Optional[Callable[..., object]] = None, with_x: bool = False,
                       target: Optional[float] = None, stall: Optional[Tuple[int, float]] = None,
                       iterations: Optional[int] = None, elapsed: int = 0, known: float = ...,
-                      known_at: Optional[Sequence[float]] = None, spread: float = 6.0, population: float = 2.0, cool: float = 1.5, cool_every: int = 10,
+                      known_at: Optional[Sequence[float]] = None, spread: float = 6.0, population: float = 2.0,
+                      cool: float = 1.5, cool_every: int = 10,
                       converge: bool = True) -> Tuple[npt.NDArray[np.float64], float, int, int, int, int, str]:
     """The layer's gradient-free ensemble solver on ``values(X (n, d)) ->
     U (n,)`` in the box ``[lo, hi]``: ``(x, value, evaluations,

@@ -707,8 +707,8 @@ def _ensemble(objective: _objective.Objective, box: Box, dim: int, calls: int, s
     the layer's rules end it as they end Auto (``target``, ``stall`` and
     ``maxiter`` over the run's iterations, a stall window reaching back
     into Auto's rounds measuring the fall from Auto's best); ``converge``
-    switches the ensemble's own rule (restarts agree, one of them at Auto's
-    ``x`` or each other's) on or off."""
+    switches the ensemble's own rule (a large restart agrees at Auto's
+    ``x`` or at another's point, or three agree anywhere) on or off."""
     lb, ub = (np.broadcast_to(np.asarray(side, dtype=np.float64), dim) for side in _sides(box, dim))
 
     def watch(generation: int, evaluations: int, best: float, at: Optional[np.ndarray] = None) -> bool:

@@ -39,8 +39,8 @@ fn call(
 /// The ensemble solver on `values(X (n, d)) -> U (n,)` in the box `[lo,
 /// hi]`, with the rules of [`EnsembleRules`] (`target`, `stall`,
 /// `iterations`, after `elapsed` iterations that reached `known` at
-/// `known_at`): `(x,
-/// value, evaluations, generations, restarts, population, end)` with `end`
+/// `known_at`): `(x, value, evaluations, generations, restarts,
+/// population, end)` with `end`
 /// one of `"Budget"`, `"Converged"`, `"Observer"`, `"Target"`,
 /// `"Stalled"`, `"Iterations"`.
 /// `observer(generation, evaluations, best[, x])` is called after each
