@@ -362,12 +362,7 @@ impl Ensemble {
                 got: known_at.len(),
             }));
         }
-        if let Some(&value) = known_at.iter().find(|v| !v.is_finite()) {
-            return Err(Error::Kernel(hrla::Error::NotFinite {
-                name: "known_at",
-                value,
-            }));
-        }
+        crate::settings::finite_all("known_at", known_at).map_err(Error::Kernel)?;
         let mut run = Run {
             bounds,
             budget,
@@ -397,8 +392,10 @@ impl Ensemble {
             let before = run.evaluations;
             let (size, local_draw) = if next_local {
                 let (size, sd) = local_size(&mut run.rng, first, n);
-                // Every second local restart searches around the best point.
-                let centre = (locals % 2 == 1).then(|| run.best_x.clone());
+                // Every second local restart searches around the best point
+                // (once there is one).
+                let around_best = locals % 2 == 1 && !run.best_x.is_empty();
+                let centre = around_best.then(|| run.best_x.clone());
                 locals += 1;
                 (size, Some((sd, centre)))
             } else {
@@ -720,7 +717,7 @@ fn draw(
     let d = lo.len();
     let mut x = vec![0.0; n * d];
     let local = local.map(|(sd, centre)| {
-        let centre = centre.filter(|c| c.len() == d).unwrap_or_else(|| {
+        let centre = centre.unwrap_or_else(|| {
             let mut centre = vec![0.0; d];
             bounds.uniform(rng, &mut centre);
             centre

@@ -318,7 +318,7 @@ impl<const D: usize> Start<f64> for AnyStart<D> {
 }
 
 /// [`hrla::Error::NotFinite`] for the first non-finite entry of `v`.
-fn finite_all(name: &'static str, v: &[f64]) -> Result<(), hrla::Error> {
+pub(crate) fn finite_all(name: &'static str, v: &[f64]) -> Result<(), hrla::Error> {
     match v.iter().find(|v| !v.is_finite()) {
         Some(&value) => Err(hrla::Error::NotFinite { name, value }),
         None => Ok(()),
