@@ -393,6 +393,46 @@ fn the_observer_sees_every_generation_and_can_stop_the_run() {
 }
 
 #[test]
+fn a_particle_that_did_not_move_is_not_evaluated_again() {
+    // A slope's minimum is the box's corner, where the particles that
+    // reach it stay, clipped: each keeps its value, and the generations
+    // that follow ask `U` only at the particles that moved.
+    let mut asked = 0_u64;
+    let mut generations = Vec::new();
+    let s = Ensemble::default()
+        .minimize(
+            &[-5.0; 3],
+            &[5.0; 3],
+            50_000,
+            1,
+            EnsembleRules::default(),
+            |x: &[f64], d: usize, out: &mut [f64]| {
+                for (row, o) in x.chunks_exact(d).zip(out.iter_mut()) {
+                    *o = row.iter().sum::<f64>();
+                }
+                asked += (x.len() / d) as u64;
+                Ok(())
+            },
+            |p: &Progress<'_>| {
+                generations.push((p.evaluations, p.chains as u64));
+                ControlFlow::Continue(())
+            },
+        )
+        .unwrap();
+    assert_eq!(s.x, vec![-5.0; 3]);
+    assert_eq!(s.end, EnsembleEnd::Converged, "{s:?}");
+    assert_eq!(asked, s.evaluations);
+    // Some generations asked fewer points than they have particles.
+    let short = generations
+        .windows(2)
+        .filter(|w| w[1].0 - w[0].0 < w[1].1)
+        .count();
+    assert!(short > 0, "{generations:?}");
+    let total: u64 = generations.iter().map(|g| g.1).sum();
+    assert!(s.evaluations < total, "{} of {total}", s.evaluations);
+}
+
+#[test]
 fn the_callers_rules_end_the_run_counting_the_earlier_phase() {
     let bowl = |x: &[f64], d: usize, out: &mut [f64]| {
         for (row, o) in x.chunks_exact(d).zip(out.iter_mut()) {
