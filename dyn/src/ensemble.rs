@@ -753,22 +753,23 @@ fn into_box(
         };
         share = share.min((wall - x[k]) / (t - x[k]));
     }
-    let clipped: Vec<f64> = to
-        .iter()
-        .enumerate()
-        .map(|(k, t)| t.clamp(lo[k], hi[k]))
-        .collect();
     if share < 1.0 {
         let share = share.max(0.0);
         let stopped: Vec<f64> = (0..x.len())
             .map(|k| (x[k] + share * (to[k] - x[k])).clamp(lo[k], hi[k]))
             .collect();
-        if value(&stopped) <= value(&clipped) {
-            x.copy_from_slice(&stopped);
-            return;
+        let clipped: Vec<f64> = (0..x.len()).map(|k| to[k].clamp(lo[k], hi[k])).collect();
+        let better = if value(&stopped) <= value(&clipped) {
+            stopped
+        } else {
+            clipped
+        };
+        x.copy_from_slice(&better);
+    } else {
+        for (k, xk) in x.iter_mut().enumerate() {
+            *xk = to[k].clamp(lo[k], hi[k]);
         }
     }
-    x.copy_from_slice(&clipped);
 }
 
 /// The quadratic model `g^T z + z^T H z / 2` at the point `p`, `z = L^-1
