@@ -261,6 +261,81 @@ pub struct EnsembleSolution {
     pub end: EnsembleEnd,
 }
 
+/// A restart's best value, where it was found, and the generations
+/// since it last improved.
+struct RestartBest {
+    value: f64,
+    at: Vec<f64>,
+    since: u32,
+}
+
+impl RestartBest {
+    /// Takes a generation's values `f` at its points `x`: whether they
+    /// improved the best (by `1e-12` of it, relatively).
+    fn update(&mut self, f: &[f64], x: &[f64], d: usize) -> bool {
+        let generation_best = f
+            .iter()
+            .copied()
+            .filter(|v| v.is_finite())
+            .fold(f64::INFINITY, f64::min);
+        if generation_best < self.value - 1e-12 * self.value.abs()
+            || !self.value.is_finite() && generation_best.is_finite()
+        {
+            (self.value, self.since) = (generation_best, 0);
+            if let Some(i) = f.iter().position(|&v| v == generation_best) {
+                self.at = x[i * d..i * d + d].to_vec();
+            }
+            true
+        } else {
+            self.since += 1;
+            false
+        }
+    }
+
+    /// How a restart of `n` particles in `d` coordinates that ended
+    /// otherwise than by agreement (`spread`: its last values' standard
+    /// deviation) counts.
+    /// A minimum on the box's boundary: the clipping pins the particles
+    /// that reach it to one point, which the others may never join; with
+    /// most particles there, on the best value, it ended by agreement too.
+    fn ended_otherwise(
+        &self,
+        history: &[(Vec<f64>, Vec<f64>)],
+        n: usize,
+        d: usize,
+        spread: f64,
+    ) -> Restart {
+        let pinned = history.last().map_or(0, |(xs, fs)| {
+            let at = xs.chunks_exact(d).zip(fs);
+            let mut at = at.filter(|&(_, &v)| v == self.value).map(|(p, _)| p);
+            at.next()
+                .map_or(0, |first| 1 + at.filter(|p| *p == first).count())
+        });
+        if 2 * pinned > n {
+            Restart::Agreed {
+                spread,
+                at: self.at.clone(),
+            }
+        } else {
+            Restart::Other
+        }
+    }
+}
+
+/// The temperature's factor `warm` after the ensemble's mean moved from
+/// `last` to `m` in the frame `L` (module docs, "Travel"): halved while it
+/// travels, doubled back towards 1 once it does not.
+fn travel(warm: f64, m: &[f64], last: &[f64], l: &[f64]) -> f64 {
+    let d = m.len();
+    let mut moved: Vec<f64> = m.iter().zip(last).map(|(a, b)| a - b).collect();
+    solve_lower(l, d, &mut moved);
+    if dot(&moved, &moved) > TRAVEL * TRAVEL * d as f64 {
+        warm / 2.0
+    } else {
+        (warm * 2.0).min(1.0)
+    }
+}
+
 /// How a restart ended.
 enum Restart {
     /// Its values or positions agreed: it converged to something at `at`
@@ -269,6 +344,64 @@ enum Restart {
     Agreed { spread: f64, at: Vec<f64> },
     /// Its best stalled, or its frame or model broke down.
     Other,
+}
+
+/// The restarts' sizes and kinds (module docs, "Restarts" and "Local
+/// restarts").
+struct Schedule {
+    /// The first population.
+    first: usize,
+    /// The next large restart's population.
+    n: usize,
+    /// The calls of the large and the local restarts.
+    large: u64,
+    local: u64,
+    /// Whether the next restart is local.
+    next_local: bool,
+    /// The local restarts begun.
+    locals: u64,
+}
+
+impl Schedule {
+    fn new(first: usize) -> Self {
+        Self {
+            first,
+            n: first,
+            large: 0,
+            local: 0,
+            next_local: false,
+            locals: 0,
+        }
+    }
+
+    /// The next restart's population, and for a local one its draw.
+    fn next(&mut self, rng: &mut impl Rng, best_x: &[f64]) -> (usize, Option<Local>) {
+        if !self.next_local {
+            return (self.n, None);
+        }
+        let (size, sd) = local_size(rng, self.first, self.n);
+        // Every second local restart searches around the best point (once
+        // there is one).
+        let around_best = self.locals % 2 == 1 && !best_x.is_empty();
+        let centre = around_best.then(|| best_x.to_vec());
+        self.locals += 1;
+        (size, Some((sd, centre)))
+    }
+
+    /// Records the restart just done: its `calls`, whether it keeps the
+    /// population (`confirming`, for a large one), and the `restarts` so
+    /// far.
+    fn done(&mut self, calls: u64, confirming: bool, restarts: u32) {
+        if self.next_local {
+            self.local += calls;
+        } else {
+            self.large += calls;
+            if !confirming {
+                self.n = self.n.saturating_mul(2);
+            }
+        }
+        self.next_local = restarts >= 2 && self.local < self.large;
+    }
 }
 
 /// A large restart that ended by agreement.
@@ -361,29 +494,8 @@ impl Ensemble {
         V: FnMut(&[f64], usize, &mut [f64]) -> Result<(), UserError>,
         O: FnMut(&Progress<'_>) -> ControlFlow<()>,
     {
-        self.check()?;
-        let bounds = Bounds::new(lo, hi).map_err(Error::Kernel)?;
+        let bounds = self.check(lo, hi, budget, rules.known_at)?;
         let d = lo.len();
-        if d > Self::MAX_DIM {
-            return Err(Error::Kernel(hrla::Error::OutOfRange {
-                name: "dimension",
-                value: d as f64,
-                min: 1.0,
-                max: Self::MAX_DIM as f64,
-            }));
-        }
-        if budget == 0 {
-            return Err(Error::Kernel(hrla::Error::Zero { name: "budget" }));
-        }
-        let known_at = rules.known_at;
-        if !known_at.is_empty() && known_at.len() != d {
-            return Err(Error::Kernel(hrla::Error::Length {
-                name: "known_at",
-                expected: d,
-                got: known_at.len(),
-            }));
-        }
-        crate::settings::finite_all("known_at", known_at).map_err(Error::Kernel)?;
         let mut run = Run {
             bounds,
             budget,
@@ -400,28 +512,14 @@ impl Ensemble {
             spread0: None,
         };
         let parameters = 1 + d + d * (d + 1) / 2;
-        let mut n =
+        let first =
             8.max((self.population * parameters as f64 / MEMORY as f64).ceil() as usize + 1);
-        let first = n;
+        let mut schedule = Schedule::new(first);
         // The large restarts that ended by agreement.
         let mut agreed: Vec<Agreement> = Vec::new();
-        // The calls of the large and the local restarts, and whether the
-        // next one is local (module docs).
-        let (mut large, mut local, mut next_local) = (0_u64, 0_u64, false);
-        let mut locals = 0_u64;
         let end = loop {
             let before = run.evaluations;
-            let (size, local_draw) = if next_local {
-                let (size, sd) = local_size(&mut run.rng, first, n);
-                // Every second local restart searches around the best point
-                // (once there is one).
-                let around_best = locals % 2 == 1 && !run.best_x.is_empty();
-                let centre = around_best.then(|| run.best_x.clone());
-                locals += 1;
-                (size, Some((sd, centre)))
-            } else {
-                (n, None)
-            };
+            let (size, local_draw) = schedule.next(&mut run.rng, &run.best_x);
             let (restart, run_best) = match self.restart(&mut run, size, local_draw)? {
                 Ok(r) => r,
                 Err(end) => break end,
@@ -436,49 +534,30 @@ impl Ensemble {
             };
             let ended_agreed = agreement.is_some();
             // Only a large restart is evidence (module docs).
-            if let Some(agreement) = agreement.filter(|_| !next_local) {
+            if let Some(agreement) = agreement.filter(|_| !schedule.next_local) {
                 if self.converge && converged(&agreed, &agreement, &run) {
                     break EnsembleEnd::Converged;
                 }
                 agreed.push(agreement);
             }
             run.restarts += 1;
-            if next_local {
-                local += run.evaluations - before;
-            } else {
-                large += run.evaluations - before;
-                // The restart after the first agreement keeps the
-                // population: it can confirm that agreement for the cost of
-                // one more restart, where a doubled one costs two
-                // (docs/QUALITY.md).
-                let confirming = ended_agreed && agreed.len() == 1;
-                if !confirming {
-                    n = n.saturating_mul(2);
-                }
-            }
-            next_local = run.restarts >= 2 && local < large;
+            // The restart after the first agreement keeps the population: it
+            // can confirm that agreement for the cost of one more restart,
+            // where a doubled one costs two (docs/QUALITY.md).
+            let confirming = ended_agreed && agreed.len() == 1;
+            schedule.done(run.evaluations - before, confirming, run.restarts);
         };
-        if run.best_x.is_empty() {
-            return Err(Error::Kernel(hrla::Error::AllDiverged { chains: n }));
-        }
-        if run.best < -f64::MAX.sqrt() {
-            return Err(Error::Kernel(hrla::Error::UnboundedBelow {
-                chain: 0,
-                value: run.best,
-            }));
-        }
-        Ok(EnsembleSolution {
-            x: run.best_x,
-            value: run.best,
-            evaluations: run.evaluations,
-            generations: run.generation,
-            restarts: run.restarts,
-            population: n,
-            end,
-        })
+        run.solution(schedule.n, end)
     }
 
-    fn check(&self) -> Result<(), Error> {
+    /// The box of a call, or why the call is refused ([`Self::minimize`]).
+    fn check<'f>(
+        &self,
+        lo: &'f [f64],
+        hi: &'f [f64],
+        budget: u64,
+        known_at: &[f64],
+    ) -> Result<Bounds<f64, &'f [f64]>, Error> {
         let positive = |name, value: f64| {
             if value.is_finite() && value > 0.0 {
                 Ok(())
@@ -500,7 +579,28 @@ impl Ensemble {
         if self.cool_every == 0 {
             return Err(Error::Kernel(hrla::Error::Zero { name: "cool_every" }));
         }
-        Ok(())
+        let bounds = Bounds::new(lo, hi).map_err(Error::Kernel)?;
+        let d = lo.len();
+        if d > Self::MAX_DIM {
+            return Err(Error::Kernel(hrla::Error::OutOfRange {
+                name: "dimension",
+                value: d as f64,
+                min: 1.0,
+                max: Self::MAX_DIM as f64,
+            }));
+        }
+        if budget == 0 {
+            return Err(Error::Kernel(hrla::Error::Zero { name: "budget" }));
+        }
+        if !known_at.is_empty() && known_at.len() != d {
+            return Err(Error::Kernel(hrla::Error::Length {
+                name: "known_at",
+                expected: d,
+                got: known_at.len(),
+            }));
+        }
+        crate::settings::finite_all("known_at", known_at).map_err(Error::Kernel)?;
+        Ok(bounds)
     }
 
     /// One restart of `n` particles, drawn uniformly in the box or as a
@@ -524,8 +624,11 @@ impl Ensemble {
         let mut y = vec![0.0; n * d];
         // The last MEMORY generations' points and values, oldest first.
         let mut history: Vec<(Vec<f64>, Vec<f64>)> = Vec::with_capacity(MEMORY);
-        let (mut run_best, mut since) = (f64::INFINITY, 0_u32);
-        let mut best_at = Vec::new();
+        let mut best = RestartBest {
+            value: f64::INFINITY,
+            at: Vec::new(),
+            since: 0,
+        };
         let mut kappa = self.spread * (d as f64 / 2.0).sqrt();
         // The temperature's factor while the ensemble travels (module docs).
         let (mut warm, mut last_mean) = (1.0_f64, None::<Vec<f64>>);
@@ -535,23 +638,8 @@ impl Ensemble {
                 Ok(f) => f,
                 Err(end) => return Ok(Err(end)),
             };
-            let generation_best = f
-                .iter()
-                .copied()
-                .filter(|v| v.is_finite())
-                .fold(f64::INFINITY, f64::min);
-            if generation_best < run_best - 1e-12 * run_best.abs()
-                || !run_best.is_finite() && generation_best.is_finite()
-            {
-                (run_best, since) = (generation_best, 0);
-                if let Some(i) = f.iter().position(|&v| v == generation_best) {
-                    best_at = x[i * d..i * d + d].to_vec();
-                }
-            } else {
-                since += 1;
-                if since % self.cool_every == 0 {
-                    kappa *= self.cool;
-                }
+            if !best.update(&f, &x, d) && best.since.is_multiple_of(self.cool_every) {
+                kappa *= self.cool;
             }
             let (mean_f, sd_f) = mean_sd(f.iter().copied().filter(|v| v.is_finite()));
             if history.len() == MEMORY {
@@ -564,32 +652,12 @@ impl Ensemble {
             if sd_f <= 1e-12 * (mean_f.abs() + 1e-300) || widest < 1e-12 * width {
                 let agreed = Restart::Agreed {
                     spread: sd_f,
-                    at: best_at,
+                    at: best.at,
                 };
-                return Ok(Ok((agreed, run_best)));
+                return Ok(Ok((agreed, best.value)));
             }
-            // A minimum on the box's boundary: the clipping pins the
-            // particles that reach it to one point, which the others may
-            // never join. A restart that ends otherwise with most particles
-            // there, on its best value, ended by agreement too.
-            let other = || {
-                let pinned = history.last().map_or(0, |(xs, fs)| {
-                    let at = xs.chunks_exact(d).zip(fs);
-                    let mut at = at.filter(|&(_, &v)| v == run_best).map(|(p, _)| p);
-                    at.next()
-                        .map_or(0, |first| 1 + at.filter(|p| *p == first).count())
-                });
-                let restart = if 2 * pinned > n {
-                    Restart::Agreed {
-                        spread: sd_f,
-                        at: best_at.clone(),
-                    }
-                } else {
-                    Restart::Other
-                };
-                Ok(Ok((restart, run_best)))
-            };
-            if since > stall || !(trace.is_finite() && trace > 0.0) {
+            let other = || Ok(Ok((best.ended_otherwise(&history, n, d, sd_f), best.value)));
+            if best.since > stall || !(trace.is_finite() && trace > 0.0) {
                 return other();
             }
             for i in 0..d {
@@ -600,13 +668,7 @@ impl Ensemble {
             }
             let l = c;
             if let Some(last) = last_mean.replace(m.clone()) {
-                let mut moved: Vec<f64> = m.iter().zip(&last).map(|(a, b)| a - b).collect();
-                solve_lower(&l, d, &mut moved);
-                warm = if dot(&moved, &moved) > TRAVEL * TRAVEL * d as f64 {
-                    warm / 2.0
-                } else {
-                    (warm * 2.0).min(1.0)
-                };
+                warm = travel(warm, &m, &last, &l);
             }
             let Some(drift) = self.drift(&history, &m, &l, n, d, kappa * warm) else {
                 return other();
@@ -842,6 +904,30 @@ where
     V: FnMut(&[f64], usize, &mut [f64]) -> Result<(), UserError>,
     O: FnMut(&Progress<'_>) -> ControlFlow<()>,
 {
+    /// The run's result once it ended by `end` with `n` the next large
+    /// restart's population: never a result when it saw no finite value or
+    /// its best fell below `-sqrt(f64::MAX)`.
+    fn solution(self, n: usize, end: EnsembleEnd) -> Result<EnsembleSolution, Error> {
+        if self.best_x.is_empty() {
+            return Err(Error::Kernel(hrla::Error::AllDiverged { chains: n }));
+        }
+        if self.best < -f64::MAX.sqrt() {
+            return Err(Error::Kernel(hrla::Error::UnboundedBelow {
+                chain: 0,
+                value: self.best,
+            }));
+        }
+        Ok(EnsembleSolution {
+            x: self.best_x,
+            value: self.best,
+            evaluations: self.evaluations,
+            generations: self.generation,
+            restarts: self.restarts,
+            population: n,
+            end,
+        })
+    }
+
     /// `U` at the rows of `x`, asked only where a row moved since `last`
     /// (the previous generation's points and values; a row that did not
     /// keeps its value), the best kept; the run's end when the budget is
