@@ -81,7 +81,8 @@
 //! down) with most of its particles on one point of its best value ended
 //! by agreement too: a minimum on the box's boundary, where the clipping
 //! pins the particles that reach it while the rest never join them (a
-//! slope's corner).
+//! slope's corner). Its best is that point's one value, known exactly,
+//! however spread the other particles' values are.
 //!
 //! **Local restarts** (BIPOP's second regime): after the first two
 //! restarts, a restart is local whenever the local ones have spent fewer
@@ -104,7 +105,10 @@
 //! its last generation's spread of values, plus `1e-12` of the spread of
 //! `U` over the first generation and `1e-11` of `|U|` there (a restart's
 //! own agreement, `1e-12` of its values' mean, leaves two bests that far
-//! apart): a second ensemble as large or larger found nothing better. Two
+//! apart): a second ensemble as large or larger found nothing better. The
+//! best value is the lower of the run's and an earlier phase's
+//! ([`EnsembleRules::known`]): restarts that agree above a point already
+//! found have found a trap, not the minimum. Two
 //! points are one when every coordinate agrees to `1e-3` of its side. Two
 //! restarts that agree on the value at different points have most often
 //! found symmetric local minima (Rastrigin's ring of `2 d` about its
@@ -191,8 +195,9 @@ impl Default for Ensemble {
 /// off by default. A run may continue an earlier phase (another solver's
 /// run on the same problem): `elapsed` iterations that reached `known` at
 /// `known_at`; the rules then count iterations from the earlier phase's
-/// start and read the lower of `known` and the run's best, and the
-/// convergence rule counts `known_at` as a large restart's point.
+/// start, they and the convergence rule read the lower of `known` and the
+/// run's best, and the convergence rule counts `known_at` as a large
+/// restart's point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EnsembleRules<'a> {
     /// End once the best value is at or below this.
@@ -293,18 +298,13 @@ impl RestartBest {
     }
 
     /// How a restart of `n` particles in `d` coordinates that ended
-    /// otherwise than by agreement (`spread`: its last values' standard
-    /// deviation) counts.
-    /// A minimum on the box's boundary: the clipping pins the particles
-    /// that reach it to one point, which the others may never join; with
-    /// most particles there, on the best value, it ended by agreement too.
-    fn ended_otherwise(
-        &self,
-        history: &[(Vec<f64>, Vec<f64>)],
-        n: usize,
-        d: usize,
-        spread: f64,
-    ) -> Restart {
+    /// otherwise than by agreement counts. A minimum on the box's
+    /// boundary: the clipping pins the particles that reach it to one
+    /// point, which the others may never join; with most particles there,
+    /// on the best value, it ended by agreement too, its best known
+    /// exactly (the pinned particles' one value, whatever the spread of
+    /// the others).
+    fn ended_otherwise(&self, history: &[(Vec<f64>, Vec<f64>)], n: usize, d: usize) -> Restart {
         let pinned = history.last().map_or(0, |(xs, fs)| {
             let at = xs.chunks_exact(d).zip(fs);
             let mut at = at.filter(|&(_, &v)| v == self.value).map(|(p, _)| p);
@@ -313,7 +313,7 @@ impl RestartBest {
         });
         if 2 * pinned > n {
             Restart::Agreed {
-                spread,
+                spread: 0.0,
                 at: self.at.clone(),
             }
         } else {
@@ -418,9 +418,12 @@ fn converged<V, O>(earlier: &[Agreement], new: &Agreement, run: &Run<'_, V, O>) 
     // positions to 1e-12 of the box: its best is known to its last
     // generation's spread of values. Two restarts' bests then differ by
     // that, and by no less than 1e-12 of U's spread, the problem's own
-    // scale.
-    let tol = 1e-12 * run.spread0.unwrap_or(0.0) + 1e-11 * run.best.abs();
-    let at_best = |a: &&Agreement| a.best <= run.best + tol + a.spread;
+    // scale. The best is the lower of the run's and an earlier phase's: a
+    // restart that agrees above a point already found is no evidence
+    // that nothing better exists.
+    let best = run.best.min(run.rules.known);
+    let tol = 1e-12 * run.spread0.unwrap_or(0.0) + 1e-11 * best.abs();
+    let at_best = |a: &&Agreement| a.best <= best + tol + a.spread;
     if !at_best(&new) {
         return false;
     }
@@ -656,7 +659,7 @@ impl Ensemble {
                 };
                 return Ok(Ok((agreed, best.value)));
             }
-            let other = || Ok(Ok((best.ended_otherwise(&history, n, d, sd_f), best.value)));
+            let other = || Ok(Ok((best.ended_otherwise(&history, n, d), best.value)));
             if best.since > stall || !(trace.is_finite() && trace > 0.0) {
                 return other();
             }

@@ -97,6 +97,45 @@ fn one_restart_at_an_earlier_phases_point_converges() {
 }
 
 #[test]
+fn restarts_that_agree_above_an_earlier_phases_best_do_not_converge() {
+    // A slope to the corner (-5, -5) with a narrow well at (3, 3) that the
+    // restarts do not find: alone, they agree at the corner and the run
+    // converges there. Handed the well as an earlier phase's best, their
+    // agreements lie above it and are no evidence: the run goes on.
+    let f = |x: &[f64]| {
+        let r2 = (x[0] - 3.0).powi(2) + (x[1] - 3.0).powi(2);
+        x[0] + x[1] - 30.0 * (-r2 / (2.0 * 0.05 * 0.05)).exp()
+    };
+    let (lo, hi) = ([-5.0; 2], [5.0; 2]);
+    let values = |x: &[f64], d: usize, out: &mut [f64]| {
+        for (row, o) in x.chunks_exact(d).zip(out.iter_mut()) {
+            *o = f(row);
+        }
+        Ok(())
+    };
+    let go = |_: &Progress<'_>| ControlFlow::Continue(());
+    let solve = |rules: EnsembleRules| {
+        Ensemble::default()
+            .minimize(&lo, &hi, 20_000, 1, rules, values, go)
+            .unwrap()
+    };
+    let alone = solve(EnsembleRules::default());
+    assert_eq!(alone.end, EnsembleEnd::Converged, "{alone:?}");
+    assert_eq!(
+        (alone.value, alone.x.as_slice()),
+        (-10.0, &[-5.0, -5.0][..])
+    );
+    let well = [3.0, 3.0];
+    let handed = solve(EnsembleRules {
+        known: f(&well),
+        known_at: &well,
+        ..EnsembleRules::default()
+    });
+    assert_ne!(handed.end, EnsembleEnd::Converged, "{handed:?}");
+    assert_eq!(handed.evaluations, 20_000, "{handed:?}");
+}
+
+#[test]
 fn an_ill_conditioned_bowl_is_travelled_to_its_minimum() {
     // A discus of condition 1e6 at d = 10, rotated by a reflection and
     // centred off the origin: the ensemble contracts across the stiff
