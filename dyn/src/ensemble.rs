@@ -421,7 +421,7 @@ fn converged<V, O>(earlier: &[Agreement], new: &Agreement, run: &Run<'_, V, O>) 
     // scale. The best is the lower of the run's and an earlier phase's: a
     // restart that agrees above a point already found is no evidence
     // that nothing better exists.
-    let best = run.best.min(run.rules.known);
+    let best = run.best_known();
     let tol = 1e-12 * run.spread0.unwrap_or(0.0) + 1e-11 * best.abs();
     let at_best = |a: &&Agreement| a.best <= best + tol + a.spread;
     if !at_best(&new) {
@@ -902,6 +902,15 @@ struct Drift {
     linear: Vec<f64>,
 }
 
+impl<V, O> Run<'_, V, O> {
+    /// The lower of the run's best and an earlier phase's
+    /// ([`EnsembleRules::known`]): what the caller's rules and the
+    /// convergence rule read.
+    fn best_known(&self) -> f64 {
+        self.best.min(self.rules.known)
+    }
+}
+
 impl<V, O> Run<'_, V, O>
 where
     V: FnMut(&[f64], usize, &mut [f64]) -> Result<(), UserError>,
@@ -1001,7 +1010,7 @@ where
     /// The caller's rule that ends the run after this generation, if any.
     fn rule(&mut self) -> Option<EnsembleEnd> {
         let rules = self.rules;
-        let best = self.best.min(rules.known);
+        let best = self.best_known();
         let iteration = rules.elapsed + self.generation;
         if rules.target.is_some_and(|t| best <= t) {
             return Some(EnsembleEnd::Target);
