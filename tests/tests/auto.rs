@@ -4,7 +4,7 @@
 //! precision. (How it compares with other solvers is a benchmark, not a
 //! test: `bench/quality`, `docs/QUALITY.md`.)
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 use std::ops::ControlFlow;
 
 use hrla::rand_core::SeedableRng;
@@ -39,6 +39,41 @@ fn the_budget_is_exact() {
         assert!(found.evaluations <= budget, "budget {budget}: {found:?}");
         assert_eq!(Rastrigin.value(&found.x), found.value);
     }
+}
+
+/// The initial points' quenches begin at the lowest of them: a budget that
+/// ends within the quenches has searched the best start (the first point
+/// the quenches evaluate is that start).
+#[test]
+fn the_lowest_initial_point_is_quenched_first() {
+    let n = 8;
+    let points = RefCell::new(Vec::<[f64; 2]>::new());
+    let p = FnPotential::new(|x: &[f64; 2], g: &mut [f64; 2]| {
+        points.borrow_mut().push(*x);
+        StyblinskiTang.value_and_gradient(x, g)
+    });
+    let mut lbfgs: Lbfgs<f64, 2, 5> = Lbfgs::new();
+    let box5 = Interval::new(-5.0, 5.0).unwrap();
+    Auto::default()
+        .minimize(
+            &Problem::new(&p, &box5, 200).seed(3),
+            (&mut chains::<2>(n)[..], &mut lbfgs),
+        )
+        .unwrap();
+    let points = points.borrow();
+    let starts = &points[..n];
+    let value = |x: &[f64; 2]| StyblinskiTang.value(x);
+    let lowest = starts
+        .iter()
+        .min_by(|a, b| value(a).total_cmp(&value(b)))
+        .unwrap();
+    // In chain order, chain 0's start would be searched first.
+    assert_ne!(starts[0], *lowest);
+    // The quench maps the start into the box's unit coordinates and back.
+    let apart = (0..2)
+        .map(|k| (points[n][k] - lowest[k]).abs())
+        .fold(0.0, f64::max);
+    assert!(apart < 1e-12, "{:?} after {starts:?}", points[n]);
 }
 
 /// A run is a pure function of the seed: the same seed, the same bits;

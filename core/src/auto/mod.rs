@@ -26,9 +26,10 @@
 //! local minimum to the float type's precision (unless the observer
 //! stopped the run, or the budget ran out within the polish).
 //!
-//! The settings are **measured** on the problem, after the initial points
-//! are quenched ([`measure`]), and every constant holds in the
-//! **problem's own units**: lengths in units of `ℓ`, the box's widest side
+//! The settings are **measured** on the problem ([`measure`]) after the
+//! initial points are quenched, the lowest first (a budget that ends within
+//! those quenches has searched the best start), and every constant holds
+//! in the **problem's own units**: lengths in units of `ℓ`, the box's widest side
 //! over `10.24`, and energies in units of `ε`, at which the median
 //! curvature `L` along random directions at the basins' bottoms (positive
 //! there even on landscapes with flat stretches) is `2 + 4π^2`. On the

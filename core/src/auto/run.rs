@@ -634,7 +634,18 @@ where
         self.units = Units::start(self.tally.unit.widest(), &mut values[..m]);
         self.tally.scale = self.scale(false);
         if self.tally.auto.parts.quenches {
-            for c in 0..self.chains.len() {
+            // The lowest initial point first: where the budget ends within
+            // the quenches, the best start has been searched.
+            let n = self.chains.len();
+            let lowest = (0..n).fold(0, |low, c| {
+                if self.chains.value(c) < self.chains.value(low) {
+                    c
+                } else {
+                    low
+                }
+            });
+            let order = core::iter::once(lowest).chain((0..n).filter(move |&c| c != lowest));
+            for c in order {
                 self.x.copy_from_slice(self.chains.x(c));
                 let cap = self.tally.auto.first_quench;
                 if let Some(value) = self.tally.quench(c, self.x, self.base, cap)? {
