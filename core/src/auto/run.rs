@@ -637,13 +637,7 @@ where
             // The lowest initial point first: where the budget ends within
             // the quenches, the best start has been searched.
             let n = self.chains.len();
-            let lowest = (0..n).fold(0, |low, c| {
-                if self.chains.value(c) < self.chains.value(low) {
-                    c
-                } else {
-                    low
-                }
-            });
+            let lowest = self.best_chain();
             let order = core::iter::once(lowest).chain((0..n).filter(move |&c| c != lowest));
             for c in order {
                 self.x.copy_from_slice(self.chains.x(c));
