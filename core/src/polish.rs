@@ -273,7 +273,10 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
 
     /// [`minimize`](Lbfgs::minimize) within a domain: every trial point is
     /// projected onto it (so `x` is first projected too), which ends on a
-    /// face where the minimum of the box lies there.
+    /// face where the minimum of the box lies there. Once the domain cuts
+    /// a trial short, the next goes at least as far as the next coordinate's
+    /// wall along the projected path, and where every moving coordinate is
+    /// on its wall the path ends there.
     pub fn minimize_in<P: Potential<F, D> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
@@ -285,6 +288,7 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
             &Arrays::<_, D>(potential),
             &Arrays::<_, D>(domain),
             x,
+            None,
             settings,
             Scale::ONE,
         )
@@ -297,12 +301,15 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
 pub(crate) trait Quencher<F: Float> {
     /// L-BFGS from `x` (of the storage's dimension, [`Error::Length`]
     /// otherwise) within `domain` in the units `scale`, `x` ending at the
-    /// best point.
+    /// best point. `start`, where the caller has them: `U(x)` and the
+    /// gradient at `x`, which the search then takes instead of evaluating
+    /// them (its first evaluation saved).
     fn quench<P: SlicePotential<F> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
         x: &mut [F],
+        start: Option<(F, &[F])>,
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error>;
@@ -314,6 +321,7 @@ impl<F: Float, const D: usize, const M: usize> Quencher<F> for Lbfgs<F, D, M> {
         potential: &P,
         domain: &B,
         x: &mut [F],
+        start: Option<(F, &[F])>,
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
@@ -334,7 +342,7 @@ impl<F: Float, const D: usize, const M: usize> Quencher<F> for Lbfgs<F, D, M> {
             m: M,
             d: D,
         };
-        memory.minimize_in(potential, domain, x, settings, scale)
+        memory.minimize_in(potential, domain, x, start, settings, scale)
     }
 }
 
@@ -417,7 +425,7 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
         x: &mut [F],
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
-        self.quench(potential, domain, x, settings, Scale::ONE)
+        self.quench(potential, domain, x, None, settings, Scale::ONE)
     }
 
     /// Polishes a copy of `start` (of the storage's dimension) in the
@@ -431,7 +439,7 @@ impl<'a, F: Float> LbfgsIn<'a, F> {
     ) -> (Result<Polished<F>, Error>, &[F]) {
         let (mut memory, point) = self.split();
         point.copy_from_slice(start);
-        let done = memory.minimize_in(potential, domain, point, settings, Scale::ONE);
+        let done = memory.minimize_in(potential, domain, point, None, settings, Scale::ONE);
         (done, point)
     }
 
@@ -470,12 +478,13 @@ impl<F: Float> Quencher<F> for LbfgsIn<'_, F> {
         potential: &P,
         domain: &B,
         x: &mut [F],
+        start: Option<(F, &[F])>,
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
         check_lengths([("x", self.d, x.len())])?;
         let (mut memory, _) = self.split();
-        memory.minimize_in(potential, domain, x, settings, scale)
+        memory.minimize_in(potential, domain, x, start, settings, scale)
     }
 }
 
@@ -661,25 +670,7 @@ impl<F: Float> Memory<'_, F> {
         value: F,
     ) -> Next<F> {
         match s.phase {
-            Phase::Start => {
-                let checked = unbounded(value)
-                    .and_then(|()| finite("U(x)", value))
-                    .and_then(|v| {
-                        for &g in &*self.trial_grad {
-                            finite("gradient", g)?;
-                        }
-                        Ok(v)
-                    });
-                match checked {
-                    Ok(v) => {
-                        self.grad.copy_from_slice(self.trial_grad);
-                        s.value = v;
-                        s.budget = s.settings.evaluations - 1;
-                        self.iterate(s, domain, x)
-                    }
-                    Err(e) => Self::end(s, Err(e)),
-                }
-            }
+            Phase::Start => self.started(s, domain, x, value, 1),
             Phase::Bracket => {
                 let p = self.line_point(s.step, value);
                 self.bracketed(s, domain, x, p)
@@ -697,6 +688,36 @@ impl<F: Float> Memory<'_, F> {
                 }
             }
             Phase::Done => Next::Done(Ok(s.polished(PolishEnd::Budget))),
+        }
+    }
+
+    /// `U(x) = value`, its gradient in the trial gradient buffer, at a
+    /// cost of `spent` evaluations (0 where the caller knew them): the
+    /// first iteration.
+    fn started<B: Domain<F> + ?Sized>(
+        &mut self,
+        s: &mut Search<F>,
+        domain: &B,
+        x: &mut [F],
+        value: F,
+        spent: u64,
+    ) -> Next<F> {
+        let checked = unbounded(value)
+            .and_then(|()| finite("U(x)", value))
+            .and_then(|v| {
+                for &g in &*self.trial_grad {
+                    finite("gradient", g)?;
+                }
+                Ok(v)
+            });
+        match checked {
+            Ok(v) => {
+                self.grad.copy_from_slice(self.trial_grad);
+                s.value = v;
+                s.budget = s.settings.evaluations - spent;
+                self.iterate(s, domain, x)
+            }
+            Err(e) => Self::end(s, Err(e)),
         }
     }
 
@@ -751,7 +772,8 @@ impl<F: Float> Memory<'_, F> {
             return Self::end(s, Ok(s.polished(PolishEnd::Value)));
         }
         // A step satisfying the strong Wolfe conditions from (0, f0, d0):
-        // first a bracket, doubling the step, then a zoom into it.
+        // first a bracket, doubling the step (to the next wall at least
+        // once the domain cuts a probe short), then a zoom into it.
         s.f0 = s.value;
         s.d0 = slope;
         s.prev = LinePoint {
@@ -801,12 +823,69 @@ impl<F: Float> Memory<'_, F> {
             s.trials = 0;
             return self.zoom_probe(s, domain, x);
         }
+        let next = match self.breakpoint(domain, x, p.step) {
+            Beyond::Next(t) if t > p.step * F::TWO => t,
+            Beyond::Interior | Beyond::Next(_) => p.step * F::TWO,
+            // Every coordinate that moves is on its wall: the path goes
+            // no further.
+            Beyond::Flat => return self.accept(s, domain, x, p),
+        };
         s.prev = p;
         s.trials += 1;
         if s.trials >= BRACKET_TRIALS {
             return self.fail(s);
         }
-        self.bracket_probe(s, domain, x, p.step * F::TWO)
+        self.bracket_probe(s, domain, x, next)
+    }
+
+    /// Where the projected path `x + t d` bends after `step`: its probe at
+    /// `step` stayed inside the domain, or the next step at which a
+    /// coordinate still moving reaches its wall, or none (the path is flat
+    /// from `step` on). A probe cut short by a wall doubles its step to
+    /// the next wall at least: on a slope towards a corner, the doubling
+    /// would crawl along a wall in the coordinates the first step barely
+    /// moved.
+    fn breakpoint<B: Domain<F> + ?Sized>(&mut self, domain: &B, x: &[F], step: F) -> Beyond<F> {
+        // The pair the accepted step will write is free until then.
+        let (k, d) = (*self.next, self.d);
+        let far = &mut self.s[k * d..(k + 1) * d];
+        // The largest float in each moving coordinate's direction, which
+        // the projection brings to its wall (a non-finite one it keeps).
+        for ((f, &xi), &di) in far.iter_mut().zip(x).zip(&*self.direction) {
+            *f = if di > F::ZERO {
+                F::MAX
+            } else if di < F::ZERO {
+                -F::MAX
+            } else {
+                xi
+            };
+        }
+        domain.project(far);
+        let (mut cut, mut ahead, mut next) = (false, false, F::INFINITY);
+        for ((&f, &xi), &di) in far.iter().zip(x).zip(&*self.direction) {
+            if di == F::ZERO {
+                continue;
+            }
+            let t = if f.abs() == F::MAX {
+                F::INFINITY
+            } else {
+                (f - xi) / di
+            };
+            if t > step {
+                ahead = true;
+                if t < next {
+                    next = t;
+                }
+            } else if t <= step {
+                cut = true;
+            }
+        }
+        match (cut, ahead) {
+            (false, _) => Beyond::Interior,
+            (true, true) if next.is_finite() => Beyond::Next(next),
+            (true, true) => Beyond::Interior,
+            (true, false) => Beyond::Flat,
+        }
     }
 
     /// The zoom's next probe, inside the bracket `[lo, hi]`.
@@ -940,10 +1019,22 @@ impl<F: Float> Memory<'_, F> {
         potential: &P,
         domain: &B,
         x: &mut [F],
+        start: Option<(F, &[F])>,
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
+        // The caller's value and gradient hold where the domain leaves `x`
+        // where it is (a point it moves is evaluated there).
+        let inside = start.is_some() && {
+            self.trial.copy_from_slice(x);
+            domain.project(self.trial);
+            *self.trial == *x
+        };
         let (mut search, mut next) = self.begin(domain, x, settings, scale);
+        if let (Next::Evaluate, Some((value, grad)), true) = (next, start, inside) {
+            self.trial_grad.copy_from_slice(grad);
+            next = self.started(&mut search, domain, x, value, 0);
+        }
         loop {
             match next {
                 Next::Evaluate => {
@@ -954,6 +1045,18 @@ impl<F: Float> Memory<'_, F> {
             }
         }
     }
+}
+
+/// The projected path beyond a bracket's probe
+/// ([`Memory::breakpoint`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Beyond<F> {
+    /// The probe was not cut by the domain.
+    Interior,
+    /// Cut, and the next coordinate reaches its wall at this step.
+    Next(F),
+    /// Cut, and no coordinate moves beyond the probe.
+    Flat,
 }
 
 /// What a search asks for next.

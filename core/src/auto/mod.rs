@@ -15,7 +15,10 @@
 //!    lengthen their trajectories until they reach other basins, and cold
 //!    ones shorten theirs.
 //! 2. **Quench**: L-BFGS from the trajectory's end until it converges
-//!    (at most [`Auto::quench`] evaluations): the basin it fell into.
+//!    (at most [`Auto::quench`] evaluations): the basin it fell into. It
+//!    starts from the value and gradient the trajectory's last step
+//!    evaluated there (as the initial quenches start from their points'),
+//!    not evaluating them again.
 //! 3. **Acceptance**: Metropolis on the quenched values at `a_c`: the chain
 //!    moves to the new basin with probability `min(1, exp(-a_c ΔU))`.
 //!

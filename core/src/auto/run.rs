@@ -37,10 +37,13 @@ pub(super) enum Stop {
 type Flow = ControlFlow<Stop>;
 
 /// A proposal's point as it goes through a round's steps: its value where
-/// known, not yet evaluated, or rejected (an infeasible point met).
+/// known, its value and gradient where evaluated there (the gradient in
+/// the run's buffer), not yet evaluated, or rejected (an infeasible point
+/// met).
 #[derive(Clone, Copy)]
 enum Point<F> {
     Known(F),
+    Evaluated(F),
     Unknown,
     Rejected,
 }
@@ -330,19 +333,21 @@ where
 
     /// L-BFGS from `x` (in place) for chain `c`, within `cap` evaluations
     /// and the budget: the value at its end, or `None` where `x` is
-    /// infeasible. `scratch` is a point's worth of working space.
+    /// infeasible. `scratch` is a point's worth of working space; `start`,
+    /// where known, `U(x)` and the gradient at `x` (overwritten).
     fn quench(
         &mut self,
         c: usize,
         x: &mut [F],
         scratch: &mut [F],
+        start: Option<(F, &mut [F])>,
         cap: u64,
     ) -> ControlFlow<Stop, Option<F>> {
         let cap = cap.min(self.remaining());
         if cap == 0 {
             return ControlFlow::Break(Stop::Budget);
         }
-        match self.local(x, scratch, PolishSettings::new(cap)) {
+        match self.local(x, scratch, start, PolishSettings::new(cap)) {
             Ok(done) => {
                 self.evaluations += done.evaluations;
                 self.record(x, done.value, done.end != PolishEnd::Budget);
@@ -361,26 +366,32 @@ where
     }
 
     /// L-BFGS from `x` in the box's unit coordinates, `x` ending at its
-    /// end in the box's own.
+    /// end in the box's own; `start` as in [`quench`](Self::quench).
     fn local(
         &mut self,
         x: &mut [F],
         scratch: &mut [F],
+        start: Option<(F, &mut [F])>,
         settings: PolishSettings<F>,
     ) -> Result<Polished<F>, Error> {
         let (unit, scale) = (self.unit, self.scale);
         if unit.is_identity() {
+            let start = start.map(|(value, grad)| (value, &*grad));
             return self
                 .lbfgs
-                .quench(&self.potential, self.domain, x, settings, scale);
+                .quench(&self.potential, self.domain, x, start, settings, scale);
         }
+        let start = start.map(|(value, grad)| {
+            unit.gradient_in_place(grad);
+            (value, &*grad)
+        });
         let scaled = Scaled {
             potential: &self.potential,
             unit,
             x: RefCell::new(scratch),
         };
         unit.scale_in(x);
-        let done = self.lbfgs.quench(&scaled, &unit, x, settings, scale);
+        let done = self.lbfgs.quench(&scaled, &unit, x, start, settings, scale);
         unit.scale_out(x);
         done
     }
@@ -641,8 +652,10 @@ where
             let order = core::iter::once(lowest).chain((0..n).filter(move |&c| c != lowest));
             for c in order {
                 self.x.copy_from_slice(self.chains.x(c));
+                self.grad.copy_from_slice(self.chains.chain(c).grad);
+                let start = Some((self.chains.value(c), &mut *self.grad));
                 let cap = self.tally.auto.first_quench;
-                if let Some(value) = self.tally.quench(c, self.x, self.base, cap)? {
+                if let Some(value) = self.tally.quench(c, self.x, self.base, start, cap)? {
                     settle(self.chains.chain(c), self.x, value);
                 }
                 self.observe()?;
@@ -853,7 +866,7 @@ where
         if !identity {
             self.x.copy_from_slice(self.base);
         }
-        ControlFlow::Continue(Point::Known(value))
+        ControlFlow::Continue(Point::Evaluated(value))
     }
 
     /// Step 1, sampling: [`Auto::steps`] steps of `kernel` from the
@@ -914,14 +927,18 @@ where
             return ControlFlow::Continue(point);
         }
         let found = if self.tally.auto.parts.quenches {
+            let start = match point {
+                Point::Evaluated(value) => Some((value, &mut *self.grad)),
+                _ => None,
+            };
             let found = self
                 .tally
-                .quench(c, self.x, self.base, self.tally.auto.quench)?;
+                .quench(c, self.x, self.base, start, self.tally.auto.quench)?;
             if found.is_some() {
                 self.grad.fill(F::ZERO);
             }
             found
-        } else if let Point::Known(value) = point {
+        } else if let Point::Known(value) | Point::Evaluated(value) = point {
             Some(value)
         } else {
             self.tally.evaluate(self.x, self.grad)?
@@ -1011,7 +1028,7 @@ where
         settings.value_tolerance = F::ZERO;
         let quenches = tally.scale;
         tally.scale.resolution = F::ZERO;
-        let done = tally.local(self.x, self.base, settings);
+        let done = tally.local(self.x, self.base, None, settings);
         tally.scale = quenches;
         match done {
             Ok(done) => {

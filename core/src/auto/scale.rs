@@ -117,6 +117,17 @@ impl<'a, F: Float, B: Sides<F> + ?Sized> Unit<'a, F, B> {
         self.domain.project(x);
     }
 
+    /// [`gradient`](Unit::gradient) in place.
+    #[inline]
+    pub(super) fn gradient_in_place(&self, g: &mut [F]) {
+        if self.equal {
+            return;
+        }
+        for (i, gi) in g.iter_mut().enumerate() {
+            *gi *= self.w(i);
+        }
+    }
+
     /// The gradient in unit coordinates of the gradient `g` in `x`.
     #[inline]
     pub(super) fn gradient(&self, g: &[F], out: &mut [F]) {
