@@ -25,6 +25,10 @@ const C2: f64 = 0.9;
 const BRACKET_TRIALS: usize = 40;
 /// Trial steps of the zoom phase before giving up.
 const ZOOM_TRIALS: usize = 40;
+/// A bracket's probe cut short by the domain whose slope is within this
+/// share of the origin's found its path straight: the next probe goes to
+/// the path's last wall (where the slope's secant still falls there).
+const STRAIGHT: f64 = 0.1;
 
 /// When [`Lbfgs::minimize`] stops.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -823,12 +827,32 @@ impl<F: Float> Memory<'_, F> {
             s.trials = 0;
             return self.zoom_probe(s, domain, x);
         }
-        let next = match self.breakpoint(domain, x, p.step) {
-            Beyond::Next(t) if t > p.step * F::TWO => t,
-            Beyond::Interior | Beyond::Next(_) => p.step * F::TWO,
+        let double = p.step * F::TWO;
+        let path = self.path(domain, x, p.step);
+        let next = if !path.cut {
+            double
+        } else if path.last == F::ZERO {
             // Every coordinate that moves is on its wall: the path goes
             // no further.
-            Beyond::Flat => return self.accept(s, domain, x, p),
+            return self.accept(s, domain, x, p);
+        } else {
+            // Cut short by a wall, doubling would crawl along it in the
+            // coordinates the first step barely moved (a slope towards a
+            // corner): the next wall at least, and the last where the
+            // probe found the path straight (its slope within `STRAIGHT`
+            // of the origin's) and the slope's secant still falls there.
+            let straight = (p.slope - s.d0).abs() <= F::from_f64(STRAIGHT) * -s.d0;
+            let falling = s.d0 + (p.slope - s.d0) * (path.last / p.step) < F::ZERO;
+            let wall = if straight && falling && path.last.is_finite() {
+                path.last
+            } else {
+                path.next
+            };
+            if wall.is_finite() && wall > double {
+                wall
+            } else {
+                double
+            }
         };
         s.prev = p;
         s.trials += 1;
@@ -838,14 +862,11 @@ impl<F: Float> Memory<'_, F> {
         self.bracket_probe(s, domain, x, next)
     }
 
-    /// Where the projected path `x + t d` bends after `step`: its probe at
-    /// `step` stayed inside the domain, or the next step at which a
-    /// coordinate still moving reaches its wall, or none (the path is flat
-    /// from `step` on). A probe cut short by a wall doubles its step to
-    /// the next wall at least: on a slope towards a corner, the doubling
-    /// would crawl along a wall in the coordinates the first step barely
-    /// moved.
-    fn breakpoint<B: Domain<F> + ?Sized>(&mut self, domain: &B, x: &[F], step: F) -> Beyond<F> {
+    /// The projected path `x + t d` beyond the probe at `step`: whether
+    /// the domain cut the probe short, and the steps at which the first
+    /// and the last coordinate still moving reach their walls (`+inf`
+    /// where one has none; none moving: `next = +inf`, `last = 0`).
+    fn path<B: Domain<F> + ?Sized>(&mut self, domain: &B, x: &[F], step: F) -> Path<F> {
         // The pair the accepted step will write is free until then.
         let (k, d) = (*self.next, self.d);
         let far = &mut self.s[k * d..(k + 1) * d];
@@ -861,7 +882,11 @@ impl<F: Float> Memory<'_, F> {
             };
         }
         domain.project(far);
-        let (mut cut, mut ahead, mut next) = (false, false, F::INFINITY);
+        let mut path = Path {
+            cut: false,
+            next: F::INFINITY,
+            last: F::ZERO,
+        };
         for ((&f, &xi), &di) in far.iter().zip(x).zip(&*self.direction) {
             if di == F::ZERO {
                 continue;
@@ -872,20 +897,17 @@ impl<F: Float> Memory<'_, F> {
                 (f - xi) / di
             };
             if t > step {
-                ahead = true;
-                if t < next {
-                    next = t;
+                if t < path.next {
+                    path.next = t;
                 }
-            } else if t <= step {
-                cut = true;
+                if t > path.last {
+                    path.last = t;
+                }
+            } else {
+                path.cut = true;
             }
         }
-        match (cut, ahead) {
-            (false, _) => Beyond::Interior,
-            (true, true) if next.is_finite() => Beyond::Next(next),
-            (true, true) => Beyond::Interior,
-            (true, false) => Beyond::Flat,
-        }
+        path
     }
 
     /// The zoom's next probe, inside the bracket `[lo, hi]`.
@@ -1047,16 +1069,12 @@ impl<F: Float> Memory<'_, F> {
     }
 }
 
-/// The projected path beyond a bracket's probe
-/// ([`Memory::breakpoint`]).
+/// The projected path beyond a bracket's probe ([`Memory::path`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Beyond<F> {
-    /// The probe was not cut by the domain.
-    Interior,
-    /// Cut, and the next coordinate reaches its wall at this step.
-    Next(F),
-    /// Cut, and no coordinate moves beyond the probe.
-    Flat,
+struct Path<F> {
+    cut: bool,
+    next: F,
+    last: F,
 }
 
 /// What a search asks for next.
