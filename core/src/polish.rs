@@ -29,6 +29,10 @@ const ZOOM_TRIALS: usize = 40;
 /// share of the origin's found its path straight: the next probe goes to
 /// the path's last wall (where the slope's secant still falls there).
 const STRAIGHT: f64 = 0.1;
+/// [`STRAIGHT`] for a probe the domain did not cut: a path linear to
+/// the rounding of forward differences (`0.1` moved the ill-conditioned
+/// quadratics of bbob, f2 and f10, off their course).
+const LINEAR: f64 = 1e-5;
 
 /// When [`Lbfgs::minimize`] stops.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -829,30 +833,32 @@ impl<F: Float> Memory<'_, F> {
         }
         let double = p.step * F::TWO;
         let path = self.path(domain, x, p.step);
-        let next = if !path.cut {
-            double
-        } else if path.last == F::ZERO {
+        if path.cut && path.last == F::ZERO {
             // Every coordinate that moves is on its wall: the path goes
             // no further.
             return self.accept(s, domain, x, p);
+        }
+        // Doubling crawls where the path's end is in sight: on a slope
+        // towards a corner, along the walls in the coordinates the first
+        // step barely moved. The probe's slope against the origin's tells
+        // how straight the path is: straight to `LINEAR`, or cut short by a
+        // wall and straight to `STRAIGHT`, with the slope's secant still
+        // falling at the path's last wall, the next probe goes there; cut
+        // short otherwise, to the next wall at least.
+        let bend = (p.slope - s.d0).abs() / -s.d0;
+        let falling = s.d0 + (p.slope - s.d0) * (path.last / p.step) < F::ZERO;
+        let straight = if path.cut { STRAIGHT } else { LINEAR };
+        let wall = if bend <= F::from_f64(straight) && falling && path.last.is_finite() {
+            path.last
+        } else if path.cut {
+            path.next
         } else {
-            // Cut short by a wall, doubling would crawl along it in the
-            // coordinates the first step barely moved (a slope towards a
-            // corner): the next wall at least, and the last where the
-            // probe found the path straight (its slope within `STRAIGHT`
-            // of the origin's) and the slope's secant still falls there.
-            let straight = (p.slope - s.d0).abs() <= F::from_f64(STRAIGHT) * -s.d0;
-            let falling = s.d0 + (p.slope - s.d0) * (path.last / p.step) < F::ZERO;
-            let wall = if straight && falling && path.last.is_finite() {
-                path.last
-            } else {
-                path.next
-            };
-            if wall.is_finite() && wall > double {
-                wall
-            } else {
-                double
-            }
+            double
+        };
+        let next = if wall.is_finite() && wall > double {
+            wall
+        } else {
+            double
         };
         s.prev = p;
         s.trials += 1;

@@ -168,28 +168,31 @@ fn polish_refuses_bad_input() {
     );
 }
 
-/// A probe cut short by the box goes on to a wall: on a slope
-/// `x_0 + 0.1 x_1 + 0.01 x_2` in `[-1, 1]^3` from the centre, the first
-/// probe reaches the wall in `x_0`, having moved `x_1` by 0.1 and `x_2` by
-/// 0.01; the path is straight, so the next probe goes to the last wall, the
-/// corner, where the path ends. Start, two probes and the end: 3
+/// A probe goes on to the path's last wall where the path is straight:
+/// on a slope `x_0 + 0.1 x_1 + 0.01 x_2` from the centre of `[-1, 1]^3`,
+/// the first probe reaches the wall in `x_0` (cut short, straight), and in
+/// `[-4, 4]^3` it stays inside (linear); either way the next probe goes to
+/// the corner, where the path ends. Start, two probes and the end: 3
 /// evaluations, the corner exactly (doubling along the walls took 34 on
-/// the 2-D slope `x_0 + 0.01 x_1`; to the next wall only, 4).
+/// the 2-D slope `x_0 + 0.01 x_1` in `[-1, 1]^2`; to the next wall only, 4
+/// in `[-1, 1]^3`).
 #[test]
 fn a_slope_reaches_its_corner_in_two_probes() {
-    let calls = std::cell::Cell::new(0u64);
-    let slope = FnPotential::new(|x: &[f64; 3], g: &mut [f64; 3]| {
-        calls.set(calls.get() + 1);
-        *g = [1.0, 0.1, 0.01];
-        x[0] + 0.1 * x[1] + 0.01 * x[2]
-    });
-    let mut lbfgs: Lbfgs<f64, 3, 5> = Lbfgs::new();
-    let mut x = [0.0; 3];
-    let cube = Interval::new(-1.0, 1.0).unwrap();
-    let done = lbfgs
-        .minimize_in(&slope, &cube, &mut x, PolishSettings::new(100))
-        .unwrap();
-    assert_eq!(x, [-1.0; 3], "{done:?}");
-    assert_eq!(done.evaluations, 3, "{done:?}");
-    assert_eq!(calls.get(), 3);
+    for side in [1.0, 4.0] {
+        let calls = std::cell::Cell::new(0u64);
+        let slope = FnPotential::new(|x: &[f64; 3], g: &mut [f64; 3]| {
+            calls.set(calls.get() + 1);
+            *g = [1.0, 0.1, 0.01];
+            x[0] + 0.1 * x[1] + 0.01 * x[2]
+        });
+        let mut lbfgs: Lbfgs<f64, 3, 5> = Lbfgs::new();
+        let mut x = [0.0; 3];
+        let cube = Interval::new(-side, side).unwrap();
+        let done = lbfgs
+            .minimize_in(&slope, &cube, &mut x, PolishSettings::new(100))
+            .unwrap();
+        assert_eq!(x, [-side; 3], "{done:?}");
+        assert_eq!(done.evaluations, 3, "side {side}: {done:?}");
+        assert_eq!(calls.get(), 3);
+    }
 }
