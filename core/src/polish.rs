@@ -283,8 +283,10 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
     /// projected onto it (so `x` is first projected too), which ends on a
     /// face where the minimum of the box lies there. Once the domain cuts
     /// a trial short, the next goes at least as far as the next coordinate's
-    /// wall along the projected path, and where every moving coordinate is
-    /// on its wall the path ends there.
+    /// wall along the projected path, and to its last wall where the path
+    /// is straight and still falling there (as does a trial on a linear
+    /// path inside the domain); where every moving coordinate is on its
+    /// wall the path ends there.
     pub fn minimize_in<P: Potential<F, D> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
@@ -780,8 +782,8 @@ impl<F: Float> Memory<'_, F> {
             return Self::end(s, Ok(s.polished(PolishEnd::Value)));
         }
         // A step satisfying the strong Wolfe conditions from (0, f0, d0):
-        // first a bracket, doubling the step (to the next wall at least
-        // once the domain cuts a probe short), then a zoom into it.
+        // first a bracket, doubling the step (or further, to a wall of the
+        // domain: `bracketed`), then a zoom into it.
         s.f0 = s.value;
         s.d0 = slope;
         s.prev = LinePoint {
