@@ -286,7 +286,8 @@ impl<F: Float, const D: usize, const M: usize> Lbfgs<F, D, M> {
     /// wall along the projected path, and to its last wall where the path
     /// is straight and still falling there (as does a trial on a linear
     /// path inside the domain); where every moving coordinate is on its
-    /// wall the path ends there.
+    /// wall the path ends there, and a zoom searches no further. A step
+    /// too short to move any coordinate of `x` ends the search.
     pub fn minimize_in<P: Potential<F, D> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
@@ -313,13 +314,14 @@ pub(crate) trait Quencher<F: Float> {
     /// otherwise) within `domain` in the units `scale`, `x` ending at the
     /// best point. `start`, where the caller has them: `U(x)` and the
     /// gradient at `x`, which the search then takes instead of evaluating
-    /// them (its first evaluation saved).
+    /// them (its first evaluation saved); the gradient's buffer ends
+    /// holding the gradient at the end point where the search succeeds.
     fn quench<P: SlicePotential<F> + ?Sized, B: Domain<F> + ?Sized>(
         &mut self,
         potential: &P,
         domain: &B,
         x: &mut [F],
-        start: Option<(F, &[F])>,
+        start: Option<(F, &mut [F])>,
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error>;
@@ -331,7 +333,7 @@ impl<F: Float, const D: usize, const M: usize> Quencher<F> for Lbfgs<F, D, M> {
         potential: &P,
         domain: &B,
         x: &mut [F],
-        start: Option<(F, &[F])>,
+        start: Option<(F, &mut [F])>,
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
@@ -488,7 +490,7 @@ impl<F: Float> Quencher<F> for LbfgsIn<'_, F> {
         potential: &P,
         domain: &B,
         x: &mut [F],
-        start: Option<(F, &[F])>,
+        start: Option<(F, &mut [F])>,
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
@@ -837,7 +839,8 @@ impl<F: Float> Memory<'_, F> {
         let path = self.path(domain, x, p.step);
         if path.cut && path.last == F::ZERO {
             // Every coordinate that moves is on its wall: the path goes
-            // no further.
+            // no further. The probe's point again, where `path` wrote.
+            self.set_trial(domain, x, p.step);
             return self.accept(s, domain, x, p);
         }
         // Doubling crawls where the path's end is in sight: on a slope
@@ -875,9 +878,10 @@ impl<F: Float> Memory<'_, F> {
     /// and the last coordinate still moving reach their walls (`+inf`
     /// where one has none; none moving: `next = +inf`, `last = 0`).
     fn path<B: Domain<F> + ?Sized>(&mut self, domain: &B, x: &[F], step: F) -> Path<F> {
-        // The pair the accepted step will write is free until then.
-        let (k, d) = (*self.next, self.d);
-        let far = &mut self.s[k * d..(k + 1) * d];
+        // The probe's point, which the next probe overwrites (where the
+        // probe is accepted instead, the caller sets it again): with a
+        // full memory no pair's slot is free.
+        let far = &mut *self.trial;
         // The largest float in each moving coordinate's direction, which
         // the projection brings to its wall (a non-finite one it keeps).
         for ((f, &xi), &di) in far.iter_mut().zip(x).zip(&*self.direction) {
@@ -931,6 +935,17 @@ impl<F: Float> Memory<'_, F> {
         if s.budget == 0 {
             return self.fail(s);
         }
+        // Beyond the path's last wall every step is the same point, the
+        // one the path ends at: an end of the bracket beyond it stands
+        // there, so that no probe repeats it.
+        let end = self.path(domain, x, F::ZERO).last;
+        if end > F::ZERO {
+            for p in [&mut s.lo, &mut s.hi] {
+                if p.step > end {
+                    p.step = end;
+                }
+            }
+        }
         let (lo, hi) = (s.lo, s.hi);
         let step = if hi.value.is_finite() {
             cubic_step(lo.step, lo.value, lo.slope, hi.step, hi.value, hi.slope)
@@ -953,8 +968,13 @@ impl<F: Float> Memory<'_, F> {
         step: F,
         phase: Phase,
     ) -> Next<F> {
-        s.budget -= 1;
         self.set_trial(domain, x, step);
+        if *self.trial == *x {
+            // A step too short to move any coordinate: the line holds
+            // nothing below `x` that the floats can reach.
+            return self.fail(s);
+        }
+        s.budget -= 1;
         s.step = step;
         s.phase = phase;
         Next::Evaluate
@@ -1017,16 +1037,20 @@ impl<F: Float> Memory<'_, F> {
         if let Err(e) = unbounded(p.value) {
             return Self::end(s, Err(e));
         }
-        // The new pair, kept when its curvature is positive.
+        // The new pair, kept when its curvature is positive; a pair that
+        // is not kept writes nothing, since with a full memory its slot
+        // still holds the oldest pair in use.
         let (k, d) = (*self.next, self.d);
-        let sk = &mut self.s[k * d..(k + 1) * d];
-        let yk = &mut self.y[k * d..(k + 1) * d];
-        for j in 0..d {
-            sk[j] = self.trial[j] - x[j];
-            yk[j] = self.trial_grad[j] - self.grad[j];
-        }
-        let sy = dot(sk, yk);
+        let sy = (0..d).fold(F::ZERO, |acc, j| {
+            acc + (self.trial[j] - x[j]) * (self.trial_grad[j] - self.grad[j])
+        });
         if sy > F::ZERO && sy.is_finite() {
+            let sk = &mut self.s[k * d..(k + 1) * d];
+            let yk = &mut self.y[k * d..(k + 1) * d];
+            for j in 0..d {
+                sk[j] = self.trial[j] - x[j];
+                yk[j] = self.trial_grad[j] - self.grad[j];
+            }
             self.rho[k] = F::ONE / sy;
             *self.next = (k + 1) % self.m;
             *self.len = (*self.len + 1).min(self.m);
@@ -1049,7 +1073,7 @@ impl<F: Float> Memory<'_, F> {
         potential: &P,
         domain: &B,
         x: &mut [F],
-        start: Option<(F, &[F])>,
+        start: Option<(F, &mut [F])>,
         settings: PolishSettings<F>,
         scale: Scale<F>,
     ) -> Result<Polished<F>, Error> {
@@ -1061,9 +1085,9 @@ impl<F: Float> Memory<'_, F> {
             *self.trial == *x
         };
         let (mut search, mut next) = self.begin(domain, x, settings, scale);
-        if let (Next::Evaluate, Some((value, grad)), true) = (next, start, inside) {
+        if let (Next::Evaluate, Some((value, grad)), true) = (next, &start, inside) {
             self.trial_grad.copy_from_slice(grad);
-            next = self.started(&mut search, domain, x, value, 0);
+            next = self.started(&mut search, domain, x, *value, 0);
         }
         loop {
             match next {
@@ -1071,7 +1095,12 @@ impl<F: Float> Memory<'_, F> {
                     let value = potential.value_and_gradient(self.trial, self.trial_grad);
                     next = self.tell(&mut search, domain, x, value);
                 }
-                Next::Done(result) => return result,
+                Next::Done(result) => {
+                    if let (Ok(_), Some((_, grad))) = (&result, start) {
+                        grad.copy_from_slice(self.grad);
+                    }
+                    return result;
+                }
             }
         }
     }

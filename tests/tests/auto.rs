@@ -84,19 +84,26 @@ fn the_lowest_initial_point_is_quenched_first() {
 }
 
 /// A quench starts from what the step before it evaluated: an initial
-/// point's value and gradient, or the last Langevin step's. No point
-/// inside the box is evaluated twice in a row (each quench re-evaluated
-/// its start, a gradient's worth of calls; on the walls, Langevin steps
-/// held at a corner repeat theirs).
+/// point's value and gradient, or the last Langevin step's; a Langevin
+/// step held in a corner of the box keeps its point's; the measurement
+/// takes each basin's gradient from its quench. No point is evaluated
+/// twice in a row, and the run's (minimum in the interior, Langevin steps
+/// and quenches pushed into the corners) evaluates at most 4 of its 3 000
+/// points again, a corner that another quench reaches later.
 #[test]
 fn a_quench_reuses_its_start() {
     let (found, points) = styblinski_tang_run(3_000);
     assert!(found.rounds > 10, "{found:?}");
     assert_eq!(points.len() as u64, found.evaluations);
     for (k, pair) in points.windows(2).enumerate() {
-        let inside = pair[0].iter().all(|v| v.abs() < 5.0);
-        assert!(!inside || pair[0] != pair[1], "evaluation {k} repeated");
+        assert!(pair[0] != pair[1], "evaluation {k} repeated: {:?}", pair[0]);
     }
+    let mut seen = std::collections::HashSet::new();
+    let again = points
+        .iter()
+        .filter(|p| !seen.insert(p.map(f64::to_bits)))
+        .count();
+    assert!(again <= 4, "{again} points evaluated again");
 }
 
 /// A run is a pure function of the seed: the same seed, the same bits;
@@ -1030,12 +1037,12 @@ fn a_box_of_equal_sides_keeps_its_bits() {
     assert_eq!(
         hashes,
         [
-            (0x94d23f13551e4c3f, 0x485278b141f3be50),
-            (0xe787729da3e42a9d, 0xf708963af3de9a33),
+            (0xca96e43e5dcecbae, 0x66ebe50fdc04662b),
+            (0x5c896e33d4808e05, 0x554a963af7cf4fb9),
             (0x7a31b2bb494737bb, 0x7a31b2bb494737bb),
             (0xe8941b8a97dbb03a, 0x0b677bdbe92ff15b),
-            (0x30334f86f36220e8, 0xcd96f2fe3a3c1e32),
-            (0x43ce420cd630a5d2, 0x43ce420cd630a5d2),
+            (0x30334f86f36220e8, 0xe53b497a078f6c11),
+            (0xcdbad00d38bbc981, 0xcdbad00d38bbc981),
         ]
     );
 }

@@ -196,3 +196,43 @@ fn a_slope_reaches_its_corner_in_two_probes() {
         assert_eq!(calls.get(), 3);
     }
 }
+
+/// Beyond the path's last wall every step of a line search is the same
+/// point, the corner the path ends at: a zoom whose bracket ends there
+/// searches up to that corner. And a step too short to move any
+/// coordinate ends the search. On Styblinski–Tang in `[-5, 5]^2` (steep
+/// walls near the corners, whose values are above the minima inside)
+/// from 400 starts on a grid, no evaluation repeats the one before it
+/// (without the first rule, a zoom that reached a corner probed it up to
+/// four times in a row; without the second, a converged search probed its
+/// own point until the zoom gave up, 35 times).
+#[test]
+fn a_zoom_never_probes_the_corner_twice() {
+    let points = std::cell::RefCell::new(Vec::new());
+    let st = FnPotential::new(|x: &[f64; 2], g: &mut [f64; 2]| {
+        points.borrow_mut().push(*x);
+        hrla::StyblinskiTang.value_and_gradient(x, g)
+    });
+    let square = Interval::new(-5.0, 5.0).unwrap();
+    let mut lbfgs: Lbfgs<f64, 2, 5> = Lbfgs::new();
+    let mut corners = 0;
+    for i in 0..20 {
+        for j in 0..20 {
+            points.borrow_mut().clear();
+            let mut x = [-4.75 + 0.5 * i as f64, -4.75 + 0.5 * j as f64];
+            lbfgs
+                .minimize_in(&st, &square, &mut x, PolishSettings::new(200))
+                .unwrap();
+            let points = points.borrow();
+            for pair in points.windows(2) {
+                assert_ne!(pair[0], pair[1], "from grid point ({i}, {j})");
+            }
+            corners += points
+                .iter()
+                .filter(|p| p.iter().all(|v| v.abs() == 5.0))
+                .count();
+        }
+    }
+    // The corners are reached: the rule is exercised.
+    assert!(corners > 10, "{corners}");
+}

@@ -376,23 +376,32 @@ where
     ) -> Result<Polished<F>, Error> {
         let (unit, scale) = (self.unit, self.scale);
         if unit.is_identity() {
-            let start = start.map(|(value, grad)| (value, &*grad));
             return self
                 .lbfgs
                 .quench(&self.potential, self.domain, x, start, settings, scale);
         }
-        let start = start.map(|(value, grad)| {
+        let mut start = start;
+        if let Some((_, grad)) = &mut start {
             unit.gradient_in_place(grad);
-            (value, &*grad)
-        });
+        }
         let scaled = Scaled {
             potential: &self.potential,
             unit,
             x: RefCell::new(scratch),
         };
         unit.scale_in(x);
-        let done = self.lbfgs.quench(&scaled, &unit, x, start, settings, scale);
+        let done = self.lbfgs.quench(
+            &scaled,
+            &unit,
+            x,
+            start.as_mut().map(|(v, g)| (*v, &mut **g)),
+            settings,
+            scale,
+        );
         unit.scale_out(x);
+        if let (Ok(_), Some((_, grad))) = (&done, start) {
+            unit.gradient_out_in_place(grad);
+        }
         done
     }
 
@@ -409,8 +418,9 @@ where
 }
 
 /// A run in progress. Each chain's `x`, `value` and `grad` hold its basin
-/// (the quenched point; the gradient there is taken as zero, its value at
-/// a converged minimum), `y` the momentum its last trajectory ended with,
+/// (the quenched point; the gradient there as the first quenches leave it,
+/// which the measurement reads, while a round's sampling takes it as zero,
+/// its value at a converged minimum), `y` the momentum its last trajectory ended with,
 /// `diverged` whether its last proposal met an infeasible point.
 pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
     tally: Tally<'a, F, P, B, L>,
@@ -656,7 +666,7 @@ where
                 let start = Some((self.chains.value(c), &mut *self.grad));
                 let cap = self.tally.auto.first_quench;
                 if let Some(value) = self.tally.quench(c, self.x, self.base, start, cap)? {
-                    settle(self.chains.chain(c), self.x, value);
+                    settle(self.chains.chain(c), self.x, value, self.grad);
                 }
                 self.observe()?;
             }
@@ -721,19 +731,19 @@ where
         let mut curvature = [F::ZERO; PROBES];
         for (i, k) in curvature.iter_mut().take(probes).enumerate() {
             let c = i * n / probes;
-            moves::direction(self.chains.chain(c).rng, self.v);
-            self.base.copy_from_slice(self.chains.x(c));
+            let chain = self.chains.chain(c);
+            moves::direction(chain.rng, self.v);
+            self.g0.copy_from_slice(chain.grad);
+            self.base.copy_from_slice(chain.x);
             self.x.copy_from_slice(self.base);
             for (j, (xi, &vi)) in self.x.iter_mut().zip(&*self.v).enumerate() {
                 let (lo, hi) = domain.side(j);
                 *xi += delta * (hi - lo) * vi;
             }
             domain.project(self.x);
-            // Both ends evaluated: the basin's gradient is not stored.
-            let (Some(_), Some(_)) = (
-                self.tally.evaluate(self.base, self.g0)?,
-                self.tally.evaluate(self.x, self.grad)?,
-            ) else {
+            // The basin's own gradient is the chain's (the quench's end):
+            // the displaced end alone is evaluated.
+            let Some(_) = self.tally.evaluate(self.x, self.grad)? else {
                 continue;
             };
             // The curvature in the box's unit coordinates, where the
@@ -820,7 +830,7 @@ where
     }
 
     /// Langevin sampling: `steps` steps of `kernel` from the proposal's
-    /// point, each evaluated.
+    /// point, each new point evaluated.
     fn langevin(
         &mut self,
         c: usize,
@@ -828,6 +838,9 @@ where
         point: Point<F>,
         steps: u64,
     ) -> ControlFlow<Stop, Point<F>> {
+        // Whether `self.grad` is the gradient evaluated at the point (at a
+        // known basin it is taken as zero).
+        let mut evaluated = !matches!(point, Point::Known(_));
         let mut value = match point {
             Point::Known(value) => value,
             _ => match self.tally.evaluate(self.x, self.grad)? {
@@ -849,8 +862,16 @@ where
                 unit.gradient(self.grad, self.g0);
                 self.g0
             };
+            self.v.copy_from_slice(self.x);
             kernel.step_slice(self.x, self.y, g, self.chains.chain(c).rng);
             unit.confine(self.x, self.y);
+            if evaluated && *self.x == *self.v {
+                // Held where it was (in a corner of the box, every
+                // coordinate against its wall): the point's value and
+                // gradient are known.
+                self.observe()?;
+                continue;
+            }
             let at: &[F] = if identity {
                 self.x
             } else {
@@ -861,6 +882,7 @@ where
                 Some(v) => value = v,
                 None => return ControlFlow::Continue(Point::Rejected),
             }
+            evaluated = true;
             self.observe()?;
         }
         if !identity {
@@ -1160,11 +1182,12 @@ where
     }
 }
 
-/// Chain `c` takes the basin `(x, value)`, at rest.
-fn settle<F: Float, R>(chain: ChainMut<'_, F, R>, x: &[F], value: F) {
+/// Chain `c` takes the basin `(x, value)` with its gradient `grad`, at
+/// rest.
+fn settle<F: Float, R>(chain: ChainMut<'_, F, R>, x: &[F], value: F, grad: &[F]) {
     chain.x.copy_from_slice(x);
     *chain.value = value;
-    chain.grad.fill(F::ZERO);
+    chain.grad.copy_from_slice(grad);
     chain.y.fill(F::ZERO);
     *chain.diverged = false;
 }

@@ -128,6 +128,17 @@ impl<'a, F: Float, B: Sides<F> + ?Sized> Unit<'a, F, B> {
         }
     }
 
+    /// The gradient in the box's coordinates of the gradient `g` in unit
+    /// coordinates, in place.
+    pub(super) fn gradient_out_in_place(&self, g: &mut [F]) {
+        if self.equal {
+            return;
+        }
+        for (i, gi) in g.iter_mut().enumerate() {
+            *gi = *gi / self.w(i);
+        }
+    }
+
     /// The gradient in unit coordinates of the gradient `g` in `x`.
     #[inline]
     pub(super) fn gradient(&self, g: &[F], out: &mut [F]) {
