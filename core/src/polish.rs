@@ -1183,3 +1183,39 @@ impl<F: Float> Search<F> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A step whose pair L-BFGS rejects (`s'y <= 0`, here on a full
+    /// memory of one pair) leaves the kept pair and its `rho` as they
+    /// were: the two-loop recursion reads them together.
+    #[test]
+    fn a_rejected_pair_leaves_a_full_memory_as_it_was() {
+        let mut storage = [0.0_f64; LbfgsIn::<f64>::floats(2, 1)];
+        let mut lbfgs = LbfgsIn::new(2, 1, &mut storage).unwrap();
+        let (mut memory, _) = lbfgs.split();
+        let mut x = [0.0, 0.0];
+        let settings = PolishSettings::new(10);
+        let (mut search, _) = memory.begin(&Unbounded, &mut x, settings, Scale::ONE);
+        search.value = 1.0;
+        memory.s.copy_from_slice(&[1.0, 0.0]);
+        memory.y.copy_from_slice(&[2.0, 0.0]);
+        memory.rho[0] = 0.5;
+        (*memory.len, *memory.next) = (1, 0);
+        memory.grad.copy_from_slice(&[1.0, 1.0]);
+        // s = (0, 1), y = (0, -1): s'y = -1.
+        memory.trial.copy_from_slice(&[0.0, 1.0]);
+        memory.trial_grad.copy_from_slice(&[1.0, 0.0]);
+        let step = LinePoint {
+            step: 1.0,
+            value: 0.5,
+            slope: -1.0,
+        };
+        memory.accept(&mut search, &Unbounded, &mut x, step);
+        assert_eq!(x, [0.0, 1.0]);
+        assert_eq!((&*memory.s, &*memory.y), (&[1.0, 0.0][..], &[2.0, 0.0][..]));
+        assert_eq!((memory.rho[0], *memory.len), (0.5, 1));
+    }
+}
