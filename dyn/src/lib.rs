@@ -55,5 +55,6 @@ pub use settings::{
 };
 pub use user::{BatchFunction, UserBatch, UserError};
 
-/// The L-BFGS memory of the polish and quenches (the kernel's `M`).
+/// The L-BFGS memory of the samplers' polish (the kernel's `M`), and the
+/// least of `Auto`'s quenches, which keep two pairs a coordinate up to 64.
 pub const MEMORY: usize = 8;

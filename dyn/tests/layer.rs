@@ -413,11 +413,12 @@ fn auto_runs_in_a_box_per_coordinate() {
 }
 
 /// Auto at a dimension no table lists (17, 257) runs, and at 17 gives the
-/// bits of the kernel's `Auto` over `Chain<f64, 17>`.
+/// bits of the kernel's `Auto` over `Chain<f64, 17>` with the layer's
+/// L-BFGS memory (two pairs a coordinate: 34).
 #[test]
 fn auto_runs_at_any_dimension() {
     let mut chains: Vec<Chain<f64, 17>> = (0..4).map(|_| Chain::new()).collect();
-    let mut lbfgs: Lbfgs<f64, 17, 8> = Lbfgs::new();
+    let mut lbfgs: Lbfgs<f64, 17, 34> = Lbfgs::new();
     let domain = Interval::new(-5.12, 5.12).unwrap();
     let kernel = Auto::default()
         .minimize(
@@ -454,12 +455,13 @@ fn auto_runs_at_any_dimension() {
 }
 
 /// `x0` is chain 0's start in the layer as in the kernel (the same bits
-/// as `Auto::minimize` from `x0` over `Chain<f64, 17>`), and its length fixes
+/// as `Auto::minimize` from `x0` over `Chain<f64, 17>` and 34 pairs of
+/// L-BFGS memory), and its length fixes
 /// the dimension like the box's does.
 #[test]
 fn auto_starts_chain_0_at_x0() {
     let mut chains: Vec<Chain<f64, 17>> = (0..4).map(|_| Chain::new()).collect();
-    let mut lbfgs: Lbfgs<f64, 17, 8> = Lbfgs::new();
+    let mut lbfgs: Lbfgs<f64, 17, 34> = Lbfgs::new();
     let domain = Interval::new(-5.12, 5.12).unwrap();
     let x0: [f64; 17] = std::array::from_fn(|i| 0.25 * i as f64 - 2.0);
     let kernel = Auto::default()
@@ -511,7 +513,8 @@ fn auto_starts_chain_0_at_x0() {
 #[test]
 fn auto_is_the_kernels() {
     let mut chains: Vec<Chain<f64, 10>> = (0..8).map(|_| Chain::new()).collect();
-    let mut lbfgs: Lbfgs<f64, 10, 8> = Lbfgs::new();
+    // The layer's memory at d = 10: two pairs a coordinate.
+    let mut lbfgs: Lbfgs<f64, 10, 20> = Lbfgs::new();
     let domain = Interval::new(-5.12, 5.12).unwrap();
     let kernel = Auto::default()
         .minimize(
