@@ -937,8 +937,13 @@ impl<F: Float> Memory<'_, F> {
         }
         // Beyond the path's last wall every step is the same point, the
         // one the path ends at: an end of the bracket beyond it stands
-        // there, so that no probe repeats it.
-        let end = self.path(domain, x, F::ZERO).last;
+        // there, so that no probe repeats it. Once, as the zoom begins:
+        // its probes stay inside the bracket.
+        let end = if s.trials == 0 {
+            self.path(domain, x, F::ZERO).last
+        } else {
+            F::ZERO
+        };
         if end > F::ZERO {
             for p in [&mut s.lo, &mut s.hi] {
                 if p.step > end {

@@ -417,11 +417,12 @@ where
     }
 }
 
-/// A run in progress. Each chain's `x`, `value` and `grad` hold its basin
-/// (the quenched point; the gradient there as the first quenches leave it,
-/// which the measurement reads, while a round's sampling takes it as zero,
-/// its value at a converged minimum), `y` the momentum its last trajectory ended with,
-/// `diverged` whether its last proposal met an infeasible point.
+/// A run in progress. Each chain's `x` and `value` hold its basin (the
+/// quenched point, its value at a converged minimum), `grad` the gradient
+/// there as the first quenches leave it (the measurement reads it; a
+/// round's sampling takes a basin's gradient as zero), `y` the momentum
+/// its last trajectory ended with, `diverged` whether its last proposal
+/// met an infeasible point.
 pub(super) struct Run<'a, F, P: ?Sized, B: ?Sized, S: ?Sized, L: ?Sized, O> {
     tally: Tally<'a, F, P, B, L>,
     chains: &'a mut S,
