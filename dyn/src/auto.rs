@@ -66,6 +66,10 @@ pub struct Problem {
     pub rounds: Option<u64>,
     /// The convergence rule's window of rounds ([`hrla::Problem::converge`]).
     pub converge: Option<u64>,
+    /// The budget the run plans within, the first quench free to go on to
+    /// `budget` ([`hrla::Problem::soft_budget`]); the default chains are
+    /// those of this budget.
+    pub soft: Option<u64>,
 }
 
 /// Minimises `problem` with `auto` at the problem's dimension, any
@@ -86,9 +90,12 @@ pub fn solve(
         ("the box", problem.domain.dimension()),
         ("x0", problem.x0.as_ref().map(Vec::len)),
     ])?;
+    let planned = problem
+        .soft
+        .map_or(problem.budget, |s| s.min(problem.budget));
     let n = problem
         .chains
-        .unwrap_or_else(|| Auto::<f64>::chains_for(problem.budget));
+        .unwrap_or_else(|| Auto::<f64>::chains_for(planned));
     let domain = problem.domain.sides()?;
     let pot = problem.potential.build(d)?;
     let mut storage = Storage::new(n, d)?;
@@ -118,6 +125,9 @@ pub fn solve(
     }
     if let Some(window) = problem.converge {
         posed = posed.converge(window);
+    }
+    if let Some(soft) = problem.soft {
+        posed = posed.soft_budget(soft);
     }
     let found = auto.minimize_with(&posed, &mut lent, observe);
     pot.finish()?;

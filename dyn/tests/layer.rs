@@ -184,6 +184,7 @@ fn the_observer_sees_the_best_point() {
         stall: None,
         rounds: None,
         converge: None,
+        soft: None,
     };
     let mut calls = 0;
     let s = solve(&Auto::default(), &problem, &mut |p| {
@@ -385,6 +386,7 @@ fn auto_runs_in_a_box_per_coordinate() {
         stall: None,
         rounds: None,
         converge: None,
+        soft: None,
     };
     let sides = wide_and_narrow();
     let found = solve(
@@ -439,6 +441,7 @@ fn auto_runs_at_any_dimension() {
             stall: None,
             rounds: None,
             converge: None,
+            soft: None,
         };
         let s = solve(&Auto::default(), &problem, &mut |_| {
             ControlFlow::Continue(())
@@ -485,6 +488,7 @@ fn auto_starts_chain_0_at_x0() {
         stall: None,
         rounds: None,
         converge: None,
+        soft: None,
     };
     let s = solve(&Auto::default(), &problem, &mut |_| {
         ControlFlow::Continue(())
@@ -535,6 +539,7 @@ fn auto_is_the_kernels() {
             stall: None,
             rounds: None,
             converge: None,
+            soft: None,
         };
         let s = solve(&Auto::default(), &problem, &mut |_| {
             ControlFlow::Continue(())

@@ -641,13 +641,16 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
     # which needs values only, with the rest (the layer's rule,
     # hrla_dyn::budget::auto_share). hrla.Auto(...) as the method runs
     # Auto alone.
+    # Its first quench, from the best start, may run past the share
+    # (the soft budget) to the hard one.
     share = None
     if settings is None and objective is not None and objective.scheme is not None and size is not None:
         share = auto_share(budget, size, spend.cost, spend.spare, chains)
     ensemble = share is not None
     whole = budget
+    soft = None
     if share is not None:
-        budget = share
+        soft, budget = share
     # The limits as the run's own rules, which take only finite numbers:
     # the largest float stands for inf (target=inf: any finite value
     # reaches it; stall's tolerance inf: the run stalls after its window).
@@ -656,14 +659,15 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
                         with_x=callback is not None,
                         target=None if target is None else min(target, sys.float_info.max),
                         stall=None if stall is None else (stall[0], min(stall[1], sys.float_info.max)),
-                        rounds=maxiter, converge=converge)
+                        rounds=maxiter, converge=converge, soft_budget=soft)
     termination = w.reason if s.termination == "Observer" and w.reason else s.termination
     x, value, nit = np.asarray(s.x), s.value, s.rounds
     left = spend.maxfun - nfev(s.evaluations) - spend.cost * spend.spare
     # The caller's rules that ended Auto end the run: the ensemble takes
     # over only from Auto's own ends (its share spent, or converged).
     phases = None
-    if (ensemble and termination in ("Evaluations", "Converged") and left > 0 and budget < whole
+    planned = budget if soft is None else soft
+    if (ensemble and termination in ("Evaluations", "Converged") and left > 0 and planned < whole
             and (maxiter is None or nit < maxiter)):
         assert objective is not None and size is not None
         x, value, nit, termination = _ensemble(objective, box, size, left, seed, w, x, value, nit, target=target,
@@ -676,7 +680,7 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
         w.show(nit, s.evaluations, value, _clock())
     njev = objective.njev if objective is not None else s.evaluations
     note = ""
-    if termination == "Evaluations" and budget == whole:
+    if termination == "Evaluations" and planned == whole:
         # Auto's rounds stop when what is left would not fit one more, and
         # its final polish gets the rest.
         note = spend.note(nfev(s.evaluations), njev, s.evaluations,

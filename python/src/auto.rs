@@ -139,7 +139,12 @@ impl PyAuto {
     /// initial values), over `window` rounds (`"Converged"`; `converged_window`
     /// is the measured default). A run ended by `stall`, `rounds` or
     /// `converge` still polishes its best point.
-    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, x0 = None, observer = None, with_x = false, target = None, stall = None, rounds = None, converge = None))]
+    ///
+    /// `soft_budget`, below `budget`, is the budget the run plans within:
+    /// the quench of its lowest initial point may go on past it to
+    /// `budget`, and a run whose first quench did ends there
+    /// (`"Evaluations"`); the default chains are those of `soft_budget`.
+    #[pyo3(signature = (potential, domain, budget, seed = None, *, chains = None, dim = None, x0 = None, observer = None, with_x = false, target = None, stall = None, rounds = None, converge = None, soft_budget = None))]
     #[allow(clippy::too_many_arguments)]
     fn minimize(
         &self,
@@ -157,6 +162,7 @@ impl PyAuto {
         stall: Option<(u64, f64)>,
         rounds: Option<&Bound<'_, PyAny>>,
         converge: Option<&Bound<'_, PyAny>>,
+        soft_budget: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PySolution> {
         guard(|| {
             let problem = Problem {
@@ -171,6 +177,7 @@ impl PyAuto {
                 stall,
                 rounds: config::unsigned_opt(rounds, "rounds")?,
                 converge: config::unsigned_opt(converge, "converge")?,
+                soft: config::unsigned_opt(soft_budget, "soft_budget")?,
             };
             self.solve(py, &problem, observer, with_x)
         })

@@ -107,6 +107,27 @@ def test_auto_stall_is_only_the_convergence_window():
         hrla.Auto(jump_rate=0.1)
 
 
+def test_a_soft_budget_lets_the_first_quench_finish():
+    # A 10-D ellipsoid of condition 1e6: 60 evaluations cut the best
+    # start's quench short; a soft budget of 60 within 1 200 lets it end.
+    scale = 10.0 ** (6 * np.arange(10) / 9)
+
+    def ellipsoid(x):  # a batch of points, (n, 10)
+        return (x * x) @ scale, 2 * scale * x
+
+    box = [(-5.0, 5.0)] * 10
+    cut = hrla.Auto().minimize(ellipsoid, box, 60, 1, chains=8)
+    soft = hrla.Auto().minimize(ellipsoid, box, 1_200, 1, chains=8, soft_budget=60)
+    assert cut.value > 1.0 and cut.termination == "Evaluations"
+    assert soft.value < 1e-6 and soft.termination == "Evaluations" and soft.rounds == 0
+    assert 60 < soft.evaluations <= 1_200
+    # At the budget or above it, the soft budget changes nothing.
+    same = hrla.Auto().minimize(ellipsoid, box, 60, 1, chains=8, soft_budget=600)
+    assert (same.value, same.evaluations, tuple(same.x)) == (cut.value, cut.evaluations, tuple(cut.x))
+    with pytest.raises(ValueError):
+        hrla.Auto().minimize(hrla.Rastrigin(), box, 1_200, 1, soft_budget=-1)
+
+
 def test_views_look_into_the_optimizer():
     opt = hrla.Optimizer(hrla.Rastrigin(), hrla.Hrla.paper(0.01), 4.0, hrla.Gaussian([3.0] * 10, 3.0),
                          chains=5, seed=2, stop=hrla.Stop().steps(50))

@@ -106,6 +106,78 @@ fn a_quench_reuses_its_start() {
     assert!(again <= 4, "{again} points evaluated again");
 }
 
+/// A soft budget lets the best start's quench run on past it, to the
+/// budget: on a 10-D ellipsoid of condition `10^6`, a run of 60
+/// evaluations ends with its first quench cut short (at `U` near 50), and
+/// the same run given 1 200 with a soft budget of 60 converges that
+/// quench (below `1e-6`), ends there (the soft budget spent: nothing else starts), and
+/// spends at most the budget. A soft budget at or above the budget
+/// changes no bit.
+#[test]
+fn a_soft_budget_lets_the_best_start_finish() {
+    let calls = Cell::new(0u64);
+    let p = FnPotential::new(|x: &[f64; 10], g: &mut [f64; 10]| {
+        calls.set(calls.get() + 1);
+        let mut u = 0.0;
+        for i in 0..10 {
+            let c = 10f64.powf(6.0 * i as f64 / 9.0);
+            u += c * x[i] * x[i];
+            g[i] = 2.0 * c * x[i];
+        }
+        u
+    });
+    let domain = Interval::new(-5.0, 5.0).unwrap();
+    let run = |problem: Problem<'_, f64, _, _>| {
+        calls.set(0);
+        let mut lbfgs: Lbfgs<f64, 10, 20> = Lbfgs::new();
+        let found = Auto::default()
+            .minimize(&problem, (&mut chains::<10>(8)[..], &mut lbfgs))
+            .unwrap();
+        assert_eq!(found.evaluations, calls.get());
+        found
+    };
+    let cut = run(Problem::new(&p, &domain, 60).seed(1));
+    let soft = run(Problem::new(&p, &domain, 1_200).seed(1).soft_budget(60));
+    assert_eq!(cut.termination, Termination::Evaluations);
+    assert!(cut.value > 1.0, "{cut:?}");
+    assert_eq!(soft.termination, Termination::Evaluations);
+    assert_eq!(soft.rounds, 0, "{soft:?}");
+    assert!(
+        soft.evaluations > 60 && soft.evaluations <= 1_200,
+        "{soft:?}"
+    );
+    assert!(soft.value < 1e-6, "{soft:?}");
+    for budget in [60, 3_000] {
+        let plain = run(Problem::new(&p, &domain, budget).seed(1));
+        for above in [budget, 10 * budget] {
+            let same = run(Problem::new(&p, &domain, budget).seed(1).soft_budget(above));
+            assert_eq!(same, plain, "soft budget {above}");
+        }
+    }
+}
+
+/// A best start whose quench ends within the soft budget leaves a run
+/// that plans within it bit for bit as a run with that budget: the
+/// budget above the soft one goes to that quench only.
+#[test]
+fn a_soft_budget_is_the_budget_once_the_first_quench_ends() {
+    let domain = Interval::new(-5.0, 5.0).unwrap();
+    let run = |problem: Problem<'_, f64, StyblinskiTang, Interval<f64>>| {
+        let mut lbfgs: Lbfgs<f64, 2, 5> = Lbfgs::new();
+        Auto::default()
+            .minimize(&problem, (&mut chains::<2>(8)[..], &mut lbfgs))
+            .unwrap()
+    };
+    for soft in [1_000, 3_000] {
+        let plain = run(Problem::new(&StyblinskiTang, &domain, soft).seed(3));
+        let planned = run(Problem::new(&StyblinskiTang, &domain, 4 * soft)
+            .seed(3)
+            .soft_budget(soft));
+        assert!(plain.rounds > 0, "{plain:?}");
+        assert_eq!(planned, plain, "soft budget {soft}");
+    }
+}
+
 /// A run is a pure function of the seed: the same seed, the same bits;
 /// another seed, another run.
 #[test]

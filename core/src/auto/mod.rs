@@ -72,7 +72,9 @@
 //! In a box of equal sides the unit coordinates are the box's own.
 //!
 //! The evaluation budget covers everything: initial points, probes,
-//! steps, quenches and the final polish. The constants of
+//! steps, quenches and the final polish. A [soft
+//! budget](Problem::soft_budget) below it is the one the run plans
+//! within, the quench of the best start free to finish past it. The constants of
 //! [`Auto::default`] were chosen on the quality benchmark
 //! (`bench/quality`, `docs/QUALITY.md`), the same for every problem;
 //! [`Auto::parts`] switches parts off for the benchmark's ablations and
@@ -288,7 +290,12 @@ impl<F: Float> Auto<F> {
             let (lo, hi) = domain.side(i);
             Interval::new(lo, hi)?;
         }
-        let budget = problem.budget;
+        let (hard, budget) = (
+            problem.budget,
+            problem
+                .soft
+                .map_or(problem.budget, |s| s.min(problem.budget)),
+        );
         if budget < 2 * n as u64 {
             return Err(Error::Budget {
                 budget,
@@ -310,7 +317,8 @@ impl<F: Float> Auto<F> {
             buffers,
             observer,
         )?
-        .with_rules(problem.rules, problem.converge);
+        .with_rules(problem.rules, problem.converge)
+        .with_overrun(hard);
         let ended = run.solve();
         // A stop can read as an infeasible point the method steps over (a
         // quench that cannot start): it ends the run however it ended.

@@ -62,6 +62,8 @@ pub struct Problem<'p, F, P: ?Sized, B: ?Sized> {
     pub(super) rules: Stop<F>,
     /// The convergence rule's window of rounds.
     pub(super) converge: Option<u64>,
+    /// The budget the run plans within, at most `budget`.
+    pub(super) soft: Option<u64>,
 }
 
 impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
@@ -78,6 +80,7 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
             x0: None,
             rules: Stop::new(),
             converge: None,
+            soft: None,
         }
     }
 
@@ -132,6 +135,20 @@ impl<'p, F: Float, P: ?Sized, B: Sides<F> + ?Sized> Problem<'p, F, P, B> {
     /// best: two stalls, `2 auto.stall` rounds.
     pub fn converged(self, auto: &Auto<F>) -> Self {
         self.converge(auto.stall.saturating_mul(2))
+    }
+
+    /// A soft budget: the run plans within `soft` evaluations (its rounds
+    /// and the polish's reserve), but the quench of the lowest initial
+    /// point, the run's best start, may go on past it to the budget. A
+    /// run whose first quench went past `soft` starts nothing after it
+    /// and ends as its budget ends ([`Termination::Evaluations`]), having
+    /// spent what that quench took. For a caller that hands what is left
+    /// to another method: a best start cut short is a basin half searched,
+    /// where a converged one is a point the other method can build on. A
+    /// soft budget at or above the budget changes nothing.
+    pub fn soft_budget(mut self, soft: u64) -> Self {
+        self.soft = Some(soft);
+        self
     }
 
     /// End the rounds after `k` of them (`0`: the starts and the polish

@@ -283,6 +283,8 @@ struct Tally<'a, F, P: ?Sized, B: ?Sized, L: ?Sized> {
     /// The problem's units, in which the quenches' constants hold.
     scale: Scale<F>,
     budget: u64,
+    /// The budget the first quench may run to (at least `budget`).
+    overrun: u64,
     evaluations: u64,
     rounds: u64,
     /// The best feasible point evaluated, and whether a converged L-BFGS
@@ -568,6 +570,7 @@ where
                 lbfgs,
                 scale: Scale::ONE,
                 budget,
+                overrun: budget,
                 evaluations,
                 rounds: 0,
                 best,
@@ -606,6 +609,13 @@ where
     pub(super) fn with_rules(mut self, rules: Rules<F>, converge: Option<u64>) -> Self {
         self.rules = rules;
         self.converge = converge;
+        self
+    }
+
+    /// Lets the first quench run on to `hard` evaluations (see
+    /// [`Problem::soft_budget`](super::Problem::soft_budget)).
+    pub(super) fn with_overrun(mut self, hard: u64) -> Self {
+        self.tally.overrun = hard.max(self.tally.budget);
         self
     }
 
@@ -666,7 +676,15 @@ where
                 self.grad.copy_from_slice(self.chains.chain(c).grad);
                 let start = Some((self.chains.value(c), &mut *self.grad));
                 let cap = self.tally.auto.first_quench;
-                if let Some(value) = self.tally.quench(c, self.x, self.base, start, cap)? {
+                // The best start's quench may overrun the soft budget; what
+                // it spent past it is then the run's budget.
+                let planned = self.tally.budget;
+                if c == lowest {
+                    self.tally.budget = self.tally.overrun;
+                }
+                let quenched = self.tally.quench(c, self.x, self.base, start, cap);
+                self.tally.budget = planned.max(self.tally.evaluations);
+                if let Some(value) = quenched? {
                     settle(self.chains.chain(c), self.x, value, self.grad);
                 }
                 self.observe()?;
