@@ -2,7 +2,7 @@
 //! run between the chains' steps and the polish of the best point at its
 //! end ([`split`]); a run without a gradient between `Auto`, on gradients
 //! by finite differences, and the gradient-free ensemble after it
-//! ([`auto_share`], its first quench free to run past it).
+//! ([`auto_share`]).
 
 /// A sampler run's shares of its budget, in evaluations.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,29 +49,15 @@ pub const ENSEMBLE_CALLS: u64 = 100;
 /// quench of `O(d)` iterations to end.
 pub const ENSEMBLE_GRADIENTS: u64 = 15;
 
-/// How far `Auto`'s first quench, from its best start, may run past its
-/// share: to this many times the share. On bbob a quench cut short at the
-/// share leaves the ensemble a basin half searched; let run on (with
-/// [`hrla::Problem::soft_budget`]) it gained 5.4 points of the share of
-/// targets at `200 d` calls in d = 5 and 4.6 at `300 d` in d = 10
-/// (docs/QUALITY.md, "Black-box: COCO bbob").
-pub const OVERRUN: u64 = 3;
-
-/// `Auto`'s part of a run without a gradient, in gradients.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Share {
-    /// The budget `Auto` plans within ([`hrla::Problem::soft_budget`]).
-    pub soft: u64,
-    /// The budget its first quench may run on to: [`OVERRUN`] shares, at
-    /// most the run's.
-    pub hard: u64,
-}
-
-/// `Auto`'s part of a run of `budget` gradients of `cost` calls of `U`
-/// each (`1 + d` for forward differences), `spare` of them kept back by
-/// the caller, whose ensemble takes the rest; `chains` is `Auto`'s (none:
-/// [`hrla::Auto::chains_for`] its share). The share is at least two
-/// gradients a chain and never more than `budget`. `None` where the
+/// `Auto`'s budget, in gradients, in a run of `budget` gradients of `cost`
+/// calls of `U` each (`1 + d` for forward differences), `spare` of them
+/// kept back by the caller, whose ensemble takes the rest; `chains` is
+/// `Auto`'s (none: [`hrla::Auto::chains_for`] its share). At least two
+/// gradients a chain, and never more than `budget`. A soft budget
+/// ([`hrla::Problem::soft_budget`]): the quench of `Auto`'s best start
+/// may finish past it, since one cut short leaves the ensemble a basin
+/// half searched (on bbob, 5.4 points of the share of targets at `200 d`
+/// calls in d = 5; docs/QUALITY.md, "Black-box: COCO bbob"). `None` where the
 /// ensemble takes no part: `d` beyond [`Ensemble::MAX_DIM`](crate::Ensemble::MAX_DIM).
 pub fn auto_share(
     budget: u64,
@@ -79,7 +65,7 @@ pub fn auto_share(
     cost: u64,
     spare: u64,
     chains: Option<usize>,
-) -> Option<Share> {
+) -> Option<u64> {
     if d > crate::Ensemble::MAX_DIM {
         return None;
     }
@@ -87,11 +73,7 @@ pub fn auto_share(
     let calls = ENSEMBLE_CALLS.max(ENSEMBLE_GRADIENTS * d) * d;
     let share = (calls / cost.max(1)).saturating_sub(spare).max(1);
     let chains = chains.unwrap_or_else(|| hrla::Auto::<f64>::chains_for(share)) as u64;
-    let soft = budget.min(share.max(2 * chains));
-    Some(Share {
-        soft,
-        hard: budget.min(soft.saturating_mul(OVERRUN)),
-    })
+    Some(budget.min(share.max(2 * chains)))
 }
 
 #[cfg(test)]
@@ -129,17 +111,12 @@ mod tests {
     fn auto_takes_its_share_of_a_run_without_a_gradient() {
         // d = 4, forward differences (5 calls a gradient), one kept back:
         // 100 d = 400 calls, 80 gradients, 79 with the spare out.
-        let soft = |b, d, cost, chains| auto_share(b, d, cost, 1, chains).map(|s| s.soft);
-        assert_eq!(soft(25_000, 4, 5, None), Some(79));
+        assert_eq!(auto_share(25_000, 4, 5, 1, None), Some(79));
         // From d = 7 on, 15 d calls per coordinate: d = 10, 1 500 calls.
-        assert_eq!(soft(1_000_000, 10, 11, None), Some(1_500 / 11 - 1));
+        assert_eq!(auto_share(1_000_000, 10, 11, 1, None), Some(1_500 / 11 - 1));
         // At least two gradients a chain, never beyond the budget.
-        assert_eq!(soft(25_000, 1, 1_000, Some(8)), Some(16));
-        assert_eq!(soft(10, 4, 5, None), Some(10));
-        // The first quench may run to three shares, within the budget.
-        assert_eq!(auto_share(25_000, 4, 5, 1, None).unwrap().hard, 3 * 79);
-        assert_eq!(auto_share(200, 4, 5, 1, None).unwrap().hard, 200);
-        assert_eq!(auto_share(10, 4, 5, 1, None).unwrap().hard, 10);
+        assert_eq!(auto_share(25_000, 1, 1_000, 1, Some(8)), Some(16));
+        assert_eq!(auto_share(10, 4, 5, 1, None), Some(10));
         // Beyond the ensemble's dimensions, Auto runs alone.
         assert_eq!(auto_share(25_000, 21, 22, 1, None), None);
     }

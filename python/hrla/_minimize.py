@@ -641,16 +641,13 @@ def _auto(potential: Any, box: Box, budget: int, seed: int, chains: Optional[int
     # which needs values only, with the rest (the layer's rule,
     # hrla_dyn::budget::auto_share). hrla.Auto(...) as the method runs
     # Auto alone.
-    # Its first quench, from the best start, may run past the share
-    # (the soft budget) to the hard one.
-    share = None
-    if settings is None and objective is not None and objective.scheme is not None and size is not None:
-        share = auto_share(budget, size, spend.cost, spend.spare, chains)
-    ensemble = share is not None
-    whole = budget
+    # The share is Auto's soft budget: the quench of its best start may
+    # finish past it.
     soft = None
-    if share is not None:
-        soft, budget = share
+    if settings is None and objective is not None and objective.scheme is not None and size is not None:
+        soft = auto_share(budget, size, spend.cost, spend.spare, chains)
+    ensemble = soft is not None
+    whole = budget
     # The limits as the run's own rules, which take only finite numbers:
     # the largest float stands for inf (target=inf: any finite value
     # reaches it; stall's tolerance inf: the run stalls after its window).

@@ -387,11 +387,10 @@ fn split_budget(
     hrla_dyn::budget::split(budget, chains, polish, x0).map(|s| (s.steps, s.polish))
 }
 
-/// `Auto`'s part of a run without a gradient of `budget` gradients of
-/// `cost` calls each (`spare` kept back), whose ensemble takes the rest:
-/// `(soft, hard)`, the budget it plans within and the one its first
-/// quench may run on to; `None` where the ensemble takes no part (`dim`
-/// beyond `ENSEMBLE_MAX_DIM`).
+/// `Auto`'s budget, in gradients, in a run without a gradient of `budget`
+/// gradients of `cost` calls each (`spare` kept back), whose ensemble
+/// takes the rest; `None` where the ensemble takes no part (`dim` beyond
+/// `ENSEMBLE_MAX_DIM`).
 #[pyfunction]
 #[pyo3(signature = (budget, dim, cost, spare, chains = None))]
 fn auto_share(
@@ -400,8 +399,8 @@ fn auto_share(
     cost: u64,
     spare: u64,
     chains: Option<usize>,
-) -> Option<(u64, u64)> {
-    hrla_dyn::budget::auto_share(budget, dim, cost, spare, chains).map(|s| (s.soft, s.hard))
+) -> Option<u64> {
+    hrla_dyn::budget::auto_share(budget, dim, cost, spare, chains)
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
