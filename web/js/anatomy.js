@@ -6,6 +6,8 @@
 // kernel's own: the law comes from the wrapper's `nextStep`, the draw is
 // the step the run then took.
 
+import { fitCanvas } from "./plots.js";
+
 /** Offsets in the wrapper's `nextStep` array. */
 const N = { A: 0, X: 1, Y: 3, G: 5, M: 7, PUSH_G: 17, PUSH_Y: 19 };
 /** Offsets within one coordinate's moments. */
@@ -40,18 +42,6 @@ export function num(v) {
 }
 
 const vec = (v) => `(${num(v[0])}, ${num(v[1])})`;
-
-/** Sizes a canvas to its box at the device pixel ratio; returns [w, h] in CSS pixels. */
-function fit(canvas) {
-  const dpr = window.devicePixelRatio || 1;
-  const w = canvas.clientWidth;
-  const h = canvas.clientHeight;
-  canvas.width = Math.round(w * dpr);
-  canvas.height = Math.round(h * dpr);
-  const ctx = canvas.getContext("2d");
-  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
-  return [w, h];
-}
 
 export function arrow(ctx, x0, y0, x1, y1, colour) {
   const len = Math.hypot(x1 - x0, y1 - y0);
@@ -119,7 +109,7 @@ export function reachOf(law, draw) {
  * from start to draw), sigmaPx }.
  */
 export function drawPositionInset(canvas, law, draw, reach = reachOf(law, draw)) {
-  const [w, h] = fit(canvas);
+  const [w, h] = fitCanvas(canvas);
   const ctx = canvas.getContext("2d");
   ctx.fillStyle = "#0c0e12";
   ctx.fillRect(0, 0, w, h);
@@ -185,7 +175,7 @@ export function drawPositionInset(canvas, law, draw, reach = reachOf(law, draw))
  * its covariance) and the draw. OLA has no velocity: its law is a segment.
  */
 export function drawPhaseInset(canvas, law, draw) {
-  const [w, h] = fit(canvas);
+  const [w, h] = fitCanvas(canvas);
   const ctx = canvas.getContext("2d");
   ctx.fillStyle = "#0c0e12";
   ctx.fillRect(0, 0, w, h);

@@ -5,6 +5,7 @@
 // segments (pace.js's DrawBudget), so that they shorten rather than slow
 // the page. The dots, the positions, are never cut.
 
+import { strokeOutlined } from "./landscape.js";
 import { trailAges } from "./pace.js";
 
 /** The dots' radius and their dark rim's width, in CSS pixels. */
@@ -61,31 +62,14 @@ export function drawChains(canvas, frame, dpr, runs, mark = null, cap = Infinity
   for (const run of [...runs].reverse()) {
     const px = frame.px(run.best[0]);
     const py = frame.py(run.best[1]);
-    for (const [colour, width] of [
-      ["#000", 3],
-      [runs.length > 1 ? run.colour : "#ff5a36", 1.6],
-    ]) {
-      ctx.lineWidth = width;
-      ctx.strokeStyle = colour;
-      ctx.beginPath();
-      ctx.arc(px, py, 8, 0, 2 * Math.PI);
-      ctx.stroke();
-    }
+    const colour = runs.length > 1 ? run.colour : "#ff5a36";
+    strokeOutlined(ctx, () => ctx.arc(px, py, 8, 0, 2 * Math.PI), colour, 1.6, 3);
   }
   if (mark) {
     const px = frame.px(mark[0]);
     const py = frame.py(mark[1]);
     ctx.setLineDash([3, 3]);
-    for (const [colour, width] of [
-      ["#000", 3],
-      ["#ffd166", 1.5],
-    ]) {
-      ctx.lineWidth = width;
-      ctx.strokeStyle = colour;
-      ctx.beginPath();
-      ctx.arc(px, py, 12, 0, 2 * Math.PI);
-      ctx.stroke();
-    }
+    strokeOutlined(ctx, () => ctx.arc(px, py, 12, 0, 2 * Math.PI), "#ffd166", 1.5, 3);
     ctx.setLineDash([]);
   }
   ctx.restore();

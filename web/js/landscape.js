@@ -4,6 +4,7 @@
 // the size or a changes. The chains over it are chains.js's.
 
 import { VIRIDIS, viridisCss } from "./colormap.js";
+import { fitCanvas } from "./plots.js";
 
 /** Margins of the plot area inside the canvas, in CSS pixels. */
 const MARGIN = { left: 34, right: 10, top: 10, bottom: 26 };
@@ -134,19 +135,13 @@ export function drawLandscape(canvas, frame, dpr, scale, w, h, minimisers) {
   for (const [mx, my] of minimisers) {
     const cx = frame.px(mx);
     const cy = frame.py(my);
-    for (const [colour, width] of [
-      ["#000", 3.5],
-      ["#fff", 1.5],
-    ]) {
-      ctx.strokeStyle = colour;
-      ctx.lineWidth = width;
-      ctx.beginPath();
+    const cross = () => {
       ctx.moveTo(cx - 7, cy);
       ctx.lineTo(cx + 7, cy);
       ctx.moveTo(cx, cy - 7);
       ctx.lineTo(cx, cy + 7);
-      ctx.stroke();
-    }
+    };
+    strokeOutlined(ctx, cross, "#fff", 1.5, 3.5);
   }
   if (minimisers.length) {
     const [mx, my] = minimisers[0];
@@ -154,15 +149,28 @@ export function drawLandscape(canvas, frame, dpr, scale, w, h, minimisers) {
   }
 }
 
+/**
+ * Strokes the path `trace` adds twice: black, `outline` wide, then `colour`,
+ * `width` wide, over it; the black edge keeps a mark seen on every colour
+ * of the background.
+ */
+export function strokeOutlined(ctx, trace, colour, width, outline) {
+  for (const [c, w] of [
+    ["#000", outline],
+    [colour, width],
+  ]) {
+    ctx.strokeStyle = c;
+    ctx.lineWidth = w;
+    ctx.beginPath();
+    trace();
+    ctx.stroke();
+  }
+}
+
 /** The colour bar: the scale's colours bottom to top, with its ticks and title. */
 export function drawColourBar(canvas, scale) {
-  const dpr = window.devicePixelRatio || 1;
-  const w = canvas.clientWidth;
-  const h = canvas.clientHeight;
-  canvas.width = Math.round(w * dpr);
-  canvas.height = Math.round(h * dpr);
+  const [w, h] = fitCanvas(canvas);
   const ctx = canvas.getContext("2d");
-  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.clearRect(0, 0, w, h);
   // The title runs up the left edge, the ticks' labels right of the bar.
   const bar = { left: 15, top: 8, width: 10, height: h - 16 };

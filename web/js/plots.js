@@ -4,7 +4,11 @@
 
 const PAD = { left: 46, right: 10, top: 8, bottom: 22 };
 
-/** Sizes a canvas to its CSS box at the device pixel ratio; returns [w, h]. */
+/**
+ * Sizes a canvas to its CSS box at the device pixel ratio; returns [w, h].
+ * Only a change of size resizes it (which clears it and resets its
+ * context): its drawers clear or fill it and set what they draw with.
+ */
 export function fitCanvas(canvas) {
   const dpr = window.devicePixelRatio || 1;
   const w = canvas.clientWidth;
@@ -16,6 +20,30 @@ export function fitCanvas(canvas) {
   const ctx = canvas.getContext("2d");
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   return [w, h];
+}
+
+/**
+ * Fits and clears a canvas for a plot; returns its context, its computed
+ * style, its width and the plot area inside PAD: { ctx, style, w, left,
+ * top, pw, ph }.
+ */
+function startPlot(canvas) {
+  const [w, h] = fitCanvas(canvas);
+  const ctx = canvas.getContext("2d");
+  const style = getComputedStyle(canvas);
+  ctx.clearRect(0, 0, w, h);
+  const pw = w - PAD.left - PAD.right;
+  const ph = h - PAD.top - PAD.bottom;
+  return { ctx, style, w, left: PAD.left, top: PAD.top, pw, ph };
+}
+
+/** The plot area's frame, in the text's colour; leaves that colour and the labels' font set. */
+function drawFrame(ctx, style, left, top, pw, ph) {
+  ctx.strokeStyle = style.color;
+  ctx.lineWidth = 1;
+  ctx.strokeRect(left - 0.5, top - 0.5, pw + 1, ph + 1);
+  ctx.fillStyle = style.color;
+  ctx.font = "11px system-ui, sans-serif";
 }
 
 /**
@@ -37,14 +65,7 @@ export function seriesPoints(xs, ys, count, stairs) {
  * stairs }]; options: { log, yMin, yMax, yTicks (linear only) }.
  */
 export function drawLinePlot(canvas, series, options) {
-  const [w, h] = fitCanvas(canvas);
-  const ctx = canvas.getContext("2d");
-  const style = getComputedStyle(canvas);
-  ctx.clearRect(0, 0, w, h);
-  const left = PAD.left;
-  const top = PAD.top;
-  const pw = w - PAD.left - PAD.right;
-  const ph = h - PAD.top - PAD.bottom;
+  const { ctx, style, left, top, pw, ph } = startPlot(canvas);
   let xMax = 1;
   for (const s of series) if (s.count > 0) xMax = Math.max(xMax, s.xs[s.count - 1]);
   let yLo;
@@ -104,8 +125,7 @@ export function drawLinePlot(canvas, series, options) {
   for (let v = 0; v <= xMax + 1e-9; v += xStep) {
     ctx.fillText(formatCount(v), Math.min(mapX(v), left + pw - 12), top + ph + 5);
   }
-  ctx.strokeStyle = style.color;
-  ctx.strokeRect(left - 0.5, top - 0.5, pw + 1, ph + 1);
+  drawFrame(ctx, style, left, top, pw, ph);
 
   for (const s of series) {
     const p = seriesPoints(s.xs, s.ys, s.count, s.stairs);
@@ -143,14 +163,10 @@ export function histogram(values, offset, n, inside, lo, hi, bins) {
  * as a line.
  */
 export function drawHistogram(canvas, lo, hi, hists, exact) {
-  const [w, h] = fitCanvas(canvas);
-  const ctx = canvas.getContext("2d");
-  const style = getComputedStyle(canvas);
-  ctx.clearRect(0, 0, w, h);
+  const { ctx, style, w, top, ph } = startPlot(canvas);
+  // No axis on the left to label: the bars take all but 10 px each side.
   const left = 10;
-  const top = PAD.top;
   const pw = w - 20;
-  const ph = h - PAD.top - PAD.bottom;
   const densities = hists.map(({ counts }) => {
     const total = counts.reduce((s, v) => s + v, 0);
     const width = (hi - lo) / counts.length;
@@ -180,11 +196,7 @@ export function drawHistogram(canvas, lo, hi, hists, exact) {
     else ctx.lineTo(x, mapY(exact[i]));
   }
   ctx.stroke();
-  ctx.strokeStyle = style.color;
-  ctx.lineWidth = 1;
-  ctx.strokeRect(left - 0.5, top - 0.5, pw + 1, ph + 1);
-  ctx.fillStyle = style.color;
-  ctx.font = "11px system-ui, sans-serif";
+  drawFrame(ctx, style, left, top, pw, ph);
   ctx.textBaseline = "top";
   ctx.textAlign = "left";
   ctx.fillText(String(+lo.toFixed(2)), left, top + ph + 5);
@@ -225,14 +237,7 @@ export function exactMarginals(grid, nx, ny, a, width, height) {
  * Returns what it drew: { points: [[k, a]], marker: [k, a] }.
  */
 export function drawSchedule(canvas, aLow, aHigh, K, iteration, aNow) {
-  const [w, h] = fitCanvas(canvas);
-  const ctx = canvas.getContext("2d");
-  const style = getComputedStyle(canvas);
-  ctx.clearRect(0, 0, w, h);
-  const left = PAD.left;
-  const top = PAD.top;
-  const pw = w - PAD.left - PAD.right;
-  const ph = h - PAD.top - PAD.bottom;
+  const { ctx, style, left, top, pw, ph } = startPlot(canvas);
   const kMax = Math.max(1.25 * K, iteration, 1);
   const lo = Math.min(aLow, aHigh, aNow);
   const hi = Math.max(aLow, aHigh, aNow);
@@ -244,11 +249,7 @@ export function drawSchedule(canvas, aLow, aHigh, K, iteration, aNow) {
     [K, aHigh],
     [kMax, aHigh],
   ];
-  ctx.strokeStyle = style.color;
-  ctx.lineWidth = 1;
-  ctx.strokeRect(left - 0.5, top - 0.5, pw + 1, ph + 1);
-  ctx.fillStyle = style.color;
-  ctx.font = "11px system-ui, sans-serif";
+  drawFrame(ctx, style, left, top, pw, ph);
   ctx.textAlign = "right";
   ctx.textBaseline = "middle";
   ctx.fillText(String(+hi.toPrecision(3)), left - 5, mapY(hi));
