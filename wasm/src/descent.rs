@@ -222,18 +222,6 @@ impl Descent {
         Ok(self.step_n(u32::try_from(steps).unwrap_or(MAX_STEPS)))
     }
 
-    /// Number of chains.
-    #[wasm_bindgen(js_name = chains)]
-    pub fn chain_count(&self) -> usize {
-        self.x.len()
-    }
-
-    /// The seed (a BigInt).
-    #[wasm_bindgen(js_name = seed)]
-    pub fn seed_value(&self) -> u64 {
-        self.seed
-    }
-
     /// Restarts so far.
     #[wasm_bindgen(js_name = restarts)]
     pub fn restarts_js(&self) -> f64 {
@@ -244,27 +232,9 @@ impl Descent {
     pub fn termination(&self) -> Option<String> {
         None
     }
-
-    /// Address of the positions, `2 * chains()` f64.
-    pub fn positions_ptr(&self) -> *const f64 {
-        self.positions.as_ptr()
-    }
-
-    /// Address of the velocities, `2 * chains()` zeros.
-    pub fn velocities_ptr(&self) -> *const f64 {
-        self.velocities.as_ptr()
-    }
-
-    /// Address of each chain's best value so far, `chains()` f64.
-    pub fn values_ptr(&self) -> *const f64 {
-        self.values.as_ptr()
-    }
-
-    /// Address of the summary, `Summary.Len` f64 indexed by `Summary`.
-    pub fn summary_ptr(&self) -> *const f64 {
-        self.summary.as_ptr()
-    }
 }
+
+export_run_buffers!(Descent);
 
 /// A uniform draw in `[0, 1)` from the top 53 bits.
 fn unit<R: Rng + ?Sized>(rng: &mut R) -> f64 {
@@ -325,35 +295,22 @@ mod tests {
             Descent::new(&d, [1.0, 0.0, 0.0, 1.0]),
             Err(Error::Grid(_))
         ));
-        assert!(
-            Descent::new(
-                &Settings {
-                    h: -1.0,
-                    ..d.clone()
-                },
-                [0.0, 1.0, 0.0, 1.0]
-            )
-            .is_err()
-        );
-        assert!(
-            Descent::new(
-                &Settings {
-                    chains: 0,
-                    ..d.clone()
-                },
-                [0.0, 1.0, 0.0, 1.0]
-            )
-            .is_err()
-        );
-        assert!(
-            Descent::new(
-                &Settings {
-                    spread: f64::NAN,
-                    ..d
-                },
-                [0.0, 1.0, 0.0, 1.0]
-            )
-            .is_err()
-        );
+        let bad = [
+            Settings {
+                h: -1.0,
+                ..d.clone()
+            },
+            Settings {
+                chains: 0,
+                ..d.clone()
+            },
+            Settings {
+                spread: f64::NAN,
+                ..d
+            },
+        ];
+        for settings in &bad {
+            assert!(Descent::new(settings, [0.0, 1.0, 0.0, 1.0]).is_err());
+        }
     }
 }

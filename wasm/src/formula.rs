@@ -589,6 +589,19 @@ impl Formula {
             *top -= 1;
             stack[*top - 1] = f(stack[*top - 1], stack[*top]);
         };
+        // The variables, each with its own direction of the gradient.
+        let (x, y) = (
+            Dual {
+                v: x,
+                dx: 1.0,
+                dy: 0.0,
+            },
+            Dual {
+                v: y,
+                dx: 0.0,
+                dy: 1.0,
+            },
+        );
         for op in &self.program {
             match *op {
                 Op::Const(v) => {
@@ -596,19 +609,11 @@ impl Formula {
                     top += 1;
                 }
                 Op::X => {
-                    stack[top] = Dual {
-                        v: x,
-                        dx: 1.0,
-                        dy: 0.0,
-                    };
+                    stack[top] = x;
                     top += 1;
                 }
                 Op::Y => {
-                    stack[top] = Dual {
-                        v: y,
-                        dx: 0.0,
-                        dy: 1.0,
-                    };
+                    stack[top] = y;
                     top += 1;
                 }
                 Op::Neg => {

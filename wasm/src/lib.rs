@@ -53,6 +53,53 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+/// Exports what the page's `sim.js` reads of every run type alike:
+/// `chains()`, `seed()` and the addresses of the buffers in `$run`'s fields
+/// `positions`, `velocities`, `values` and `summary`, in [`Optimizer`]'s
+/// layout. A macro, since wasm-bindgen exports no trait's methods.
+macro_rules! export_run_buffers {
+    ($run:ty) => {
+        /// What JavaScript reads of every run type alike.
+        #[wasm_bindgen]
+        impl $run {
+            /// Number of chains.
+            #[wasm_bindgen(js_name = chains)]
+            pub fn chain_count(&self) -> usize {
+                self.values.len()
+            }
+
+            /// The seed of this run (a BigInt).
+            #[wasm_bindgen(js_name = seed)]
+            pub fn seed_value(&self) -> u64 {
+                self.seed
+            }
+
+            /// Address of the positions, `2 * chains()` f64.
+            pub fn positions_ptr(&self) -> *const f64 {
+                self.positions.as_ptr()
+            }
+
+            /// Address of the velocities, `2 * chains()` f64 (zeros for
+            /// OLA and for descent).
+            pub fn velocities_ptr(&self) -> *const f64 {
+                self.velocities.as_ptr()
+            }
+
+            /// Address of the per-chain values, `chains()` f64: an
+            /// optimiser's `U` of each chain (NaN for a chain that diverged,
+            /// finite for every other), descent's best of each so far.
+            pub fn values_ptr(&self) -> *const f64 {
+                self.values.as_ptr()
+            }
+
+            /// Address of the summary, `Summary.Len` f64 indexed by `Summary`.
+            pub fn summary_ptr(&self) -> *const f64 {
+                self.summary.as_ptr()
+            }
+        }
+    };
+}
+
 mod descent;
 mod error;
 mod experiment;
@@ -144,7 +191,8 @@ pub struct Optimizer {
     positions: Vec<f64>,
     /// `y` of chain `c` at `2c`, `2c + 1` (zero for OLA).
     velocities: Vec<f64>,
-    /// `U(x)` of each chain; NaN once a chain diverged.
+    /// `U(x)` of each chain: NaN once a chain diverged, finite for every
+    /// other.
     values: Vec<f64>,
     summary: [f64; Summary::Len as usize],
 }
@@ -522,40 +570,9 @@ impl Optimizer {
     pub fn minimiser(&self) -> Vec<f64> {
         self.landscape.global_minimiser().to_vec()
     }
-
-    /// Number of chains.
-    #[wasm_bindgen(js_name = chains)]
-    pub fn chain_count(&self) -> usize {
-        self.values.len()
-    }
-
-    /// The seed of this run (a BigInt).
-    #[wasm_bindgen(js_name = seed)]
-    pub fn seed_value(&self) -> u64 {
-        self.seed
-    }
-
-    /// Address of the positions, `2 * chains()` f64.
-    pub fn positions_ptr(&self) -> *const f64 {
-        self.positions.as_ptr()
-    }
-
-    /// Address of the velocities, `2 * chains()` f64.
-    pub fn velocities_ptr(&self) -> *const f64 {
-        self.velocities.as_ptr()
-    }
-
-    /// Address of the per-chain values, `chains()` f64: NaN for a chain
-    /// that diverged, finite for every other.
-    pub fn values_ptr(&self) -> *const f64 {
-        self.values.as_ptr()
-    }
-
-    /// Address of the summary, `Summary.Len` f64 indexed by `Summary`.
-    pub fn summary_ptr(&self) -> *const f64 {
-        self.summary.as_ptr()
-    }
 }
+
+export_run_buffers!(Optimizer);
 
 /// The landscape a JS value names: see [`settings::potential`].
 fn landscape(name: &JsValue) -> Result<Landscape, Error> {

@@ -33,7 +33,7 @@ export class Descent {
      */
     restarts(): number;
     /**
-     * The seed (a BigInt).
+     * The seed of this run (a BigInt).
      */
     seed(): bigint;
     /**
@@ -45,11 +45,14 @@ export class Descent {
      */
     termination(): string | undefined;
     /**
-     * Address of each chain's best value so far, `chains()` f64.
+     * Address of the per-chain values, `chains()` f64: an
+     * optimiser's `U` of each chain (NaN for a chain that diverged,
+     * finite for every other), descent's best of each so far.
      */
     values_ptr(): number;
     /**
-     * Address of the velocities, `2 * chains()` zeros.
+     * Address of the velocities, `2 * chains()` f64 (zeros for
+     * OLA and for descent).
      */
     velocities_ptr(): number;
 }
@@ -171,12 +174,14 @@ export class Optimizer {
      */
     termination(): string | undefined;
     /**
-     * Address of the per-chain values, `chains()` f64: NaN for a chain
-     * that diverged, finite for every other.
+     * Address of the per-chain values, `chains()` f64: an
+     * optimiser's `U` of each chain (NaN for a chain that diverged,
+     * finite for every other), descent's best of each so far.
      */
     values_ptr(): number;
     /**
-     * Address of the velocities, `2 * chains()` f64.
+     * Address of the velocities, `2 * chains()` f64 (zeros for
+     * OLA and for descent).
      */
     velocities_ptr(): number;
 }

@@ -70,7 +70,7 @@ export class Descent {
         return ret;
     }
     /**
-     * The seed (a BigInt).
+     * The seed of this run (a BigInt).
      * @returns {bigint}
      */
     seed() {
@@ -99,7 +99,9 @@ export class Descent {
         return v1;
     }
     /**
-     * Address of each chain's best value so far, `chains()` f64.
+     * Address of the per-chain values, `chains()` f64: an
+     * optimiser's `U` of each chain (NaN for a chain that diverged,
+     * finite for every other), descent's best of each so far.
      * @returns {number}
      */
     values_ptr() {
@@ -107,7 +109,8 @@ export class Descent {
         return ret >>> 0;
     }
     /**
-     * Address of the velocities, `2 * chains()` zeros.
+     * Address of the velocities, `2 * chains()` f64 (zeros for
+     * OLA and for descent).
      * @returns {number}
      */
     velocities_ptr() {
@@ -365,8 +368,9 @@ export class Optimizer {
         return v1;
     }
     /**
-     * Address of the per-chain values, `chains()` f64: NaN for a chain
-     * that diverged, finite for every other.
+     * Address of the per-chain values, `chains()` f64: an
+     * optimiser's `U` of each chain (NaN for a chain that diverged,
+     * finite for every other), descent's best of each so far.
      * @returns {number}
      */
     values_ptr() {
@@ -374,7 +378,8 @@ export class Optimizer {
         return ret >>> 0;
     }
     /**
-     * Address of the velocities, `2 * chains()` f64.
+     * Address of the velocities, `2 * chains()` f64 (zeros for
+     * OLA and for descent).
      * @returns {number}
      */
     velocities_ptr() {
