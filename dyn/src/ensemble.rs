@@ -99,6 +99,22 @@
 //! that basin (on bbob at `d = 2`, runs ended `1e-3` to `1e-1` above the
 //! minimum with their best point in its basin).
 //!
+//! **Coordinate scans** (the one-coordinate visits of scipy's
+//! `dual_annealing`): after a large restart that leaves the run neither
+//! converged nor waiting for its confirming restart, where the run's best
+//! point moved since the last scan, `U` is scanned along each
+//! coordinate's side through the best point: a grid of 64 points (one
+//! call of the function), then the two lowest refined by golden section
+//! within a grid step of them, to `1e-10` of the side; the best point
+//! moves to whatever is lower, coordinate after coordinate, in one sweep
+//! (about `150 d` calls). A separable function's best point is then the
+//! best on every line through it: the separable Rastrigin's restarts end
+//! with a coordinate or two in a neighbouring cell, which no restart of
+//! the ensemble repairs. Sweeps repeated while one lowers the best spent
+//! the restarts' calls on slow descents along the axes of non-separable
+//! functions (docs/QUALITY.md). A scan is no evidence for the convergence
+//! rule.
+//!
 //! **Convergence** ([`Ensemble::converge`]): the run ends once two large
 //! restarts that ended by agreement (values, positions or pinned, not the
 //! stall) at one point, or three anywhere, reached the best value, each to
@@ -149,6 +165,14 @@ const AGREEING_APART: usize = 3;
 /// share of its side: converged restarts end far closer, distinct minima
 /// are a basin apart.
 const SAME: f64 = 1e-3;
+/// Points of a coordinate's grid in a scan (module docs, "Coordinate
+/// scans"): at least two per period of a landscape with 30 periods across
+/// the box.
+const SCAN_GRID: usize = 64;
+/// The grid's lowest points a scan refines.
+const SCAN_REFINED: usize = 2;
+/// A refinement ends when its bracket is this share of the side.
+const SCAN_WIDTH: f64 = 1e-10;
 /// The ridge on the model's non-isotropic curvature, per fitted point.
 const RIDGE: f64 = 0.05;
 /// A local restart's largest standard deviation, in units of the box's
@@ -520,6 +544,8 @@ impl Ensemble {
         let mut schedule = Schedule::new(first);
         // The large restarts that ended by agreement.
         let mut agreed: Vec<Agreement> = Vec::new();
+        // The best point of the last coordinate scan.
+        let mut scanned_at: Vec<f64> = Vec::new();
         let end = loop {
             let before = run.evaluations;
             let (size, local_draw) = schedule.next(&mut run.rng, &run.best_x);
@@ -548,7 +574,14 @@ impl Ensemble {
             // can confirm that agreement for the cost of one more restart,
             // where a doubled one costs two (docs/QUALITY.md).
             let confirming = ended_agreed && agreed.len() == 1;
+            let large = !schedule.next_local;
             schedule.done(run.evaluations - before, confirming, run.restarts);
+            if large && !confirming && run.best_x != scanned_at {
+                if let Err(end) = run.scan()? {
+                    break end;
+                }
+                scanned_at.clone_from(&run.best_x);
+            }
         };
         run.solution(schedule.n, end)
     }
@@ -1005,6 +1038,99 @@ where
             return Ok(Err(EnsembleEnd::Budget));
         }
         Ok(Ok(f))
+    }
+
+    /// A coordinate scan from the run's best point: one sweep over the
+    /// coordinates (module docs, "Coordinate scans"); the run's end if one
+    /// came.
+    fn scan(&mut self) -> Result<Result<(), EnsembleEnd>, Error> {
+        let bounds = self.bounds;
+        let (lo, hi) = (bounds.lo(), bounds.hi());
+        let d = lo.len();
+        for j in 0..d {
+            let x = self.best_x.clone();
+            let step = (hi[j] - lo[j]) / (SCAN_GRID - 1) as f64;
+            let at = |k: usize| {
+                if k + 1 == SCAN_GRID {
+                    hi[j]
+                } else {
+                    lo[j] + k as f64 * step
+                }
+            };
+            let mut grid = Vec::with_capacity(SCAN_GRID * d);
+            for k in 0..SCAN_GRID {
+                grid.extend_from_slice(&x);
+                grid[k * d + j] = at(k);
+            }
+            let f = match self.evaluate(&grid, d, None)? {
+                Ok(f) => f,
+                Err(end) => return Ok(Err(end)),
+            };
+            let mut order: Vec<usize> = (0..SCAN_GRID).filter(|&k| f[k].is_finite()).collect();
+            order.sort_by(|&a, &b| f[a].total_cmp(&f[b]));
+            for &k in order.iter().take(SCAN_REFINED) {
+                let bracket = ((at(k) - step).max(lo[j]), (at(k) + step).min(hi[j]));
+                let width = SCAN_WIDTH * (hi[j] - lo[j]);
+                if let Err(end) = self.golden_section(&x, j, bracket, width)? {
+                    return Ok(Err(end));
+                }
+            }
+        }
+        Ok(Ok(()))
+    }
+
+    /// Golden-section search for the lowest `U` on `x` with coordinate `j`
+    /// in `[a, b]`, until the bracket is `width` wide, each point one call;
+    /// the run keeps the lowest (its end if one came). A value that is not
+    /// finite counts as `+inf`.
+    fn golden_section(
+        &mut self,
+        x: &[f64],
+        j: usize,
+        (mut a, mut b): (f64, f64),
+        width: f64,
+    ) -> Result<Result<(), EnsembleEnd>, Error> {
+        const R: f64 = 0.618_033_988_749_894_9;
+        let d = x.len();
+        let mut p = x.to_vec();
+        let mut value = |t: f64| -> Result<Result<f64, EnsembleEnd>, Error> {
+            p[j] = t;
+            let f = self.evaluate(&p, d, None)?;
+            Ok(f.map(|f| {
+                if f[0].is_finite() {
+                    f[0]
+                } else {
+                    f64::INFINITY
+                }
+            }))
+        };
+        let (mut c, mut e) = (b - R * (b - a), a + R * (b - a));
+        let mut fc = match value(c)? {
+            Ok(f) => f,
+            Err(end) => return Ok(Err(end)),
+        };
+        let mut fe = match value(e)? {
+            Ok(f) => f,
+            Err(end) => return Ok(Err(end)),
+        };
+        while b - a > width {
+            if fc <= fe {
+                (b, e, fe) = (e, c, fc);
+                c = b - R * (b - a);
+                fc = match value(c)? {
+                    Ok(f) => f,
+                    Err(end) => return Ok(Err(end)),
+                };
+            } else {
+                (a, c, fc) = (c, e, fe);
+                e = a + R * (b - a);
+                fe = match value(e)? {
+                    Ok(f) => f,
+                    Err(end) => return Ok(Err(end)),
+                };
+            }
+        }
+        Ok(Ok(()))
     }
 
     /// The caller's rule that ends the run after this generation, if any.

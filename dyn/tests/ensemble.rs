@@ -250,6 +250,24 @@ fn restarts_that_agree_on_symmetric_local_minima_do_not_converge() {
 }
 
 #[test]
+fn a_separable_function_is_solved_by_the_coordinate_scans() {
+    // The 10-D Rastrigin (scipy's `dual_annealing` docstring example,
+    // here in [-5, 5]^10): the restarts end with a few coordinates in a
+    // neighbouring cell: without the scans these seeds end at 2.98, 3.98
+    // and 2.98 after 20 000 calls. A scan along the axes from the best
+    // point moves each coordinate to its own cell's floor.
+    let d = 10;
+    let rastrigin = |x: &[f64]| {
+        let s: f64 = x.iter().map(|t| t * t - 10.0 * (2.0 * PI * t).cos()).sum();
+        10.0 * d as f64 + s
+    };
+    for seed in 1..=3 {
+        let s = run(rastrigin, d, 20_000, seed, Ensemble::default());
+        assert!(s.value < 1e-8, "{s:?}");
+    }
+}
+
+#[test]
 fn a_function_with_several_global_minima_converges() {
     // (x_i^2 - 1)^2 summed has its minimum, 0, at the 2^d corners of
     // [-1, 1]^d: restarts agree on the value at different points, and
@@ -389,11 +407,15 @@ fn bad_input_is_refused_and_a_failed_run_is_never_a_result() {
         e.minimize(&[0.0], &[1.0], 500, 0, none, failing, go),
         Err(Error::User(_))
     ));
-    // A constant function: every restart agrees at once, and the run
-    // converges without spending its budget.
+    // A constant function: every restart agrees at once, each at another
+    // point, so the third large one converges the run without spending
+    // its budget: 205 calls, of which 52 in restarts (large ones of 8, 8
+    // and 16 particles, a local one of 20) and 153 in one coordinate scan
+    // after the second (64 points and two golden sections; module docs,
+    // "Coordinate scans").
     let s = e.minimize(&[0.0], &[1.0], 10_000, 0, none, ok, go).unwrap();
     assert_eq!((s.value, s.end), (1.0, EnsembleEnd::Converged));
-    assert!(s.evaluations < 100);
+    assert!(s.evaluations < 250, "{s:?}");
 }
 
 #[test]
