@@ -112,8 +112,8 @@
 //! with a coordinate or two in a neighbouring cell, which no restart of
 //! the ensemble repairs. Sweeps repeated while one lowers the best spent
 //! the restarts' calls on slow descents along the axes of non-separable
-//! functions (docs/QUALITY.md). A scan is no evidence for the convergence
-//! rule.
+//! functions (docs/QUALITY.md). Each of a scan's calls counts as a
+//! generation. A scan is no evidence for the convergence rule.
 //!
 //! **Convergence** ([`Ensemble::converge`]): the run ends once two large
 //! restarts that ended by agreement (values, positions or pinned, not the
@@ -171,8 +171,11 @@ const SAME: f64 = 1e-3;
 const SCAN_GRID: usize = 64;
 /// The grid's lowest points a scan refines.
 const SCAN_REFINED: usize = 2;
-/// A refinement ends when its bracket is this share of the side.
+/// A refinement ends when its bracket is this share of the side...
 const SCAN_WIDTH: f64 = 1e-10;
+/// ... or after this many steps (from two grid steps, `SCAN_WIDTH` takes
+/// 42).
+const SCAN_STEPS: usize = 60;
 /// The ridge on the model's non-isotropic curvature, per fitted point.
 const RIDGE: f64 = 0.05;
 /// A local restart's largest standard deviation, in units of the box's
@@ -1113,7 +1116,14 @@ where
             Ok(f) => f,
             Err(end) => return Ok(Err(end)),
         };
-        while b - a > width {
+        // The bracket shrinks by `R` a step until it is `width` wide; where
+        // a side is narrow next to its coordinates' size, rounding can
+        // hold a bracket of one spacing of the doubles still, each step
+        // a call: `SCAN_STEPS` bounds it.
+        for _ in 0..SCAN_STEPS {
+            if b - a <= width {
+                break;
+            }
             if fc <= fe {
                 (b, e, fe) = (e, c, fc);
                 c = b - R * (b - a);
