@@ -10,6 +10,13 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(a, b)| a * b).sum()
 }
 
+/// Rastrigin's function: minimum 0 at the origin, a local minimum in
+/// every cell of the integer lattice.
+fn rastrigin(x: &[f64]) -> f64 {
+    let s: f64 = x.iter().map(|t| t * t - 10.0 * (2.0 * PI * t).cos()).sum();
+    10.0 * x.len() as f64 + s
+}
+
 fn run(
     f: impl Fn(&[f64]) -> f64,
     d: usize,
@@ -234,10 +241,6 @@ fn restarts_that_agree_on_symmetric_local_minima_do_not_converge() {
     // reach 0. Were two restarts of any kind enough (and the walls
     // clipped alone), 8 would end there and 20 reach 0.
     let d = 4;
-    let rastrigin = |x: &[f64]| {
-        let s: f64 = x.iter().map(|t| t * t - 10.0 * (2.0 * PI * t).cos()).sum();
-        10.0 * d as f64 + s
-    };
     let runs: Vec<_> = (1..=30)
         .map(|seed| run(rastrigin, d, 80_000, seed, Ensemble::default()))
         .collect();
@@ -257,10 +260,6 @@ fn a_separable_function_is_solved_by_the_coordinate_scans() {
     // and 2.98 after 20 000 calls. A scan along the axes from the best
     // point moves each coordinate to its own cell's floor.
     let d = 10;
-    let rastrigin = |x: &[f64]| {
-        let s: f64 = x.iter().map(|t| t * t - 10.0 * (2.0 * PI * t).cos()).sum();
-        10.0 * d as f64 + s
-    };
     for seed in 1..=3 {
         let s = run(rastrigin, d, 20_000, seed, Ensemble::default());
         assert!(s.value < 1e-8, "{s:?}");
