@@ -423,3 +423,68 @@ fn python_keeps_no_stopping_rule_of_its_own() {
         );
     }
 }
+
+/// The functions of `src` longer than `limit` lines, as `name (lines)`:
+/// from a `fn` line to the first line after it that is its indentation
+/// and a closing brace (rustfmt's layout), signatures included.
+fn long_functions(src: &str, limit: usize) -> Vec<String> {
+    let lines: Vec<&str> = src.lines().collect();
+    let mut long = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let body = line.trim_start();
+        let indent = line.len() - body.len();
+        let Some(at) = body.find("fn ") else {
+            continue;
+        };
+        let head = &body[..at];
+        let is_item = [
+            "",
+            "pub ",
+            "pub(crate) ",
+            "pub(super) ",
+            "const ",
+            "pub const ",
+        ]
+        .contains(&head);
+        if !is_item || body.ends_with(';') {
+            continue;
+        }
+        let close = format!("{}}}", " ".repeat(indent));
+        if let Some(end) = lines[i + 1..].iter().position(|l| l.trim_end() == close) {
+            let n = end + 2;
+            if n > limit {
+                let name: String = body[at + 3..]
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                long.push(format!("{name} ({n})"));
+            }
+        }
+    }
+    long
+}
+
+/// No kernel function is over 80 lines: a longer one holds steps that
+/// want names of their own (as `Auto`'s run is written, step by step).
+#[test]
+fn no_kernel_function_is_over_80_lines() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../core/src");
+    let mut mods = BTreeMap::new();
+    modules(&root, &[], &mut mods);
+    let mut long = Vec::new();
+    for (module, path) in mods {
+        let src = code(&fs::read_to_string(&path).expect("readable source"));
+        for f in long_functions(&src, 80) {
+            long.push(format!("{module}::{f}"));
+        }
+    }
+    assert!(long.is_empty(), "functions over 80 lines: {long:?}");
+}
+
+#[test]
+fn the_length_guard_counts_a_function_from_fn_to_its_brace() {
+    let body = "    let x = 1;\n".repeat(79);
+    let src = format!("pub fn long() {{\n{body}}}\n\nfn short() {{\n}}\n");
+    assert_eq!(long_functions(&src, 80), ["long (81)"]);
+    assert!(long_functions(&src, 81).is_empty());
+}

@@ -267,6 +267,51 @@ impl<F: Float> Auto<F> {
         L: Quencher<F> + ?Sized,
         O: FnMut(&run::Seen<'_, F>) -> ControlFlow<()>,
     {
+        let (hard, budget) = self.check(problem, chains, buffers.best.len())?;
+        let mut run = run::Run::start(
+            self,
+            potential,
+            problem.domain,
+            problem.x0,
+            budget,
+            problem.seed,
+            chains,
+            lbfgs,
+            buffers,
+            observer,
+        )?
+        .with_rules(problem.rules, problem.converge)
+        .with_overrun(hard);
+        let ended = run.solve();
+        // A stop can read as an infeasible point the method steps over (a
+        // quench that cannot start): it ends the run however it ended.
+        if run.stopped() {
+            return Err(Error::Stopped);
+        }
+        let termination = match ended {
+            ControlFlow::Continue(()) => run.ended(),
+            ControlFlow::Break(run::Stop::Observer) => Termination::Observer,
+            ControlFlow::Break(run::Stop::Target) => Termination::Target,
+            ControlFlow::Break(run::Stop::Budget) => Termination::Evaluations,
+            ControlFlow::Break(run::Stop::Failed(e)) => return Err(e),
+        };
+        Ok(run.found(termination))
+    }
+
+    /// The settings, the rules and the problem checked for a run of
+    /// `chains` in dimension `dim`: the hard budget and the one planned
+    /// within (the soft budget where lower).
+    fn check<P, B, S>(
+        &self,
+        problem: &Problem<'_, F, P, B>,
+        chains: &S,
+        dim: usize,
+    ) -> Result<(u64, u64), Error>
+    where
+        P: ?Sized,
+        B: Sides<F> + ?Sized,
+        S: run::Chains<F> + ?Sized,
+    {
         self.validate()?;
         // No round at all is a run of its starts and polish.
         Stop {
@@ -303,36 +348,9 @@ impl<F: Float> Auto<F> {
             });
         }
         if let Some(x0) = problem.x0 {
-            check_start(x0, domain, buffers.best.len())?;
+            check_start(x0, domain, dim)?;
         }
-        let mut run = run::Run::start(
-            self,
-            potential,
-            domain,
-            problem.x0,
-            budget,
-            problem.seed,
-            chains,
-            lbfgs,
-            buffers,
-            observer,
-        )?
-        .with_rules(problem.rules, problem.converge)
-        .with_overrun(hard);
-        let ended = run.solve();
-        // A stop can read as an infeasible point the method steps over (a
-        // quench that cannot start): it ends the run however it ended.
-        if run.stopped() {
-            return Err(Error::Stopped);
-        }
-        let termination = match ended {
-            ControlFlow::Continue(()) => run.ended(),
-            ControlFlow::Break(run::Stop::Observer) => Termination::Observer,
-            ControlFlow::Break(run::Stop::Target) => Termination::Target,
-            ControlFlow::Break(run::Stop::Budget) => Termination::Evaluations,
-            ControlFlow::Break(run::Stop::Failed(e)) => return Err(e),
-        };
-        Ok(run.found(termination))
+        Ok((hard, budget))
     }
 }
 
